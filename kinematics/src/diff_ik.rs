@@ -1,0 +1,402 @@
+//! Differential IK as one QP, mink/pink style: tasks give an error and a Jacobian, limits give
+//! inequality rows, and [`solve_step`] stacks them and calls clarabel.
+//!
+//! The unknown is the joint displacement `Δq` [rad] of one step. A task with rows `(j_k, e_k, w_k)`
+//! wants `j_k · Δq = e_k`; a limit row `(g, h)` demands `g · Δq ≤ h`. The QP is
+//!
+//! ```text
+//! minimise   ½ Σ_k w_k (j_k·Δq − e_k)² + ½ λ ‖Δq‖²     subject to   G Δq ≤ h
+//! ```
+//!
+//! with λ > 0 the damping that keeps it strictly convex at singularities.
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::NonnegativeConeT,
+};
+
+use nalgebra::{Matrix6, Vector3, Vector6};
+
+use crate::fk::EndFrame;
+use crate::model::ArmModel;
+use crate::pose::Pose;
+
+/// One weighted row of a task: wants `jacobian · Δq = error`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TaskRow {
+    /// Row of the task Jacobian (per radian of each joint).
+    pub jacobian: [f64; 6],
+    /// Desired change of the task quantity this step (m or rad).
+    pub error: f64,
+    /// Weight (cost per unit² of residual).
+    pub weight: f64,
+}
+
+/// One inequality row: `g · Δq ≤ h`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LimitRow {
+    /// Row of G.
+    pub g: [f64; 6],
+    /// Right-hand side [rad].
+    pub h: f64,
+}
+
+/// Something the solver should achieve, as rows of error and Jacobian.
+pub trait Task {
+    /// Appends this task's rows at configuration `q` [rad].
+    fn rows(&self, model: &ArmModel, q: &[f64; 6], out: &mut Vec<TaskRow>);
+}
+
+/// Something the step must respect, as inequality rows.
+pub trait Limit {
+    /// Appends this limit's rows at configuration `q` [rad].
+    fn rows(&self, model: &ArmModel, q: &[f64; 6], out: &mut Vec<LimitRow>);
+}
+
+/// Bring `frame` to `target` (in `base_link`).
+///
+/// Error: `[p* − p; log(R*·Rᵀ)]` (metres; rotation vector in radians, base frame); Jacobian: the
+/// geometric Jacobian of `frame`. `position_cost` weighs metres, `orientation_cost` radians.
+/// Errors longer than the clamps are shortened (Buss's clamped error), so that one step does not
+/// trust the linear model over a large distance; `f64::INFINITY` disables a clamp.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameTask {
+    pub frame: EndFrame,
+    pub target: Pose,
+    pub position_cost: f64,
+    pub orientation_cost: f64,
+    /// Longest position error used in one step [m].
+    pub position_clamp: f64,
+    /// Longest orientation error used in one step [rad].
+    pub orientation_clamp: f64,
+}
+
+impl FrameTask {
+    /// A task without error clamps.
+    pub fn new(frame: EndFrame, target: Pose, position_cost: f64, orientation_cost: f64) -> Self {
+        Self {
+            frame,
+            target,
+            position_cost,
+            orientation_cost,
+            position_clamp: f64::INFINITY,
+            orientation_clamp: f64::INFINITY,
+        }
+    }
+}
+
+fn clamp_norm(v: Vector3<f64>, max: f64) -> Vector3<f64> {
+    let n = v.norm();
+    if n > max { v * (max / n) } else { v }
+}
+
+impl FrameTask {
+    /// The position [m] and orientation [rad] errors at `q`.
+    pub fn residual(&self, model: &ArmModel, q: &[f64; 6]) -> (f64, f64) {
+        model.fk(q, self.frame).distance_to(&self.target)
+    }
+}
+
+impl Task for FrameTask {
+    fn rows(&self, model: &ArmModel, q: &[f64; 6], out: &mut Vec<TaskRow>) {
+        let pose = model.fk(q, self.frame);
+        let dp = clamp_norm(
+            self.target.iso.translation.vector - pose.iso.translation.vector,
+            self.position_clamp,
+        );
+        let dr = clamp_norm(
+            (self.target.iso.rotation * pose.iso.rotation.inverse()).scaled_axis(),
+            self.orientation_clamp,
+        );
+        let jac = model.jacobian(q, self.frame);
+        for r in 0..6 {
+            let (error, weight) = if r < 3 {
+                (dp[r], self.position_cost)
+            } else {
+                (dr[r - 3], self.orientation_cost)
+            };
+            let row = jac.row(r);
+            out.push(TaskRow {
+                jacobian: [row[0], row[1], row[2], row[3], row[4], row[5]],
+                error,
+                weight,
+            });
+        }
+    }
+}
+
+/// Pull the joints toward `target` [rad]: error `q* − q`, Jacobian I, cost per rad².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PostureTask {
+    pub target: [f64; 6],
+    pub cost: f64,
+}
+
+impl Task for PostureTask {
+    fn rows(&self, _model: &ArmModel, q: &[f64; 6], out: &mut Vec<TaskRow>) {
+        for i in 0..6 {
+            let mut jacobian = [0.0; 6];
+            jacobian[i] = 1.0;
+            out.push(TaskRow {
+                jacobian,
+                error: self.target[i] - q[i],
+                weight: self.cost,
+            });
+        }
+    }
+}
+
+/// Keep `q + Δq` within the joint limits shrunk by `margin` [rad].
+///
+/// A joint already inside the margin may not go deeper but is not forced out, so the QP stays
+/// feasible and, from any in-limit start, the limits themselves are never crossed.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct JointPositionLimit {
+    pub margin: f64,
+}
+
+impl Limit for JointPositionLimit {
+    fn rows(&self, model: &ArmModel, q: &[f64; 6], out: &mut Vec<LimitRow>) {
+        for (i, spec) in model.joints.iter().enumerate() {
+            let mut g = [0.0; 6];
+            g[i] = 1.0;
+            out.push(LimitRow {
+                g,
+                h: (spec.upper - self.margin - q[i]).max(0.0),
+            });
+            g[i] = -1.0;
+            out.push(LimitRow {
+                g,
+                h: (q[i] - spec.lower - self.margin).max(0.0),
+            });
+        }
+    }
+}
+
+/// `|Δq_i| ≤ v_max,i · dt`: the model's velocity limits over a step of `dt` seconds, scaled.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VelocityLimit {
+    /// Step duration [s].
+    pub dt: f64,
+    /// Fraction of the model's velocity limits to allow (1.0 = the full limits).
+    pub scale: f64,
+}
+
+impl Limit for VelocityLimit {
+    fn rows(&self, model: &ArmModel, _q: &[f64; 6], out: &mut Vec<LimitRow>) {
+        for (i, spec) in model.joints.iter().enumerate() {
+            let bound = spec.max_velocity * self.dt * self.scale;
+            let mut g = [0.0; 6];
+            g[i] = 1.0;
+            out.push(LimitRow { g, h: bound });
+            g[i] = -1.0;
+            out.push(LimitRow { g, h: bound });
+        }
+    }
+}
+
+/// Why one QP step failed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum QpError {
+    /// Damping must be positive for the QP to be strictly convex.
+    #[error("damping must be positive and finite, got {0}")]
+    BadDamping(f64),
+    /// A task or limit produced NaN or infinity.
+    #[error("a task or limit row is not finite at q = {0:?}")]
+    NonFinite([f64; 6]),
+    /// clarabel could not solve the QP.
+    #[error("clarabel: {0}")]
+    Solver(String),
+}
+
+/// Reusable QP state: row buffers and, while the constraint pattern stays the same, the clarabel
+/// solver itself (only P, q, A's values and b are updated between solves).
+///
+/// When the unconstrained minimiser of the QP (one 6×6 Cholesky solve) already satisfies every
+/// limit row, it *is* the QP's optimum (KKT with zero multipliers) and clarabel is skipped; set
+/// `always_use_solver` to send every step to clarabel instead (same answer to solver tolerance).
+#[derive(Default)]
+pub struct QpWorkspace {
+    /// Send every step to clarabel, even when no limit is active.
+    pub always_use_solver: bool,
+    /// Steps answered by the unconstrained shortcut, and by clarabel (for benchmarks).
+    pub counts: (usize, usize),
+    task_rows: Vec<TaskRow>,
+    limit_rows: Vec<LimitRow>,
+    solver: Option<(Vec<usize>, Vec<usize>, DefaultSolver<f64>)>,
+}
+
+/// Column-major upper triangle of a dense 6×6, as clarabel wants P.
+fn upper_triangle_csc(dense: &[[f64; 6]; 6]) -> CscMatrix<f64> {
+    let mut colptr = vec![0];
+    let mut rowval = Vec::with_capacity(21);
+    let mut nzval = Vec::with_capacity(21);
+    for col in 0..6 {
+        for (row, values) in dense.iter().enumerate().take(col + 1) {
+            rowval.push(row);
+            nzval.push(values[col]);
+        }
+        colptr.push(rowval.len());
+    }
+    CscMatrix::new(6, 6, colptr, rowval, nzval)
+}
+
+/// Rows with one non-zero coefficient are bounds on one joint: keeps only the tightest per
+/// joint and direction, so stacked position and velocity limits cost 12 rows instead of 24.
+fn merge_bounds(rows: &mut Vec<LimitRow>) {
+    let mut tightest: [Option<LimitRow>; 12] = [None; 12];
+    rows.retain(|row| {
+        let mut nonzero = row.g.iter().enumerate().filter(|(_, g)| **g != 0.0);
+        let (Some((i, &g)), None) = (nonzero.next(), nonzero.next()) else {
+            return true;
+        };
+        let slot = 2 * i + usize::from(g < 0.0);
+        let normalised = LimitRow {
+            g: row.g.map(|v| v / g.abs()),
+            h: row.h / g.abs(),
+        };
+        match &tightest[slot] {
+            Some(kept) if kept.h <= normalised.h => {}
+            _ => tightest[slot] = Some(normalised),
+        }
+        false
+    });
+    rows.extend(tightest.into_iter().flatten());
+}
+
+impl QpWorkspace {
+    /// A workspace that sends every step to clarabel (no unconstrained shortcut).
+    pub fn solver_only() -> Self {
+        Self {
+            always_use_solver: true,
+            ..Self::default()
+        }
+    }
+}
+
+/// `argmin ½xᵀPx + cᵀx` if it satisfies every limit row (within 1e-12), else `None`.
+fn unconstrained_if_feasible(
+    p_upper: &[[f64; 6]; 6],
+    c: &[f64; 6],
+    limits: &[LimitRow],
+) -> Option<[f64; 6]> {
+    let p = Matrix6::from_fn(|r, col| p_upper[r.min(col)][r.max(col)]);
+    let x = p.cholesky()?.solve(&-Vector6::from_column_slice(c));
+    let feasible = limits.iter().all(|row| {
+        let gx: f64 = row.g.iter().zip(x.iter()).map(|(g, x)| g * x).sum();
+        gx <= row.h + 1e-12
+    });
+    feasible.then(|| [x[0], x[1], x[2], x[3], x[4], x[5]])
+}
+
+/// G as a sparse matrix holding only its structural non-zeros.
+fn limits_csc(rows: &[LimitRow]) -> CscMatrix<f64> {
+    let mut colptr = vec![0];
+    let mut rowval = Vec::new();
+    let mut nzval = Vec::new();
+    for col in 0..6 {
+        for (r, row) in rows.iter().enumerate() {
+            if row.g[col] != 0.0 {
+                rowval.push(r);
+                nzval.push(row.g[col]);
+            }
+        }
+        colptr.push(rowval.len());
+    }
+    CscMatrix::new(rows.len(), 6, colptr, rowval, nzval)
+}
+
+fn settings() -> DefaultSettings<f64> {
+    DefaultSettings {
+        verbose: false,
+        presolve_enable: false,
+        ..DefaultSettings::default()
+    }
+}
+
+/// One differential-IK step: stacks `tasks` and `limits` at `q` into a QP with damping
+/// `damping` (per rad²) and returns the optimal `Δq` [rad].
+pub fn solve_step(
+    model: &ArmModel,
+    q: &[f64; 6],
+    tasks: &[&dyn Task],
+    limits: &[&dyn Limit],
+    damping: f64,
+    ws: &mut QpWorkspace,
+) -> Result<[f64; 6], QpError> {
+    if !(damping > 0.0 && damping.is_finite()) {
+        return Err(QpError::BadDamping(damping));
+    }
+    ws.task_rows.clear();
+    ws.limit_rows.clear();
+    for task in tasks {
+        task.rows(model, q, &mut ws.task_rows);
+    }
+    for limit in limits {
+        limit.rows(model, q, &mut ws.limit_rows);
+    }
+    merge_bounds(&mut ws.limit_rows);
+    let finite = ws.task_rows.iter().all(|r| {
+        r.error.is_finite() && r.weight.is_finite() && r.jacobian.iter().all(|v| v.is_finite())
+    }) && ws
+        .limit_rows
+        .iter()
+        .all(|r| r.h.is_finite() && r.g.iter().all(|v| v.is_finite()));
+    if !finite {
+        return Err(QpError::NonFinite(*q));
+    }
+
+    // P = Σ w jᵀj + λI,  c = −Σ w e j.
+    let mut p = [[0.0; 6]; 6];
+    let mut c = [0.0; 6];
+    for row in &ws.task_rows {
+        for a in 0..6 {
+            c[a] -= row.weight * row.error * row.jacobian[a];
+            for b in a..6 {
+                p[a][b] += row.weight * row.jacobian[a] * row.jacobian[b];
+            }
+        }
+    }
+    for (a, p_row) in p.iter_mut().enumerate() {
+        p_row[a] += damping;
+    }
+    if !ws.always_use_solver
+        && let Some(dq) = unconstrained_if_feasible(&p, &c, &ws.limit_rows)
+    {
+        ws.counts.0 += 1;
+        return Ok(dq);
+    }
+    ws.counts.1 += 1;
+    let p_csc = upper_triangle_csc(&p);
+    let g_csc = limits_csc(&ws.limit_rows);
+    let h: Vec<f64> = ws.limit_rows.iter().map(|r| r.h).collect();
+
+    let same_pattern = matches!(&ws.solver, Some((colptr, rowval, _))
+        if *colptr == g_csc.colptr && *rowval == g_csc.rowval);
+    if same_pattern {
+        let (_, _, solver) = ws.solver.as_mut().expect("checked above");
+        let updated = solver
+            .update_P(&p_csc.nzval)
+            .and_then(|_| solver.update_q(&c.to_vec()))
+            .and_then(|_| solver.update_A(&g_csc.nzval))
+            .and_then(|_| solver.update_b(&h));
+        updated.map_err(|e| QpError::Solver(e.to_string()))?;
+    } else {
+        let cones = [NonnegativeConeT(h.len())];
+        let solver = DefaultSolver::new(&p_csc, &c, &g_csc, &h, &cones, settings())
+            .map_err(|e| QpError::Solver(e.to_string()))?;
+        ws.solver = Some((g_csc.colptr.clone(), g_csc.rowval.clone(), solver));
+    }
+    let (_, _, solver) = ws.solver.as_mut().expect("set above");
+    solver.solve();
+    match solver.solution.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => {
+            let x = &solver.solution.x;
+            Ok([x[0], x[1], x[2], x[3], x[4], x[5]])
+        }
+        status => {
+            ws.solver = None;
+            Err(QpError::Solver(format!("{status:?}")))
+        }
+    }
+}

@@ -1,0 +1,123 @@
+//! Closed-form forward kinematics and the geometric Jacobian from the DH table.
+//!
+//! All poses are in `base_link`; joint angles in radians, lengths in metres.
+
+use nalgebra::{Isometry3, Matrix6, Translation3, UnitQuaternion, Vector3};
+
+use crate::model::{ArmModel, DhRow};
+use crate::pose::Pose;
+
+/// The frame whose pose or Jacobian is asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum EndFrame {
+    /// `tool0`, the flange (DH frame 6).
+    #[default]
+    Flange,
+    /// `tcp`, the gripper's tool centre point between the pads.
+    Tcp,
+}
+
+impl EndFrame {
+    /// The URDF frame name.
+    pub fn name(self) -> &'static str {
+        match self {
+            EndFrame::Flange => "tool0",
+            EndFrame::Tcp => "tcp",
+        }
+    }
+}
+
+/// `T_{i-1}_i = Rz(θ)·Tz(d)·Tx(a)·Rx(α)` as an isometry.
+pub fn dh_transform(row: &DhRow, theta: f64) -> Isometry3<f64> {
+    let (st, ct) = theta.sin_cos();
+    // Rz(θ)·Rx(α) as a quaternion product: (cos θ/2, 0, 0, sin θ/2)·(cos α/2, sin α/2, 0, 0).
+    let (sh, ch) = (0.5 * theta).sin_cos();
+    let (sa, ca) = (0.5 * row.alpha).sin_cos();
+    let q = nalgebra::Quaternion::new(ch * ca, ch * sa, sh * sa, sh * ca);
+    Isometry3::from_parts(
+        Translation3::new(row.a * ct, row.a * st, row.d),
+        UnitQuaternion::new_unchecked(q),
+    )
+}
+
+impl ArmModel {
+    /// Poses of DH frames 1 … 6 in `base_link` (frame 6 is `tool0`).
+    pub fn fk_frames(&self, q: &[f64; 6]) -> [Isometry3<f64>; 6] {
+        let mut frames = [Isometry3::identity(); 6];
+        let mut t = Isometry3::identity();
+        for i in 0..6 {
+            t *= dh_transform(&self.dh[i], q[i]);
+            frames[i] = t;
+        }
+        frames
+    }
+
+    /// `T_base_tool0`: the flange pose.
+    pub fn fk_flange(&self, q: &[f64; 6]) -> Pose {
+        let mut t = Isometry3::identity();
+        for i in 0..6 {
+            t *= dh_transform(&self.dh[i], q[i]);
+        }
+        Pose { iso: t }
+    }
+
+    /// `T_base_tcp`: the tool centre point between the finger pads.
+    pub fn fk_tcp(&self, q: &[f64; 6]) -> Pose {
+        self.fk_flange(q).compose(&self.tcp_in_flange)
+    }
+
+    /// Pose of `frame` in `base_link`.
+    pub fn fk(&self, q: &[f64; 6], frame: EndFrame) -> Pose {
+        match frame {
+            EndFrame::Flange => self.fk_flange(q),
+            EndFrame::Tcp => self.fk_tcp(q),
+        }
+    }
+
+    /// Geometric Jacobian of `frame` in `base_link`: rows 0–2 map joint rates [rad/s] to the
+    /// frame origin's linear velocity [m/s], rows 3–5 to its angular velocity [rad/s].
+    ///
+    /// Column i is `[z_{i-1} × (p − o_{i-1}); z_{i-1}]`, with joint i turning about DH axis z_{i-1}.
+    pub fn jacobian(&self, q: &[f64; 6], frame: EndFrame) -> Matrix6<f64> {
+        let frames = self.fk_frames(q);
+        let end = match frame {
+            EndFrame::Flange => frames[5],
+            EndFrame::Tcp => frames[5] * self.tcp_in_flange.iso,
+        };
+        let p = end.translation.vector;
+        let mut j = Matrix6::zeros();
+        for i in 0..6 {
+            let (z, o) = if i == 0 {
+                (Vector3::z(), Vector3::zeros())
+            } else {
+                (
+                    frames[i - 1].rotation * Vector3::z(),
+                    frames[i - 1].translation.vector,
+                )
+            };
+            let linear = z.cross(&(p - o));
+            j.fixed_view_mut::<3, 1>(0, i).copy_from(&linear);
+            j.fixed_view_mut::<3, 1>(3, i).copy_from(&z);
+        }
+        j
+    }
+}
+
+/// Yoshikawa's manipulability `sqrt(det(J·Jᵀ))` (mixed units: it is a product of singular
+/// values; compare values only for the same frame and arm). Zero at a singularity.
+pub fn manipulability(jacobian: &Matrix6<f64>) -> f64 {
+    (jacobian * jacobian.transpose())
+        .determinant()
+        .max(0.0)
+        .sqrt()
+}
+
+/// The smallest singular value of the Jacobian: the speed of the slowest Cartesian direction per
+/// unit joint rate. Zero at a singularity; the usual "distance to singularity" measure.
+pub fn min_singular_value(jacobian: &Matrix6<f64>) -> f64 {
+    jacobian
+        .singular_values()
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min)
+}

@@ -1,0 +1,426 @@
+//! Loading any URDF: the joint table, and a serial chain from the root to a tip link with FK.
+//!
+//! Errors name the file, the element and the value at fault.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
+use serde::Serialize;
+
+use crate::pose::Pose;
+use crate::urdf_check::check_urdf_text;
+
+/// Why a URDF could not be used.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum UrdfError {
+    /// The file could not be read.
+    #[error("{file}: cannot read: {message}")]
+    Read { file: String, message: String },
+    /// The text is not well-formed XML.
+    #[error("{file}: line {line}: not well-formed XML: {message}")]
+    Xml {
+        file: String,
+        line: usize,
+        message: String,
+    },
+    /// A joint's `type` is not a URDF joint type.
+    #[error(
+        "{file}: line {line}: {joint} has type \"{value}\"; a URDF joint type is one of revolute, continuous, prismatic, fixed, floating, planar, spherical"
+    )]
+    UnknownJointType {
+        file: String,
+        line: usize,
+        joint: String,
+        value: String,
+    },
+    /// A numeric attribute does not hold the numbers it should.
+    #[error("{file}: line {line}: {context} {attribute}=\"{value}\": expected {expected}")]
+    BadValue {
+        file: String,
+        line: usize,
+        context: String,
+        attribute: String,
+        value: String,
+        expected: String,
+    },
+    /// Anything else urdf-rs refused.
+    #[error("{file}: not a valid URDF: {message}")]
+    Parse { file: String, message: String },
+    /// A joint names a link that does not exist.
+    #[error("{file}: joint '{joint}' names {role} link '{link}', which is not defined")]
+    MissingLink {
+        file: String,
+        joint: String,
+        role: &'static str,
+        link: String,
+    },
+    /// The links and joints do not form one tree.
+    #[error("{file}: not a tree: {detail}")]
+    NotATree { file: String, detail: String },
+    /// A chain was asked for without a tip, and the tree branches.
+    #[error(
+        "{file}: not a serial chain: link '{link}' has {} child joints ({}); name a tip link to pick one branch",
+        children.len(), children.join(", ")
+    )]
+    NonSerial {
+        file: String,
+        link: String,
+        children: Vec<String>,
+    },
+    /// The tip link asked for does not exist.
+    #[error("{file}: no link named '{link}' (links: {})", known.join(", "))]
+    UnknownLink {
+        file: String,
+        link: String,
+        known: Vec<String>,
+    },
+    /// The chain holds a joint fairgrasp cannot move along one axis.
+    #[error(
+        "{file}: joint '{joint}' is {kind}; a serial chain supports revolute, continuous, prismatic and fixed joints"
+    )]
+    UnsupportedJoint {
+        file: String,
+        joint: String,
+        kind: String,
+    },
+    /// A joint's limits are inverted or its axis is zero.
+    #[error("{file}: joint '{joint}': {problem}")]
+    BadJoint {
+        file: String,
+        joint: String,
+        problem: String,
+    },
+}
+
+/// A URDF joint type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum JointKind {
+    Revolute,
+    Continuous,
+    Prismatic,
+    Fixed,
+    Floating,
+    Planar,
+    Spherical,
+}
+
+impl JointKind {
+    /// The URDF spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "revolute",
+            JointKind::Continuous => "continuous",
+            JointKind::Prismatic => "prismatic",
+            JointKind::Fixed => "fixed",
+            JointKind::Floating => "floating",
+            JointKind::Planar => "planar",
+            JointKind::Spherical => "spherical",
+        }
+    }
+
+    /// Does this joint add one degree of freedom along an axis?
+    pub fn is_single_axis(self) -> bool {
+        matches!(
+            self,
+            JointKind::Revolute | JointKind::Continuous | JointKind::Prismatic
+        )
+    }
+}
+
+/// One joint as the URDF states it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct UrdfJoint {
+    pub name: String,
+    pub kind: JointKind,
+    pub parent: String,
+    pub child: String,
+    /// `T_parent_joint` at zero joint value [m, rad].
+    #[serde(skip)]
+    pub origin: Pose,
+    /// Unit axis in the joint frame.
+    pub axis: [f64; 3],
+    /// Position limits [rad or m]; `None` for continuous and fixed joints.
+    pub limits: Option<[f64; 2]>,
+    /// Velocity limit [rad/s or m/s] (0 where the URDF gives none).
+    pub max_velocity: f64,
+    /// Effort limit [N·m or N] (0 where the URDF gives none).
+    pub max_effort: f64,
+}
+
+/// A parsed robot: its joints in depth-first order from the root link.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrdfRobot {
+    /// The file it came from (or "<string>"), for messages.
+    pub file: String,
+    /// `<robot name>`.
+    pub name: String,
+    /// The root link.
+    pub root: String,
+    /// Every link name, in file order.
+    pub links: Vec<String>,
+    /// Every joint, depth-first from the root.
+    pub joints: Vec<UrdfJoint>,
+}
+
+/// The joints from the root link to a tip link, with forward kinematics.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SerialChain {
+    /// Joints root → tip, fixed ones included.
+    pub joints: Vec<UrdfJoint>,
+    /// The tip link.
+    pub tip: String,
+}
+
+impl UrdfRobot {
+    /// Reads and checks a URDF file.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Self, UrdfError> {
+        let file = path.as_ref().display().to_string();
+        let text = std::fs::read_to_string(path.as_ref()).map_err(|e| UrdfError::Read {
+            file: file.clone(),
+            message: e.to_string(),
+        })?;
+        Self::from_str_named(&text, &file)
+    }
+
+    /// Parses URDF text; `file` names it in error messages.
+    pub fn from_str_named(text: &str, file: &str) -> Result<Self, UrdfError> {
+        check_urdf_text(file, text)?;
+        let robot = urdf_rs::read_from_string(text).map_err(|e| UrdfError::Parse {
+            file: file.to_string(),
+            message: e.to_string(),
+        })?;
+        build_tree(file, robot)
+    }
+
+    /// Joints with one degree of freedom, in tree order.
+    pub fn movable_joints(&self) -> impl Iterator<Item = &UrdfJoint> {
+        self.joints.iter().filter(|j| j.kind.is_single_axis())
+    }
+
+    /// The chain from the root to `tip`, or to the only leaf when `tip` is `None`.
+    pub fn chain(&self, tip: Option<&str>) -> Result<SerialChain, UrdfError> {
+        let by_child: HashMap<&str, &UrdfJoint> =
+            self.joints.iter().map(|j| (j.child.as_str(), j)).collect();
+        let tip = match tip {
+            Some(tip) if self.links.iter().any(|l| l == tip) => tip.to_string(),
+            Some(tip) => {
+                return Err(UrdfError::UnknownLink {
+                    file: self.file.clone(),
+                    link: tip.to_string(),
+                    known: self.links.clone(),
+                });
+            }
+            None => self.only_leaf()?,
+        };
+        let mut joints = Vec::new();
+        let mut link = tip.as_str();
+        while let Some(joint) = by_child.get(link) {
+            if !joint.kind.is_single_axis() && joint.kind != JointKind::Fixed {
+                return Err(UrdfError::UnsupportedJoint {
+                    file: self.file.clone(),
+                    joint: joint.name.clone(),
+                    kind: joint.kind.name().to_string(),
+                });
+            }
+            joints.push((*joint).clone());
+            link = &joint.parent;
+        }
+        joints.reverse();
+        Ok(SerialChain { joints, tip })
+    }
+
+    fn only_leaf(&self) -> Result<String, UrdfError> {
+        let mut link = self.root.as_str();
+        loop {
+            let children: Vec<&UrdfJoint> =
+                self.joints.iter().filter(|j| j.parent == link).collect();
+            match children.as_slice() {
+                [] => return Ok(link.to_string()),
+                [only] => link = &only.child,
+                many => {
+                    return Err(UrdfError::NonSerial {
+                        file: self.file.clone(),
+                        link: link.to_string(),
+                        children: many.iter().map(|j| j.name.clone()).collect(),
+                    });
+                }
+            }
+        }
+    }
+}
+
+fn build_tree(file: &str, robot: urdf_rs::Robot) -> Result<UrdfRobot, UrdfError> {
+    let links: Vec<String> = robot.links.iter().map(|l| l.name.clone()).collect();
+    let mut parent_of: HashMap<&str, &str> = HashMap::new();
+    for j in &robot.joints {
+        for (role, link) in [("parent", &j.parent.link), ("child", &j.child.link)] {
+            if !links.contains(link) {
+                return Err(UrdfError::MissingLink {
+                    file: file.to_string(),
+                    joint: j.name.clone(),
+                    role,
+                    link: link.clone(),
+                });
+            }
+        }
+        if let Some(other) = parent_of.insert(&j.child.link, &j.name) {
+            return Err(UrdfError::NotATree {
+                file: file.to_string(),
+                detail: format!(
+                    "link '{}' is the child of two joints, '{other}' and '{}'",
+                    j.child.link, j.name
+                ),
+            });
+        }
+    }
+    let roots: Vec<&String> = links
+        .iter()
+        .filter(|l| !parent_of.contains_key(l.as_str()))
+        .collect();
+    let [root] = roots.as_slice() else {
+        let detail = if roots.is_empty() {
+            "no root link (the joints form a cycle)".to_string()
+        } else {
+            let names: Vec<&str> = roots.iter().map(|s| s.as_str()).collect();
+            format!(
+                "{} root links ({}); one is expected",
+                roots.len(),
+                names.join(", ")
+            )
+        };
+        return Err(UrdfError::NotATree {
+            file: file.to_string(),
+            detail,
+        });
+    };
+    let converted = robot
+        .joints
+        .iter()
+        .map(|j| convert_joint(file, j))
+        .collect::<Result<Vec<_>, _>>()?;
+    // Depth-first from the root; joints never reached sit on a cycle.
+    let joints = depth_first(&converted, root);
+    if joints.len() != converted.len() {
+        return Err(UrdfError::NotATree {
+            file: file.to_string(),
+            detail: "some joints are not reachable from the root link (a cycle)".to_string(),
+        });
+    }
+    Ok(UrdfRobot {
+        file: file.to_string(),
+        name: robot.name,
+        root: root.to_string(),
+        links,
+        joints,
+    })
+}
+
+/// The joints reachable from `root`, each right after the branch that leads to it.
+fn depth_first(pool: &[UrdfJoint], root: &str) -> Vec<UrdfJoint> {
+    fn visit(link: &str, pool: &[UrdfJoint], out: &mut Vec<UrdfJoint>) {
+        for j in pool.iter().filter(|j| j.parent == link) {
+            out.push(j.clone());
+            visit(&j.child, pool, out);
+        }
+    }
+    let mut ordered = Vec::with_capacity(pool.len());
+    visit(root, pool, &mut ordered);
+    ordered
+}
+
+fn convert_joint(file: &str, j: &urdf_rs::Joint) -> Result<UrdfJoint, UrdfError> {
+    let kind = match j.joint_type {
+        urdf_rs::JointType::Revolute => JointKind::Revolute,
+        urdf_rs::JointType::Continuous => JointKind::Continuous,
+        urdf_rs::JointType::Prismatic => JointKind::Prismatic,
+        urdf_rs::JointType::Fixed => JointKind::Fixed,
+        urdf_rs::JointType::Floating => JointKind::Floating,
+        urdf_rs::JointType::Planar => JointKind::Planar,
+        urdf_rs::JointType::Spherical => JointKind::Spherical,
+    };
+    let bad = |problem: String| UrdfError::BadJoint {
+        file: file.to_string(),
+        joint: j.name.clone(),
+        problem,
+    };
+    let axis = Vector3::from(j.axis.xyz.0);
+    let norm = axis.norm();
+    if kind.is_single_axis() && norm < 1e-9 {
+        return Err(bad("its axis is zero".to_string()));
+    }
+    let limits = match kind {
+        JointKind::Revolute | JointKind::Prismatic => {
+            let (lower, upper) = (j.limit.lower, j.limit.upper);
+            if lower > upper {
+                return Err(bad(format!(
+                    "limit lower = {lower} is above upper = {upper}"
+                )));
+            }
+            Some([lower, upper])
+        }
+        _ => None,
+    };
+    Ok(UrdfJoint {
+        name: j.name.clone(),
+        kind,
+        parent: j.parent.link.clone(),
+        child: j.child.link.clone(),
+        origin: Pose::from_xyz_rpy(j.origin.xyz.0, j.origin.rpy.0),
+        axis: if norm > 0.0 {
+            (axis / norm).into()
+        } else {
+            [0.0, 0.0, 1.0]
+        },
+        limits,
+        max_velocity: j.limit.velocity,
+        max_effort: j.limit.effort,
+    })
+}
+
+impl SerialChain {
+    /// Number of movable joints (the length FK expects).
+    pub fn dof(&self) -> usize {
+        self.joints
+            .iter()
+            .filter(|j| j.kind.is_single_axis())
+            .count()
+    }
+
+    /// Names of the movable joints, in order.
+    pub fn joint_names(&self) -> Vec<&str> {
+        self.joints
+            .iter()
+            .filter(|j| j.kind.is_single_axis())
+            .map(|j| j.name.as_str())
+            .collect()
+    }
+
+    /// `T_root_tip` for movable-joint values `q` [rad or m]. Panics if `q.len() != dof()`.
+    pub fn fk(&self, q: &[f64]) -> Pose {
+        assert_eq!(
+            q.len(),
+            self.dof(),
+            "SerialChain::fk: wrong number of joint values"
+        );
+        let mut t = Isometry3::identity();
+        let mut values = q.iter();
+        for joint in &self.joints {
+            t *= joint.origin.iso;
+            let axis = Unit::new_unchecked(Vector3::from(joint.axis));
+            match joint.kind {
+                JointKind::Revolute | JointKind::Continuous => {
+                    let angle = *values.next().expect("counted by dof");
+                    t *= UnitQuaternion::from_axis_angle(&axis, angle);
+                }
+                JointKind::Prismatic => {
+                    let offset = *values.next().expect("counted by dof");
+                    t *= Translation3::from(axis.into_inner() * offset);
+                }
+                _ => {}
+            }
+        }
+        Pose { iso: t }
+    }
+}
