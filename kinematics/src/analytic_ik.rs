@@ -80,6 +80,9 @@ impl Default for AnalyticIkOptions {
 
 /// Wraps an angle into (−π, π].
 pub fn wrap_pi(angle: f64) -> f64 {
+    if angle > -PI && angle <= PI {
+        return angle; // the common case: atan2 and acos results
+    }
     let a = angle.rem_euclid(TAU);
     if a > PI { a - TAU } else { a }
 }
@@ -175,6 +178,7 @@ impl ArmModel {
         let mut last_failure = String::new();
         for (shoulder_bit, &q1) in shoulders.iter().enumerate() {
             let (s1, c1) = q1.sin_cos();
+            let t16 = dh_transform(&self.dh[0], q1).inverse() * t06;
             let u = Vector3::new(s1, -c1, 0.0);
             // 2. Wrist 2: p · u = d4 + d6 cos θ5.
             let Some(c5) = clamp_unit((p.dot(&u) - d4) / d6) else {
@@ -195,10 +199,9 @@ impl ArmModel {
                     (-(y6.dot(&u)) / s5).atan2(x6.dot(&u) / s5)
                 };
                 // 4. Planar 2R for joints 2, 3; θ4 from the remaining rotation.
-                let t01 = dh_transform(&self.dh[0], q1);
                 let t45 = dh_transform(&self.dh[4], q5);
                 let t56 = dh_transform(&self.dh[5], q6);
-                let t14 = t01.inverse() * t06 * (t45 * t56).inverse();
+                let t14 = t16 * (t45 * t56).inverse();
                 let p13 = t14.translation.vector - Vector3::new(0.0, 0.0, d4);
                 let reach_sq = p13.x * p13.x + p13.y * p13.y;
                 let Some(c3) = clamp_unit((reach_sq - a2 * a2 - a3 * a3) / (2.0 * a2 * a3)) else {
@@ -210,12 +213,21 @@ impl ArmModel {
                     );
                     continue;
                 };
-                let r14 = t14.rotation.to_rotation_matrix();
-                let q234 = r14[(1, 0)].atan2(r14[(0, 0)]);
+                // θ2 + θ3 + θ4 from R14's first column, read off the quaternion directly.
+                let r = t14.rotation.coords; // [x, y, z, w]
+                let (r00, r10) = (
+                    1.0 - 2.0 * (r.y * r.y + r.z * r.z),
+                    2.0 * (r.x * r.y + r.w * r.z),
+                );
+                let q234 = r10.atan2(r00);
                 let q3_abs = c3.acos();
-                for (elbow_bit, q3) in [q3_abs, -q3_abs].into_iter().enumerate() {
-                    let (s3, c3) = q3.sin_cos();
-                    let q2 = p13.y.atan2(p13.x) - (a3 * s3).atan2(a2 + a3 * c3);
+                let s3_abs = (1.0 - c3 * c3).max(0.0).sqrt();
+                let towards_wrist = p13.y.atan2(p13.x);
+                for (elbow_bit, (q3, s3)) in [(q3_abs, s3_abs), (-q3_abs, -s3_abs)]
+                    .into_iter()
+                    .enumerate()
+                {
+                    let q2 = towards_wrist - (a3 * s3).atan2(a2 + a3 * c3);
                     let q4 = q234 - q2 - q3;
                     let raw = [q1, q2, q3, q4, q5, q6];
                     let mut joints = [0.0; 6];

@@ -350,10 +350,11 @@ pub fn solve_step(
     let mut p = [[0.0; 6]; 6];
     let mut c = [0.0; 6];
     for row in &ws.task_rows {
-        for a in 0..6 {
-            c[a] -= row.weight * row.error * row.jacobian[a];
-            for b in a..6 {
-                p[a][b] += row.weight * row.jacobian[a] * row.jacobian[b];
+        let j = &row.jacobian;
+        for (a, p_row) in p.iter_mut().enumerate() {
+            c[a] -= row.weight * row.error * j[a];
+            for (b, p_ab) in p_row.iter_mut().enumerate().skip(a) {
+                *p_ab += row.weight * j[a] * j[b];
             }
         }
     }

@@ -2,6 +2,8 @@
 //!
 //! All poses are in `base_link`; joint angles in radians, lengths in metres.
 
+use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2};
+
 use nalgebra::{Isometry3, Matrix6, Translation3, UnitQuaternion, Vector3};
 
 use crate::model::{ArmModel, DhRow};
@@ -29,15 +31,29 @@ impl EndFrame {
 
 /// `T_{i-1}_i = Rz(θ)·Tz(d)·Tx(a)·Rx(α)` as an isometry.
 pub fn dh_transform(row: &DhRow, theta: f64) -> Isometry3<f64> {
-    let (st, ct) = theta.sin_cos();
     // Rz(θ)·Rx(α) as a quaternion product: (cos θ/2, 0, 0, sin θ/2)·(cos α/2, sin α/2, 0, 0).
+    // One sin_cos per joint: sin θ and cos θ follow from the half angle.
     let (sh, ch) = (0.5 * theta).sin_cos();
-    let (sa, ca) = (0.5 * row.alpha).sin_cos();
+    let (st, ct) = (2.0 * sh * ch, ch * ch - sh * sh);
+    let (sa, ca) = half_angle_sin_cos(row.alpha);
     let q = nalgebra::Quaternion::new(ch * ca, ch * sa, sh * sa, sh * ca);
     Isometry3::from_parts(
         Translation3::new(row.a * ct, row.a * st, row.d),
         UnitQuaternion::new_unchecked(q),
     )
+}
+
+/// `(sin α/2, cos α/2)`, exact and free for the twists of UR-like arms (0, ±π/2).
+fn half_angle_sin_cos(alpha: f64) -> (f64, f64) {
+    if alpha == 0.0 {
+        (0.0, 1.0)
+    } else if alpha == FRAC_PI_2 {
+        (FRAC_1_SQRT_2, FRAC_1_SQRT_2)
+    } else if alpha == -FRAC_PI_2 {
+        (-FRAC_1_SQRT_2, FRAC_1_SQRT_2)
+    } else {
+        (0.5 * alpha).sin_cos()
+    }
 }
 
 impl ArmModel {
@@ -55,8 +71,8 @@ impl ArmModel {
     /// `T_base_tool0`: the flange pose.
     pub fn fk_flange(&self, q: &[f64; 6]) -> Pose {
         let mut t = Isometry3::identity();
-        for i in 0..6 {
-            t *= dh_transform(&self.dh[i], q[i]);
+        for (row, &theta) in self.dh.iter().zip(q) {
+            t *= dh_transform(row, theta);
         }
         Pose { iso: t }
     }

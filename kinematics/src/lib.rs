@@ -10,6 +10,28 @@
 //!
 //! Frames follow ROS: `world`, `base_link`, `tool0` (the flange, DH frame 6) and `tcp` (between
 //! the finger pads, 0.14 m along `tool0` z). Lengths are metres, angles radians.
+//!
+//! ```
+//! use fairgrasp_kinematics::{AnalyticIkOptions, ArmKind, EndFrame, FR3_URDF, Pose, UrdfRobot};
+//!
+//! // Load the URDF, list its joints, and build the chain to the TCP.
+//! let robot = UrdfRobot::from_str_named(FR3_URDF, "fr3.urdf").unwrap();
+//! assert_eq!(robot.movable_joints().count(), 8); // six arm joints, two fingers
+//! let chain = robot.chain(Some("tcp")).unwrap();
+//!
+//! // Forward kinematics two ways: the DH model and the URDF chain agree.
+//! let fr3 = ArmKind::Fr3.model();
+//! let q = [0.3, -1.2, 1.1, -1.4, 0.8, 0.5];
+//! let (dp, dr) = fr3.fk_tcp(&q).distance_to(&chain.fk(&q));
+//! assert!(dp < 1e-9 && dr < 1e-9);
+//!
+//! // A top-down grasp 0.35 m in front of the base: every IK branch, then the nearest one.
+//! let grasp = Pose::from_xyz_rpy([0.35, 0.0, 0.05], [std::f64::consts::PI, 0.0, 0.0]);
+//! let branches = fr3.ik_analytic(&grasp, EndFrame::Tcp, &AnalyticIkOptions::default()).unwrap();
+//! let best = fr3.ik_nearest(&grasp, EndFrame::Tcp, &q).unwrap().expect("an in-limit branch");
+//! assert!(branches.len() <= 8 && best.in_limits);
+//! assert!(fr3.fk_tcp(&best.joints).distance_to(&grasp).0 < 1e-9);
+//! ```
 
 pub mod analytic_ik;
 pub mod diff_ik;

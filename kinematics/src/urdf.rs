@@ -42,7 +42,7 @@ pub enum UrdfError {
         context: String,
         attribute: String,
         value: String,
-        expected: String,
+        expected: &'static str,
     },
     /// Anything else urdf-rs refused.
     #[error("{file}: not a valid URDF: {message}")]

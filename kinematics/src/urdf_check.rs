@@ -87,10 +87,10 @@ pub fn check_urdf_text(file: &str, text: &str) -> Result<(), UrdfError> {
                 .map(|t| t.parse::<f64>().ok().filter(|v| v.is_finite()))
                 .collect();
             if numbers.len() != arity || numbers.iter().any(Option::is_none) {
-                let expected = if arity == 1 {
-                    "one finite number".to_string()
-                } else {
-                    format!("{arity} finite numbers separated by spaces")
+                let expected = match arity {
+                    1 => "one finite number",
+                    3 => "3 finite numbers separated by spaces",
+                    _ => "4 finite numbers separated by spaces",
                 };
                 return Err(UrdfError::BadValue {
                     file: file.to_string(),

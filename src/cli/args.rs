@@ -1,0 +1,104 @@
+//! Argument pieces shared by several subcommands, and number formatting.
+
+use anyhow::{Context, bail};
+use clap::{Args, ValueEnum};
+use fairgrasp_kinematics::{ArmKind, ArmModel, EndFrame, Pose};
+
+/// The arm model to use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ModelArg {
+    /// FAIRINO FR3 (0.622 m reach) with the parallel gripper.
+    Fr3,
+    /// FAIRINO FR5 (longer links; FR3 limits).
+    Fr5,
+}
+
+impl ModelArg {
+    pub fn model(self) -> ArmModel {
+        match self {
+            ModelArg::Fr3 => ArmKind::Fr3.model(),
+            ModelArg::Fr5 => ArmKind::Fr5.model(),
+        }
+    }
+}
+
+/// A frame of the end of the arm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FrameArg {
+    /// The flange (DH frame 6).
+    Tool0,
+    /// The tool centre point between the finger pads.
+    Tcp,
+}
+
+impl From<FrameArg> for EndFrame {
+    fn from(f: FrameArg) -> Self {
+        match f {
+            FrameArg::Tool0 => EndFrame::Flange,
+            FrameArg::Tcp => EndFrame::Tcp,
+        }
+    }
+}
+
+/// Output switches common to all subcommands.
+#[derive(Args, Debug, Clone, Copy)]
+pub struct OutputArgs {
+    /// Angles given on the command line are in degrees (output JSON stays in radians).
+    #[arg(long)]
+    pub deg: bool,
+    /// Print one JSON object on stdout instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl OutputArgs {
+    /// Converts a command-line angle to radians.
+    pub fn angle(&self, value: f64) -> f64 {
+        if self.deg { value.to_radians() } else { value }
+    }
+}
+
+/// Six joint angles from the command line, checked finite and converted to radians.
+pub fn joints_from(values: &[f64], out: &OutputArgs, flag: &str) -> anyhow::Result<[f64; 6]> {
+    let q: [f64; 6] = values
+        .try_into()
+        .map_err(|_| anyhow::anyhow!("{flag} takes 6 joint angles, got {}", values.len()))?;
+    if let Some(i) = q.iter().position(|v| !v.is_finite()) {
+        bail!("{flag}: joint j{} is {}, not a finite angle", i + 1, q[i]);
+    }
+    Ok(q.map(|v| out.angle(v)))
+}
+
+/// A pose from `x y z roll pitch yaw` (metres; angles per `--deg`).
+pub fn pose_from(values: &[f64], out: &OutputArgs, flag: &str) -> anyhow::Result<Pose> {
+    let [x, y, z, r, p, w]: [f64; 6] = values.try_into().map_err(|_| {
+        anyhow::anyhow!(
+            "{flag} takes x y z roll pitch yaw, got {} numbers",
+            values.len()
+        )
+    })?;
+    Pose::try_from_xyz_rpy([x, y, z], [out.angle(r), out.angle(p), out.angle(w)])
+        .with_context(|| flag.to_string())
+}
+
+/// `(a, b, c)` with 4 decimals.
+pub fn fmt3(v: [f64; 3]) -> String {
+    // Adding 0.0 turns -0.0 into 0.0, so rounding noise does not print as "-0.0000".
+    let v = v.map(|x| if x.abs() < 5e-5 { 0.0 } else { x + 0.0 });
+    format!("({:8.4}, {:8.4}, {:8.4})", v[0], v[1], v[2])
+}
+
+/// Joint angles in radians and degrees.
+pub fn fmt_joints(q: &[f64; 6]) -> String {
+    let rad: Vec<String> = q.iter().map(|v| format!("{v:8.4}")).collect();
+    let deg: Vec<String> = q
+        .iter()
+        .map(|v| format!("{:7.2}", v.to_degrees()))
+        .collect();
+    format!("[{}] rad  [{}] deg", rad.join(" "), deg.join(" "))
+}
+
+/// Prints a serialisable value as one line of JSON.
+pub fn print_json(value: &serde_json::Value) {
+    println!("{value}");
+}

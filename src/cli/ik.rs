@@ -1,0 +1,155 @@
+//! `fairgrasp ik`: every closed-form branch for a pose, and optionally the QP solver.
+
+use std::process::ExitCode;
+
+use clap::Args;
+use fairgrasp_kinematics::analytic_ik::joint_distance;
+use fairgrasp_kinematics::{AnalyticIkOptions, EndFrame, QpIkOptions, nearest_solution};
+use serde_json::json;
+
+use super::args::{
+    FrameArg, ModelArg, OutputArgs, fmt_joints, fmt3, joints_from, pose_from, print_json,
+};
+
+#[derive(Args, Debug)]
+pub struct IkArgs {
+    /// Arm model.
+    #[arg(long, value_enum, default_value = "fr3")]
+    model: ModelArg,
+    /// Target pose in base_link: x y z [m] roll pitch yaw (URDF fixed-axis; radians or --deg).
+    #[arg(long, num_args = 6, required = true, allow_negative_numbers = true, value_names = ["X", "Y", "Z", "ROLL", "PITCH", "YAW"])]
+    pose: Vec<f64>,
+    /// Which frame to place at the pose.
+    #[arg(long, value_enum, default_value = "tool0")]
+    frame: FrameArg,
+    /// Current joints q1 … q6: picks the nearest branch and seeds the QP solver (default all 0).
+    #[arg(long, num_args = 6, allow_negative_numbers = true, value_name = "Q")]
+    current: Option<Vec<f64>>,
+    /// Also run the clarabel QP IK from --current (tolerance 1e-4 m / 1e-3 rad).
+    #[arg(long)]
+    qp: bool,
+    /// Seed of the QP solver's random restarts.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    #[command(flatten)]
+    out: OutputArgs,
+}
+
+pub fn run(a: &IkArgs) -> anyhow::Result<ExitCode> {
+    let model = a.model.model();
+    let frame = EndFrame::from(a.frame);
+    let target = pose_from(&a.pose, &a.out, "--pose")?;
+    let current = match &a.current {
+        Some(values) => joints_from(values, &a.out, "--current")?,
+        None => [0.0; 6],
+    };
+    let options = AnalyticIkOptions {
+        wrist_singular_q6: current[5],
+        ..Default::default()
+    };
+    let analytic = model.ik_analytic(&target, frame, &options);
+    let solutions = analytic.clone().unwrap_or_default();
+    let nearest = nearest_solution(&solutions, &current);
+    let residual = |q: &[f64; 6]| model.fk(q, frame).distance_to(&target);
+    let qp = a.qp.then(|| {
+        let qp_options = QpIkOptions {
+            frame,
+            seed: a.seed,
+            ..Default::default()
+        };
+        model.ik_qp(&target, &current, &qp_options)
+    });
+
+    if a.out.json {
+        let rows: Vec<_> = solutions
+            .iter()
+            .map(|s| {
+                let (dp, dr) = residual(&s.joints);
+                json!({"joints": s.joints, "in_limits": s.in_limits, "branch": s.branch,
+                       "fk_error_m": dp, "fk_error_rad": dr,
+                       "distance_to_current_rad": joint_distance(&s.joints, &current)})
+            })
+            .collect();
+        let mut out = json!({
+            "model": model.kind.name(), "frame": frame.name(), "target": target.record(),
+            "current": current, "solutions": rows,
+            "nearest": nearest.map(|s| s.joints),
+        });
+        if let Err(e) = &analytic {
+            out["error"] = json!(e.to_string());
+        }
+        if let Some(qp) = &qp {
+            out["qp"] = match qp {
+                Ok(s) => json!({"converged": true, "joints": s.joints,
+                    "fk_error_m": s.position_error_m, "fk_error_rad": s.orientation_error_rad,
+                    "iterations": s.iterations, "attempts": s.attempts}),
+                Err(e) => json!({"converged": false, "error": e.to_string()}),
+            };
+        }
+        print_json(&out);
+        return Ok(if analytic.is_ok() {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::FAILURE
+        });
+    }
+
+    let name = model.kind.name().to_uppercase();
+    println!(
+        "{name} inverse kinematics for {} in base_link",
+        frame.name()
+    );
+    println!(
+        "  target xyz {} m, rpy {} deg",
+        fmt3(target.xyz()),
+        fmt3(target.rpy().map(f64::to_degrees))
+    );
+    match &analytic {
+        Ok(_) => {
+            println!(
+                "  {} closed-form branches (shoulder/wrist/elbow bits; * = nearest to --current):",
+                solutions.len()
+            );
+            for s in &solutions {
+                let (dp, _) = residual(&s.joints);
+                let mark = if nearest.is_some_and(|n| n.branch == s.branch) {
+                    "*"
+                } else {
+                    " "
+                };
+                let limits = if s.in_limits {
+                    "in limits "
+                } else {
+                    "OUT of limits"
+                };
+                println!(
+                    "  {mark}{:03b} {}  {limits}  FK error {dp:.1e} m",
+                    s.branch,
+                    fmt_joints(&s.joints)
+                );
+            }
+            if nearest.is_none() {
+                println!("  no branch is within the joint limits");
+            }
+        }
+        Err(e) => println!("  no closed-form solution: {e}"),
+    }
+    if let Some(qp) = qp {
+        match qp {
+            Ok(s) => println!(
+                "  QP IK   {}  error {:.1e} m / {:.1e} rad, {} QP steps, {} attempt(s)",
+                fmt_joints(&s.joints),
+                s.position_error_m,
+                s.orientation_error_rad,
+                s.iterations,
+                s.attempts
+            ),
+            Err(e) => println!("  QP IK   failed: {e}"),
+        }
+    }
+    Ok(if analytic.is_ok() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}

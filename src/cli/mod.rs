@@ -1,0 +1,44 @@
+//! Subcommands and their arguments.
+
+mod args;
+mod fk;
+mod frames;
+mod ik;
+mod joints;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// fairgrasp: kinematics, grasping and residual PPO for the FAIRINO FR3 cobot.
+///
+/// Frames follow ROS: world, base_link, tool0 (the flange) and tcp (between the finger pads,
+/// 0.14 m past tool0). Lengths are metres; angles on the command line are radians unless --deg.
+#[derive(Parser, Debug)]
+#[command(name = "fairgrasp", version, about, long_about)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// List a URDF's joints: names, types, parent and child links, limits (the seed's joint list).
+    Joints(joints::JointsArgs),
+    /// Forward kinematics: flange (tool0) and TCP poses in base_link for given joint angles.
+    Fk(fk::FkArgs),
+    /// Inverse kinematics: every closed-form branch for a pose, optionally the QP solver too.
+    Ik(ik::IkArgs),
+    /// Frame sanity checks: the zero pose, and a world point expressed in a rotated base frame.
+    Frames(frames::FramesArgs),
+}
+
+/// Runs one subcommand; `Ok` carries the exit code (non-zero when the answer is "no solution").
+pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+    match cli.command {
+        Command::Joints(a) => joints::run(&a),
+        Command::Fk(a) => fk::run(&a),
+        Command::Ik(a) => ik::run(&a),
+        Command::Frames(a) => frames::run(&a),
+    }
+}

@@ -1,0 +1,155 @@
+//! The `fairgrasp` binary end to end: JSON shapes, exit codes, and error messages.
+
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn fairgrasp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn json(args: &[&str]) -> (Value, i32) {
+    let out = fairgrasp(args);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let value = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: {e}: {text}"));
+    (value, out.status.code().unwrap())
+}
+
+fn floats(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn fk_json_gives_fairinos_zero_pose_flange() {
+    let (v, code) = json(&[
+        "fk", "--model", "fr3", "--joints", "0", "0", "0", "0", "0", "0", "--json",
+    ]);
+    assert_eq!(code, 0);
+    let xyz = floats(&v["flange"]["xyz"]);
+    for (a, b) in xyz.iter().zip([-0.520, -0.202, 0.038]) {
+        assert!((a - b).abs() < 1e-12, "{xyz:?}");
+    }
+    assert_eq!(floats(&v["tcp"]["quat_xyzw"]).len(), 4);
+}
+
+#[test]
+fn degrees_and_radians_give_the_same_pose() {
+    let (deg, _) = json(&[
+        "fk", "--joints", "10", "-90", "80", "-60", "45", "0", "--deg", "--json",
+    ]);
+    let rad: Vec<String> = [10.0f64, -90.0, 80.0, -60.0, 45.0, 0.0]
+        .iter()
+        .map(|d| d.to_radians().to_string())
+        .collect();
+    let mut args = vec!["fk", "--json", "--joints"];
+    args.extend(rad.iter().map(String::as_str));
+    let (rad, _) = json(&args);
+    let (a, b) = (floats(&deg["tcp"]["xyz"]), floats(&rad["tcp"]["xyz"]));
+    assert!(
+        a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12),
+        "{a:?} {b:?}"
+    );
+}
+
+#[test]
+fn ik_json_lists_every_branch_with_its_fk_error_and_finds_the_fk_joints_again() {
+    let q = [0.3, -1.2, 1.1, -1.4, 0.8, 0.5];
+    let (fk, _) = json(&[
+        "fk", "--json", "--joints", "0.3", "-1.2", "1.1", "-1.4", "0.8", "0.5",
+    ]);
+    let xyz = floats(&fk["flange"]["xyz"]);
+    let rpy = floats(&fk["flange"]["rpy"]);
+    let pose: Vec<String> = xyz.iter().chain(&rpy).map(|v| v.to_string()).collect();
+    let mut args = vec!["ik", "--json", "--qp", "--pose"];
+    args.extend(pose.iter().map(String::as_str));
+    let (v, code) = json(&args);
+    assert_eq!(code, 0);
+    let solutions = v["solutions"].as_array().unwrap();
+    assert!(!solutions.is_empty() && solutions.len() <= 8);
+    let mut found = false;
+    for s in solutions {
+        assert!(s["fk_error_m"].as_f64().unwrap() < 1e-9);
+        assert!(s["in_limits"].is_boolean());
+        let joints = floats(&s["joints"]);
+        found |= joints.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9);
+    }
+    assert!(found, "the FK joints are one of the branches");
+    assert_eq!(v["qp"]["converged"], Value::Bool(true));
+    assert!(v["qp"]["fk_error_m"].as_f64().unwrap() <= 1e-4);
+}
+
+#[test]
+fn ik_of_an_unreachable_pose_exits_1_with_the_reason() {
+    let (v, code) = json(&["ik", "--json", "--pose", "1", "1", "1", "0", "0", "0"]);
+    assert_eq!(code, 1);
+    assert_eq!(v["solutions"].as_array().unwrap().len(), 0);
+    assert!(v["error"].as_str().unwrap().contains("out of reach"), "{v}");
+    let out = fairgrasp(&["ik", "--pose", "1", "1", "1", "0", "0", "0"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("out of reach"));
+}
+
+#[test]
+fn frames_shows_that_subtracting_positions_is_wrong_for_a_rotated_base() {
+    let (v, code) = json(&[
+        "frames", "--json", "--base", "0.5", "0.2", "0.75", "0", "0", "90", "--deg", "--point",
+        "0.5", "0.6", "0.775",
+    ]);
+    assert_eq!(code, 0);
+    let right = floats(&v["point_base"]);
+    assert!(
+        (right[0] - 0.4).abs() < 1e-12 && right[1].abs() < 1e-12,
+        "{right:?}"
+    );
+    assert!(v["naive_error_m"].as_f64().unwrap() > 0.5);
+    assert!(v["zero_pose"]["flange_error_m"].as_f64().unwrap() < 1e-12);
+}
+
+#[test]
+fn joints_lists_the_fr3_joints_and_the_chain() {
+    let (v, code) = json(&["joints", "--json"]);
+    assert_eq!(code, 0);
+    let names: Vec<&str> = v["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(&names[..6], ["j1", "j2", "j3", "j4", "j5", "j6"]);
+    assert_eq!(v["chain"]["tip"], "tcp");
+}
+
+#[test]
+fn joints_with_a_bad_urdf_names_the_file_and_the_value() {
+    let dir = std::env::temp_dir().join(format!("fairgrasp-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("broken.urdf");
+    let text = fairgrasp_kinematics::FR3_URDF.replace(
+        r#"<origin xyz="-0.28 0 0""#,
+        r#"<origin xyz="-0.28 zero 0""#,
+    );
+    std::fs::write(&path, text).unwrap();
+    let out = fairgrasp(&["joints", "--urdf", path.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr.contains("broken.urdf")
+            && stderr.contains("joint 'j3' <origin> xyz=\"-0.28 zero 0\""),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_wrong_number_of_joints_is_a_usage_error() {
+    let out = fairgrasp(&["fk", "--joints", "0", "0", "0"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--joints"));
+}
