@@ -68,6 +68,20 @@ impl ArmModel {
         frames
     }
 
+    /// Poses of the seven URDF link frames (`base_link` … `wrist3_link`) in `base_link`.
+    ///
+    /// URDF link i (i ≥ 1) is DH frame i−1 turned by θ_i about its z axis; the collision capsules
+    /// and mass properties of [`ArmModel`] are given in these frames.
+    pub fn link_poses(&self, q: &[f64; 6]) -> [Isometry3<f64>; 7] {
+        let mut poses = [Isometry3::identity(); 7];
+        let mut dh_frame = Isometry3::identity();
+        for i in 0..6 {
+            poses[i + 1] = dh_frame * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), q[i]);
+            dh_frame *= dh_transform(&self.dh[i], q[i]);
+        }
+        poses
+    }
+
     /// `T_base_tool0`: the flange pose.
     pub fn fk_flange(&self, q: &[f64; 6]) -> Pose {
         let mut t = Isometry3::identity();

@@ -152,3 +152,19 @@ fn the_elbow_stretched_straight_is_singular() {
     let stretched = model.jacobian(&[0.3, -1.2, 0.0, -1.4, 0.8, 0.5], EndFrame::Flange);
     assert!(min_singular_value(&stretched) < 1e-9);
 }
+
+#[test]
+fn link_poses_equal_the_urdf_link_frames() {
+    let model = ArmKind::Fr3.model();
+    let robot = UrdfRobot::from_str_named(FR3_URDF, "fr3.urdf").unwrap();
+    let mut rng = common::rng(16);
+    for _ in 0..200 {
+        let q = common::random_in_limits(&model, &mut rng);
+        let poses = model.link_poses(&q);
+        for (i, link) in model.links.iter().enumerate().skip(1) {
+            let chain = robot.chain(Some(link)).unwrap();
+            let (dp, dr) = chain.fk(&q[..i]).distance_to(&poses[i].into());
+            assert!(dp < 1e-12 && dr < 1e-9, "{link}: {dp:e} {dr:e}");
+        }
+    }
+}

@@ -1,0 +1,431 @@
+//! The environment's configuration: serde structs with defaults, loadable from TOML, checked at
+//! construction with messages that name the field.
+//!
+//! Frames: `world` is z-up with the table top at `scene.table_height`; the arm's `base_link` sits
+//! at `arm.base_xyz` / `arm.base_rpy` in the world. Units: metres, radians, kilograms, seconds.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+/// Which arm simulation to use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ArmModelKind {
+    /// Joint angles integrate the commanded velocities; links are kinematic bodies placed by FK.
+    #[default]
+    Servo,
+    /// A rapier multibody with joint velocity motors and the FR3 mass properties.
+    Multibody,
+}
+
+/// Every setting of the environment.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(default, deny_unknown_fields)]
+pub struct EnvConfig {
+    pub physics: PhysicsConfig,
+    pub arm: ArmConfig,
+    pub gripper: GripperConfig,
+    pub scene: SceneConfig,
+    pub task: TaskConfig,
+    pub randomization: RandomizationConfig,
+}
+
+/// Physics integration.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PhysicsConfig {
+    /// Physics time step [s] (the seed's 1/240).
+    pub dt: f64,
+    /// Physics steps per environment step (the seed's 20).
+    pub substeps: usize,
+    /// Contact softness natural frequency [Hz]; rapier's 30 Hz lets a squeeze sink the fingers.
+    pub contact_natural_frequency: f64,
+    /// Solver iterations per physics step.
+    pub solver_iterations: usize,
+}
+
+impl Default for PhysicsConfig {
+    fn default() -> Self {
+        Self {
+            dt: 1.0 / 240.0,
+            substeps: 20,
+            contact_natural_frequency: 120.0,
+            solver_iterations: 4,
+        }
+    }
+}
+
+/// The arm and how actions drive it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ArmConfig {
+    /// `servo` (fast, default) or `multibody` (dynamic, motor-driven).
+    pub model: ArmModelKind,
+    /// `base_link` position in the world [m].
+    pub base_xyz: [f64; 3],
+    /// `base_link` orientation in the world, URDF roll, pitch, yaw [rad].
+    pub base_rpy: [f64; 3],
+    /// Joint angles at reset [rad].
+    pub home_joints: [f64; 6],
+    /// Joint velocity for an action of 1.0 [rad/s] (the seed's 0.5).
+    pub action_scale: f64,
+    /// Joint acceleration limit [rad/s²] (FR3.md publishes none: fairgrasp's choice).
+    pub max_acceleration: f64,
+}
+
+impl Default for ArmConfig {
+    fn default() -> Self {
+        Self {
+            model: ArmModelKind::Servo,
+            base_xyz: [0.0, 0.0, 0.6],
+            base_rpy: [0.0, 0.0, 0.0],
+            home_joints: crate::HOME_JOINTS,
+            action_scale: 0.5,
+            max_acceleration: 10.0,
+        }
+    }
+}
+
+/// The parallel gripper's drive.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GripperConfig {
+    /// Squeeze force of the force-limited finger [N].
+    pub force: f64,
+    /// Finger pad friction coefficient.
+    pub pad_friction: f64,
+}
+
+impl Default for GripperConfig {
+    fn default() -> Self {
+        Self {
+            force: 10.0,
+            pad_friction: 0.8,
+        }
+    }
+}
+
+/// Table and object.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SceneConfig {
+    /// Height of the table top above world z = 0 [m].
+    pub table_height: f64,
+    /// Table top size x, y [m], centred on the arm base's x, y.
+    pub table_size: [f64; 2],
+    /// Table friction coefficient (the seed's 1.2).
+    pub table_friction: f64,
+    /// Cube edge length [m].
+    pub cube_size: f64,
+    /// Cube mass [kg].
+    pub cube_mass: f64,
+    /// Cube friction coefficient (the seed's 0.8).
+    pub cube_friction: f64,
+    /// Cube position in the arm's base frame when not randomised: x, y [m] on the table.
+    pub cube_xy: [f64; 2],
+}
+
+impl Default for SceneConfig {
+    fn default() -> Self {
+        Self {
+            table_height: 0.6,
+            table_size: [1.2, 1.2],
+            table_friction: 1.2,
+            cube_size: 0.05,
+            cube_mass: 0.1,
+            cube_friction: 0.8,
+            cube_xy: [0.35, 0.0],
+        }
+    }
+}
+
+/// Success, reward and time limit.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TaskConfig {
+    /// Steps before the episode is truncated (the seed's 200).
+    pub max_steps: usize,
+    /// Lift above the resting height that counts as success [m].
+    pub lift_height: f64,
+    /// Reward on success.
+    pub success_reward: f64,
+    /// Reward on a collision (negative).
+    pub collision_reward: f64,
+    /// Dense reward per metre of TCP–object distance (negative).
+    pub distance_reward: f64,
+    /// Does a collision end the episode?
+    pub terminate_on_collision: bool,
+}
+
+impl Default for TaskConfig {
+    fn default() -> Self {
+        Self {
+            max_steps: 200,
+            lift_height: 0.03,
+            success_reward: 10.0,
+            collision_reward: -1.0,
+            distance_reward: -0.005,
+            terminate_on_collision: true,
+        }
+    }
+}
+
+/// A closed interval `[min, max]`.
+pub type Range = [f64; 2];
+
+/// What is randomised at reset; each part switchable.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RandomizationConfig {
+    /// Sample the object position in a sector in front of the base.
+    pub position: bool,
+    /// Sector radius from the joint-1 axis [m].
+    pub radius: Range,
+    /// Sector angle about base z, 0 = base +x [rad].
+    pub angle: Range,
+    /// Sample the object yaw in [0, 2π).
+    pub yaw: bool,
+    /// Sample the object friction in this range (None = the scene's value).
+    pub friction: Option<Range>,
+    /// Multiply the object mass by a factor in this range (None = 1).
+    pub mass_scale: Option<Range>,
+    /// Standard deviation of Gaussian noise on the home joints [rad] (0 = none).
+    pub joint_noise: f64,
+}
+
+impl Default for RandomizationConfig {
+    fn default() -> Self {
+        Self {
+            position: false,
+            radius: [0.25, 0.40],
+            angle: [-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2],
+            yaw: false,
+            friction: None,
+            mass_scale: None,
+            joint_noise: 0.0,
+        }
+    }
+}
+
+/// A configuration value that is out of its allowed range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConfigError {
+    #[error("{field} = {value}: {rule}")]
+    Invalid {
+        field: &'static str,
+        value: String,
+        rule: &'static str,
+    },
+    #[error("{path}: {message}")]
+    File { path: String, message: String },
+}
+
+fn check(
+    ok: bool,
+    field: &'static str,
+    value: impl std::fmt::Debug,
+    rule: &'static str,
+) -> Result<(), ConfigError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(ConfigError::Invalid {
+            field,
+            value: format!("{value:?}"),
+            rule,
+        })
+    }
+}
+
+fn check_range(range: &Range, field: &'static str, lowest: f64) -> Result<(), ConfigError> {
+    check(
+        range.iter().all(|v| v.is_finite()),
+        field,
+        range,
+        "must be finite",
+    )?;
+    check(
+        range[0] <= range[1],
+        field,
+        range,
+        "min must not exceed max",
+    )?;
+    check(range[0] >= lowest, field, range, "must not be negative")
+}
+
+impl EnvConfig {
+    /// Reads a TOML file; missing fields take their defaults, unknown fields are refused.
+    pub fn from_toml_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
+        let path_str = path.as_ref().display().to_string();
+        let text = std::fs::read_to_string(path.as_ref()).map_err(|e| ConfigError::File {
+            path: path_str.clone(),
+            message: e.to_string(),
+        })?;
+        Self::from_toml_str(&text).map_err(|e| match e {
+            ConfigError::File { message, .. } => ConfigError::File {
+                path: path_str,
+                message,
+            },
+            ConfigError::Invalid { field, value, rule } => ConfigError::File {
+                path: path_str,
+                message: format!("{field} = {value}: {rule}"),
+            },
+        })
+    }
+
+    /// Parses TOML text and validates it.
+    pub fn from_toml_str(text: &str) -> Result<Self, ConfigError> {
+        let config: EnvConfig = toml::from_str(text).map_err(|e| ConfigError::File {
+            path: "<string>".into(),
+            message: e.to_string(),
+        })?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// The exact TOML of this configuration (for run folders).
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).expect("EnvConfig always serialises")
+    }
+
+    /// Refuses values outside their allowed ranges, naming the field.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let p = &self.physics;
+        check(
+            p.dt > 0.0 && p.dt <= 0.05,
+            "physics.dt",
+            p.dt,
+            "must be in (0, 0.05] s",
+        )?;
+        check(
+            p.substeps >= 1,
+            "physics.substeps",
+            p.substeps,
+            "must be at least 1",
+        )?;
+        check(
+            p.solver_iterations >= 1,
+            "physics.solver_iterations",
+            p.solver_iterations,
+            "must be at least 1",
+        )?;
+        check(
+            p.contact_natural_frequency > 0.0,
+            "physics.contact_natural_frequency",
+            p.contact_natural_frequency,
+            "must be positive",
+        )?;
+        let a = &self.arm;
+        check(
+            a.action_scale > 0.0 && a.action_scale <= 3.15,
+            "arm.action_scale",
+            a.action_scale,
+            "must be in (0, 3.15] rad/s (the FR3 velocity limit)",
+        )?;
+        check(
+            a.max_acceleration > 0.0,
+            "arm.max_acceleration",
+            a.max_acceleration,
+            "must be positive",
+        )?;
+        check(
+            a.base_xyz.iter().chain(&a.base_rpy).all(|v| v.is_finite()),
+            "arm.base_xyz/base_rpy",
+            (a.base_xyz, a.base_rpy),
+            "must be finite",
+        )?;
+        let model = fairgrasp_kinematics::ArmKind::Fr3.model();
+        check(
+            model.in_limits(&a.home_joints, 0.0),
+            "arm.home_joints",
+            a.home_joints,
+            "must be within the FR3 joint limits",
+        )?;
+        let g = &self.gripper;
+        check(
+            g.force > 0.0 && g.force <= 100.0,
+            "gripper.force",
+            g.force,
+            "must be in (0, 100] N",
+        )?;
+        check(
+            g.pad_friction >= 0.0,
+            "gripper.pad_friction",
+            g.pad_friction,
+            "must not be negative",
+        )?;
+        let s = &self.scene;
+        check(
+            s.table_height >= 0.0,
+            "scene.table_height",
+            s.table_height,
+            "must not be negative",
+        )?;
+        check(
+            s.table_size.iter().all(|v| *v > 0.2),
+            "scene.table_size",
+            s.table_size,
+            "must be above 0.2 m each",
+        )?;
+        check(
+            s.table_friction >= 0.0,
+            "scene.table_friction",
+            s.table_friction,
+            "must not be negative",
+        )?;
+        check(
+            s.cube_size >= 0.01 && s.cube_size <= 0.08,
+            "scene.cube_size",
+            s.cube_size,
+            "must be in [0.01, 0.08] m (the gripper opens 0.085 m)",
+        )?;
+        check(
+            s.cube_mass > 0.0,
+            "scene.cube_mass",
+            s.cube_mass,
+            "must be positive",
+        )?;
+        check(
+            s.cube_friction >= 0.0,
+            "scene.cube_friction",
+            s.cube_friction,
+            "must not be negative",
+        )?;
+        let t = &self.task;
+        check(
+            t.max_steps >= 1,
+            "task.max_steps",
+            t.max_steps,
+            "must be at least 1",
+        )?;
+        check(
+            t.lift_height > 0.0,
+            "task.lift_height",
+            t.lift_height,
+            "must be positive",
+        )?;
+        let r = &self.randomization;
+        check_range(&r.radius, "randomization.radius", 0.0)?;
+        check_range(&r.angle, "randomization.angle", -std::f64::consts::PI)?;
+        if let Some(f) = &r.friction {
+            check_range(f, "randomization.friction", 0.0)?;
+        }
+        if let Some(m) = &r.mass_scale {
+            check_range(m, "randomization.mass_scale", 0.0)?;
+            check(
+                m[0] > 0.0,
+                "randomization.mass_scale",
+                m,
+                "must be positive",
+            )?;
+        }
+        check(
+            r.joint_noise >= 0.0 && r.joint_noise.is_finite(),
+            "randomization.joint_noise",
+            r.joint_noise,
+            "must be a non-negative number",
+        )?;
+        Ok(())
+    }
+}

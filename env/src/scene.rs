@@ -1,0 +1,362 @@
+//! Building the rapier world once: table, cube, the FR3 (servo or multibody) and the gripper.
+//!
+//! World frame: z up, the table top at `scene.table_height`. All rapier quantities are f32;
+//! the kinematics stay f64 and are converted at this boundary.
+
+use std::collections::HashMap;
+
+use fairgrasp_kinematics::{ArmModel, Pose};
+use nalgebra::Isometry3;
+use rapier3d::prelude::*;
+
+use crate::config::{ArmModelKind, EnvConfig};
+
+/// What a collider belongs to, for collision reports and finger contacts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Part {
+    Table,
+    Cube,
+    /// Arm link by index: 0 = base_link … 6 = wrist3_link.
+    Link(usize),
+    Palm,
+    /// Finger strut: 0 = left, 1 = right.
+    Finger(usize),
+    /// Finger pad: 0 = left, 1 = right.
+    Pad(usize),
+}
+
+impl Part {
+    /// The URDF link name (or "table", "cube").
+    pub fn name(self, model: &ArmModel) -> &'static str {
+        match self {
+            Part::Table => "table",
+            Part::Cube => "cube",
+            Part::Link(i) => model.links[i],
+            Part::Palm => "palm",
+            Part::Finger(0) => "finger_left",
+            Part::Finger(_) => "finger_right",
+            Part::Pad(0) => "finger_left_pad",
+            Part::Pad(_) => "finger_right_pad",
+        }
+    }
+
+    /// Arm or gripper: the parts whose contacts can be collisions.
+    pub fn is_robot(self) -> bool {
+        !matches!(self, Part::Table | Part::Cube)
+    }
+}
+
+/// Handles of everything in the world.
+#[derive(Clone, Debug)]
+pub struct SceneHandles {
+    /// Arm links base_link … wrist3_link.
+    pub links: [RigidBodyHandle; 7],
+    pub palm: RigidBodyHandle,
+    /// Left and right finger bodies.
+    pub fingers: [RigidBodyHandle; 2],
+    pub finger_joints: [ImpulseJointHandle; 2],
+    pub cube: RigidBodyHandle,
+    pub cube_collider: ColliderHandle,
+    /// Multibody joint handles j1 … j6 (multibody arm only).
+    pub arm_joints: Option<[MultibodyJointHandle; 6]>,
+    /// Which part each collider is.
+    pub parts: HashMap<ColliderHandle, Part>,
+}
+
+/// Finger joint origin in the palm (= tool0) frame, open position [m], and closing axis.
+pub fn finger_anchor(model: &ArmModel, finger: usize) -> ([f64; 3], [f64; 3]) {
+    let g = &model.gripper;
+    let x = g.finger_travel + 0.5 * g.pad_size[0];
+    let z = g.palm_size[2];
+    if finger == 0 {
+        ([-x, 0.0, z], [1.0, 0.0, 0.0])
+    } else {
+        ([x, 0.0, z], [-1.0, 0.0, 0.0])
+    }
+}
+
+/// Pad centre in the finger frame [m] (pads are centred on the TCP height).
+pub fn pad_offset(model: &ArmModel) -> [f64; 3] {
+    [
+        0.0,
+        0.0,
+        model.gripper.tcp_offset - model.gripper.palm_size[2],
+    ]
+}
+
+/// f64 isometry → rapier pose.
+pub fn to_rapier(iso: &Isometry3<f64>) -> rapier3d::math::Pose {
+    let t = iso.translation.vector;
+    let q = iso.rotation.coords;
+    rapier3d::math::Pose::from_parts(
+        Vector::new(t.x as f32, t.y as f32, t.z as f32),
+        rapier3d::math::Rotation::from_xyzw(q.x as f32, q.y as f32, q.z as f32, q.w as f32)
+            .normalize(),
+    )
+}
+
+/// rapier pose → f64 isometry.
+pub fn from_rapier(pose: &rapier3d::math::Pose) -> Isometry3<f64> {
+    let t = pose.translation;
+    let q = pose.rotation;
+    Isometry3::from_parts(
+        nalgebra::Translation3::new(t.x as f64, t.y as f64, t.z as f64),
+        nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+            q.w as f64, q.x as f64, q.y as f64, q.z as f64,
+        )),
+    )
+}
+
+fn vec3(v: [f64; 3]) -> Vector {
+    Vector::new(v[0] as f32, v[1] as f32, v[2] as f32)
+}
+
+/// Robot parts are computed against each other (to report self-collisions) but exert no forces
+/// on each other: the overlapping capsules of neighbouring links would otherwise push apart.
+fn robot_solver_groups() -> InteractionGroups {
+    InteractionGroups::new(
+        Group::GROUP_1,
+        Group::ALL ^ Group::GROUP_1,
+        InteractionTestMode::And,
+    )
+}
+
+/// Robot colliders see kinematic and fixed bodies too, so that self and table contacts are found.
+fn robot_collision_types() -> ActiveCollisionTypes {
+    ActiveCollisionTypes::default()
+        | ActiveCollisionTypes::KINEMATIC_FIXED
+        | ActiveCollisionTypes::KINEMATIC_KINEMATIC
+}
+
+/// Builds the world with the arm at `q`, the fingers open and the cube at `cube_pose` (world).
+pub fn build(
+    config: &EnvConfig,
+    model: &ArmModel,
+    base_in_world: &Pose,
+    q: &[f64; 6],
+    cube_pose: &Isometry3<f64>,
+) -> (PhysicsWorld, SceneHandles) {
+    let mut world = PhysicsWorld::new();
+    world.gravity = Vector::new(0.0, 0.0, -9.81);
+    let ip = &mut world.integration_parameters;
+    ip.dt = config.physics.dt as f32;
+    ip.num_solver_iterations = config.physics.solver_iterations;
+    ip.contact_softness.natural_frequency = config.physics.contact_natural_frequency as f32;
+    // Recycled contacts may be stale by up to 5 cm of relative motion: wrong for a grasp, where
+    // the cube slides millimetres along the pads. Always recompute them.
+    ip.contact_recycling = false;
+    ip.warmstart_joints = true;
+    let mut parts = HashMap::new();
+    let s = &config.scene;
+
+    // Table: a fixed box whose top is at table_height, centred under the arm base.
+    let base_xy = base_in_world.xyz();
+    let table_body = world.bodies.insert(RigidBodyBuilder::fixed());
+    let half = [s.table_size[0] / 2.0, s.table_size[1] / 2.0, 0.05];
+    let table = ColliderBuilder::cuboid(half[0] as f32, half[1] as f32, half[2] as f32)
+        .translation(vec3([base_xy[0], base_xy[1], s.table_height - half[2]]))
+        .friction(s.table_friction as f32)
+        .build();
+    let h = world
+        .colliders
+        .insert_with_parent(table, table_body, &mut world.bodies);
+    parts.insert(h, Part::Table);
+
+    // Cube.
+    let cube = world.bodies.insert(
+        RigidBodyBuilder::dynamic()
+            .pose(to_rapier(cube_pose))
+            .ccd_enabled(false),
+    );
+    let e = (s.cube_size / 2.0) as f32;
+    let cube_collider = ColliderBuilder::cuboid(e, e, e)
+        .mass(s.cube_mass as f32)
+        .friction(s.cube_friction as f32)
+        .build();
+    let cube_collider = world
+        .colliders
+        .insert_with_parent(cube_collider, cube, &mut world.bodies);
+    parts.insert(cube_collider, Part::Cube);
+
+    // Arm links at their FK poses, one capsule each.
+    let link_poses = model.link_poses(q);
+    let dynamic = config.arm.model == ArmModelKind::Multibody;
+    let mut links = Vec::with_capacity(7);
+    for (i, link_pose) in link_poses.iter().enumerate() {
+        let pose = to_rapier(&(base_in_world.iso * link_pose));
+        let builder = if dynamic && i > 0 {
+            let m = &model.inertials[i];
+            let props = MassProperties::new(vec3(m.com), m.mass as f32, vec3(m.inertia_diag));
+            RigidBodyBuilder::dynamic().additional_mass_properties(props)
+        } else if dynamic {
+            RigidBodyBuilder::fixed()
+        } else {
+            RigidBodyBuilder::kinematic_position_based()
+        };
+        let body = world.bodies.insert(builder.pose(pose));
+        let c = &model.capsules[i];
+        let collider =
+            ColliderBuilder::capsule_from_endpoints(vec3(c.from), vec3(c.to), c.radius as f32)
+                .density(0.0)
+                .active_collision_types(robot_collision_types())
+                .solver_groups(robot_solver_groups())
+                .build();
+        let h = world
+            .colliders
+            .insert_with_parent(collider, body, &mut world.bodies);
+        parts.insert(h, Part::Link(i));
+        links.push(body);
+    }
+    let links: [RigidBodyHandle; 7] = links.try_into().expect("seven links");
+
+    // Palm on tool0.
+    let g = &model.gripper;
+    let tool0 = base_in_world.iso * model.fk_flange(q).iso;
+    let palm_builder = if dynamic {
+        RigidBodyBuilder::dynamic()
+    } else {
+        RigidBodyBuilder::kinematic_position_based()
+    };
+    let palm = world.bodies.insert(palm_builder.pose(to_rapier(&tool0)));
+    let palm_collider = ColliderBuilder::cuboid(
+        (g.palm_size[0] / 2.0) as f32,
+        (g.palm_size[1] / 2.0) as f32,
+        (g.palm_size[2] / 2.0) as f32,
+    )
+    .translation(vec3([0.0, 0.0, g.palm_size[2] / 2.0]))
+    .mass(g.palm_mass as f32)
+    .active_collision_types(robot_collision_types())
+    .solver_groups(robot_solver_groups())
+    .build();
+    let h = world
+        .colliders
+        .insert_with_parent(palm_collider, palm, &mut world.bodies);
+    parts.insert(h, Part::Palm);
+
+    // Multibody arm: revolute joints j1..j6 with velocity motors, palm fixed on wrist3.
+    let arm_joints = dynamic.then(|| insert_multibody_arm(&mut world, model, &links, palm, q));
+
+    // Fingers: dynamic bodies on prismatic impulse joints to the palm, created at their pose.
+    let mut fingers = Vec::new();
+    let mut finger_joints = Vec::new();
+    for f in 0..2 {
+        let (anchor, axis) = finger_anchor(model, f);
+        let finger_pose = tool0 * Isometry3::translation(anchor[0], anchor[1], anchor[2]);
+        let body = world
+            .bodies
+            .insert(RigidBodyBuilder::dynamic().pose(to_rapier(&finger_pose)));
+        let outboard = if f == 0 { -0.002 } else { 0.002 };
+        let strut = ColliderBuilder::cuboid(
+            (g.pad_size[0] / 2.0) as f32,
+            (g.pad_size[1] / 2.0) as f32,
+            0.0105,
+        )
+        .translation(vec3([outboard, 0.0, 0.0105]))
+        .mass((g.finger_mass * 0.4) as f32)
+        .active_collision_types(robot_collision_types())
+        .solver_groups(robot_solver_groups())
+        .build();
+        let h = world
+            .colliders
+            .insert_with_parent(strut, body, &mut world.bodies);
+        parts.insert(h, Part::Finger(f));
+        let pad = ColliderBuilder::cuboid(
+            (g.pad_size[0] / 2.0) as f32,
+            (g.pad_size[1] / 2.0) as f32,
+            (g.pad_size[2] / 2.0) as f32,
+        )
+        .translation(vec3(pad_offset(model)))
+        .mass((g.finger_mass * 0.6) as f32)
+        .friction(config.gripper.pad_friction as f32)
+        .active_collision_types(robot_collision_types())
+        .solver_groups(robot_solver_groups())
+        .build();
+        let h = world
+            .colliders
+            .insert_with_parent(pad, body, &mut world.bodies);
+        parts.insert(h, Part::Pad(f));
+        let joint = PrismaticJointBuilder::new(vec3(axis))
+            .local_anchor1(vec3(anchor))
+            .local_anchor2(Vector::ZERO)
+            .limits([0.0, g.finger_travel as f32])
+            .motor_model(MotorModel::ForceBased)
+            .motor_position(0.0, 1.0e4, 1.0e2)
+            .motor_max_force(config.gripper.force as f32)
+            .contacts_enabled(false);
+        finger_joints.push(world.impulse_joints.insert(palm, body, joint, true));
+        fingers.push(body);
+    }
+
+    let handles = SceneHandles {
+        links,
+        palm,
+        fingers: fingers.try_into().expect("two fingers"),
+        finger_joints: finger_joints.try_into().expect("two finger joints"),
+        cube,
+        cube_collider,
+        arm_joints,
+        parts,
+    };
+    (world, handles)
+}
+
+/// Rotation taking the x axis to the z axis (rapier's revolute joints turn about their frame's x).
+fn x_to_z() -> Isometry3<f64> {
+    Isometry3::rotation(nalgebra::Vector3::new(
+        0.0,
+        -std::f64::consts::FRAC_PI_2,
+        0.0,
+    ))
+}
+
+fn insert_multibody_arm(
+    world: &mut PhysicsWorld,
+    model: &ArmModel,
+    links: &[RigidBodyHandle; 7],
+    palm: RigidBodyHandle,
+    q: &[f64; 6],
+) -> [MultibodyJointHandle; 6] {
+    let origins = model.link_poses(&[0.0; 6]);
+    let mut handles = Vec::with_capacity(6);
+    for i in 0..6 {
+        // Joint origin in the parent link frame: link_{i+1} = link_i · origin · Rz(q).
+        let origin = origins[i].inverse() * origins[i + 1];
+        let mut joint = RevoluteJointBuilder::new(Vector::X).build();
+        joint.data.set_local_frame1(to_rapier(&(origin * x_to_z())));
+        joint.data.set_local_frame2(to_rapier(&x_to_z()));
+        let spec = model.joints[i];
+        // Adjacent capsules overlap by design (as FAIRINO's own collision model does).
+        joint.data.set_contacts_enabled(false);
+        joint
+            .data
+            .set_limits(JointAxis::AngX, [spec.lower as f32, spec.upper as f32]);
+        joint
+            .data
+            .set_motor_model(JointAxis::AngX, MotorModel::ForceBased);
+        joint.data.set_motor_velocity(JointAxis::AngX, 0.0, 1.0e3);
+        joint
+            .data
+            .set_motor_max_force(JointAxis::AngX, if i < 3 { 150.0 } else { 28.0 });
+        let handle = world
+            .multibody_joints
+            .insert(links[i], links[i + 1], joint, true)
+            .expect("a serial arm has no loops");
+        handles.push(handle);
+    }
+    let flange = Isometry3::translation(0.0, 0.0, model.dh[5].d);
+    let fixed = FixedJointBuilder::new()
+        .local_frame1(to_rapier(&flange))
+        .contacts_enabled(false)
+        .build();
+    world
+        .multibody_joints
+        .insert(links[6], palm, fixed, true)
+        .expect("palm on wrist3");
+    // Self-contacts stay enabled so the contact scan reports self-collisions; the solver groups
+    // keep them from producing forces.
+    if let Some((mb, _)) = world.multibody_joints.get_mut(handles[0]) {
+        mb.set_self_contacts_enabled(true);
+    }
+    let _ = q;
+    handles.try_into().expect("six joints")
+}

@@ -1,0 +1,64 @@
+//! Success, failure and reward: pure functions of the state, testable without physics.
+
+use serde::Serialize;
+
+use crate::config::TaskConfig;
+
+/// The facts the task is judged on, all in the world frame [m].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TaskState {
+    /// Object centre.
+    pub object: [f64; 3],
+    /// Object centre height at rest, before the episode.
+    pub object_rest_z: f64,
+    /// TCP position.
+    pub tcp: [f64; 3],
+    /// Left and right pads touching the object.
+    pub pad_contact: [bool; 2],
+    /// Table top height.
+    pub table_height: f64,
+    /// Horizontal distance of the object from the table centre, per axis, and the half sizes.
+    pub object_xy_from_table_centre: [f64; 2],
+    pub table_half_size: [f64; 2],
+}
+
+/// Why an episode ended without success.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum Failure {
+    /// Arm or gripper hit the table or itself: the two parts.
+    Collision(String, String),
+    /// The object fell off the table.
+    ObjectOffTable,
+}
+
+/// Distance from the TCP to the object centre [m].
+pub fn tcp_object_distance(s: &TaskState) -> f64 {
+    (0..3)
+        .map(|i| (s.object[i] - s.tcp[i]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Lifted at least `lift_height` above rest, with both pads on it and the TCP within 3 cm.
+pub fn is_success(s: &TaskState, cfg: &TaskConfig) -> bool {
+    let lifted = s.object[2] - s.object_rest_z >= cfg.lift_height;
+    lifted && s.pad_contact[0] && s.pad_contact[1] && tcp_object_distance(s) < 0.03
+}
+
+/// Has the object left the table (fallen below its top, or past its edge)?
+pub fn is_off_table(s: &TaskState) -> bool {
+    s.object[2] < s.table_height - 0.02
+        || (0..2).any(|i| s.object_xy_from_table_centre[i].abs() > s.table_half_size[i])
+}
+
+/// The seed's rescaled reward: `success_reward` on success, `collision_reward` on a collision,
+/// else `distance_reward · |TCP − object|`.
+pub fn reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
+    if success {
+        cfg.success_reward
+    } else if collision {
+        cfg.collision_reward
+    } else {
+        cfg.distance_reward * tcp_object_distance(s)
+    }
+}
