@@ -202,7 +202,7 @@ pub fn finger_travel_rate(
 /// Centring stiffness: how much the two squeeze forces differ per metre of asymmetry [N/m].
 const CENTRING_GAIN: f64 = 2000.0;
 /// Centring damping, per m/s of asymmetry rate [N·s/m] (about critical for fingers + cube).
-const CENTRING_DAMPING: f64 = 40.0;
+const CENTRING_DAMPING: f64 = 20.0;
 
 /// Sets the finger motors for a gripper command in [-1, 1] (-1 open, +1 closed).
 ///

@@ -91,7 +91,8 @@ impl Default for ArmConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct GripperConfig {
-    /// Squeeze force of the force-limited finger [N].
+    /// Squeeze force of each finger [N]. 5 N holds a 0.1 kg cube (μ 0.8) with 0.6 mm pad
+    /// penetration; 20 N (the low end of real grippers) sinks the pads 2.2 mm at 120 Hz contacts.
     pub force: f64,
     /// Finger pad friction coefficient.
     pub pad_friction: f64,
@@ -100,7 +101,7 @@ pub struct GripperConfig {
 impl Default for GripperConfig {
     fn default() -> Self {
         Self {
-            force: 10.0,
+            force: 5.0,
             pad_friction: 0.8,
         }
     }

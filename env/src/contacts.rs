@@ -69,6 +69,8 @@ pub struct ContactReport {
     pub collision: Option<(Part, Part, f64)>,
     /// Left and right pad touching the cube.
     pub pad_contact: [bool; 2],
+    /// Deepest penetration of a pad into the cube [m] (0 when apart).
+    pub pad_penetration: f64,
 }
 
 /// Scans every contact pair of the narrow phase.
@@ -92,6 +94,7 @@ pub fn analyze(
         for f in 0..2 {
             if (a, b) == (Part::Pad(f), Part::Cube) || (b, a) == (Part::Pad(f), Part::Cube) {
                 report.pad_contact[f] |= dist < PAD_CONTACT_DISTANCE;
+                report.pad_penetration = report.pad_penetration.max(-dist as f64);
             }
         }
         if dist < TOUCH_DISTANCE && filter.is_collision(a, b) {

@@ -427,6 +427,11 @@ impl GraspEnv {
         finger_travel(&self.world, &self.handles, &self.model)
     }
 
+    /// What the narrow phase says now: collisions, pad contacts, pad penetration.
+    pub fn contacts(&self) -> crate::contacts::ContactReport {
+        analyze(&self.world, &self.handles, &self.filter)
+    }
+
     /// Current joint angles [rad].
     pub fn joints(&self) -> [f64; 6] {
         self.drive.q

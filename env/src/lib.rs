@@ -22,4 +22,11 @@ pub use env::{Action, EnvError, GraspEnv, Info, Step};
 pub use obs::Observation;
 
 /// Home joints [rad]: the TCP 0.30 m in front of the base (+x), 0.25 m above it, pointing down.
-pub const HOME_JOINTS: [f64; 6] = [0.3469, -1.3981, -1.4294, -1.8850, std::f64::consts::FRAC_PI_2, 0.0];
+pub const HOME_JOINTS: [f64; 6] = [
+    0.3469,
+    -1.3981,
+    -1.4294,
+    -1.8850,
+    std::f64::consts::FRAC_PI_2,
+    0.0,
+];
