@@ -179,6 +179,18 @@ impl GraspEnv {
         (world, handles, snapshot)
     }
 
+    /// Replaces the randomisation (e.g. from a curriculum); takes effect at the next reset.
+    pub fn set_randomization(
+        &mut self,
+        randomization: crate::config::RandomizationConfig,
+    ) -> Result<(), EnvError> {
+        let mut config = self.config.clone();
+        config.randomization = randomization;
+        config.validate()?;
+        self.config = config;
+        Ok(())
+    }
+
     /// The configuration in force.
     pub fn config(&self) -> &EnvConfig {
         &self.config

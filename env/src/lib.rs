@@ -11,11 +11,14 @@
 pub mod arm;
 pub mod config;
 pub mod contacts;
+pub mod curriculum;
 pub mod env;
 pub mod obs;
 pub mod randomize;
 pub mod scene;
 pub mod task;
+pub mod trajectory;
+pub mod vec_env;
 
 pub use config::{ArmModelKind, ConfigError, EnvConfig};
 pub use env::{Action, EnvError, GraspEnv, Info, Step};

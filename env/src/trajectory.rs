@@ -1,0 +1,136 @@
+//! Episode recording: per step joints, TCP pose, object pose, action and reward, exported as
+//! CSV and JSON (written atomically: a temporary file, then a rename).
+
+use std::io::Write;
+use std::path::Path;
+
+use serde::Serialize;
+
+use crate::env::{Action, GraspEnv, Step};
+
+/// One recorded step; poses in `base_link`, quaternions `[x, y, z, w]`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TrajectoryRow {
+    /// Step index (0 = the state after reset).
+    pub step: usize,
+    /// Simulated time [s].
+    pub time_s: f64,
+    pub joints: [f64; 6],
+    pub gripper_opening_m: f64,
+    pub tcp_xyz: [f64; 3],
+    pub tcp_quat_xyzw: [f64; 4],
+    pub object_xyz: [f64; 3],
+    pub object_quat_xyzw: [f64; 4],
+    /// The action that led here (zeros for step 0).
+    pub action: [f64; 7],
+    pub reward: f64,
+}
+
+/// A recorded episode.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Trajectory {
+    pub rows: Vec<TrajectoryRow>,
+}
+
+impl Trajectory {
+    fn push(&mut self, env: &GraspEnv, action: [f64; 7], reward: f64, opening: f64) {
+        let step = self.rows.len();
+        let cfg = &env.config().physics;
+        let (tcp, object) = (env.tcp_in_base(), env.object_in_base());
+        self.rows.push(TrajectoryRow {
+            step,
+            time_s: step as f64 * cfg.dt * cfg.substeps as f64,
+            joints: env.joints(),
+            gripper_opening_m: opening,
+            tcp_xyz: tcp.xyz(),
+            tcp_quat_xyzw: tcp.quat_xyzw(),
+            object_xyz: object.xyz(),
+            object_quat_xyzw: object.quat_xyzw(),
+            action,
+            reward,
+        });
+    }
+
+    /// Records the state right after a reset.
+    pub fn record_reset(&mut self, env: &GraspEnv, opening: f64) {
+        self.rows.clear();
+        self.push(env, [0.0; 7], 0.0, opening);
+    }
+
+    /// Records the state after a step.
+    pub fn record_step(&mut self, env: &GraspEnv, action: &Action, step: &Step) {
+        self.push(env, action.0, step.reward, step.obs.gripper_opening);
+    }
+
+    /// The CSV header.
+    pub fn csv_header() -> String {
+        let mut cols = vec!["step".to_string(), "time_s".into()];
+        cols.extend((1..=6).map(|i| format!("q{i}")));
+        cols.push("gripper_opening_m".into());
+        cols.extend(
+            [
+                "tcp_x", "tcp_y", "tcp_z", "tcp_qx", "tcp_qy", "tcp_qz", "tcp_qw",
+            ]
+            .map(String::from),
+        );
+        cols.extend(
+            [
+                "object_x",
+                "object_y",
+                "object_z",
+                "object_qx",
+                "object_qy",
+                "object_qz",
+                "object_qw",
+            ]
+            .map(String::from),
+        );
+        cols.extend((1..=6).map(|i| format!("action_j{i}")));
+        cols.push("action_gripper".into());
+        cols.push("reward".into());
+        cols.join(",")
+    }
+
+    /// The episode as CSV text.
+    pub fn to_csv(&self) -> String {
+        let mut out = Self::csv_header();
+        out.push('\n');
+        for r in &self.rows {
+            let mut values = vec![r.step as f64, r.time_s];
+            values.extend(r.joints);
+            values.push(r.gripper_opening_m);
+            values.extend(r.tcp_xyz.iter().chain(&r.tcp_quat_xyzw));
+            values.extend(r.object_xyz.iter().chain(&r.object_quat_xyzw));
+            values.extend(r.action);
+            values.push(r.reward);
+            let line: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+            out.push_str(&line.join(","));
+            out.push('\n');
+        }
+        out
+    }
+
+    /// Writes `<stem>.csv` and `<stem>.json` into `dir` (created if missing), atomically.
+    pub fn save(&self, dir: &Path, stem: &str) -> std::io::Result<()> {
+        std::fs::create_dir_all(dir)?;
+        write_atomic(&dir.join(format!("{stem}.csv")), self.to_csv().as_bytes())?;
+        let json = serde_json::to_vec_pretty(self).map_err(std::io::Error::other)?;
+        write_atomic(&dir.join(format!("{stem}.json")), &json)
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
+/// crash never leaves a half-written file.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let tmp = path.with_extension(format!(
+        "{}.tmp{}",
+        path.extension().and_then(|e| e.to_str()).unwrap_or(""),
+        std::process::id()
+    ));
+    {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+    }
+    std::fs::rename(&tmp, path)
+}

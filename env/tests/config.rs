@@ -1,0 +1,99 @@
+//! Configuration: defaults, TOML round trip, and refusals that name the field.
+
+use fairgrasp_env::config::RandomizationConfig;
+use fairgrasp_env::{ConfigError, EnvConfig, EnvError, GraspEnv};
+
+#[test]
+fn defaults_are_the_seeds_numbers() {
+    let c = EnvConfig::default();
+    assert_eq!(c.physics.dt, 1.0 / 240.0);
+    assert_eq!(c.physics.substeps, 20);
+    assert_eq!(c.task.max_steps, 200);
+    assert_eq!(
+        (c.scene.cube_size, c.scene.cube_mass, c.scene.cube_friction),
+        (0.05, 0.1, 0.8)
+    );
+    assert_eq!(c.scene.table_friction, 1.2);
+    assert_eq!(c.arm.action_scale, 0.5);
+    assert_eq!(
+        (
+            c.task.success_reward,
+            c.task.collision_reward,
+            c.task.distance_reward
+        ),
+        (10.0, -1.0, -0.005)
+    );
+    c.validate().unwrap();
+}
+
+#[test]
+fn toml_round_trips_and_missing_fields_take_defaults() {
+    let c = EnvConfig {
+        randomization: RandomizationConfig::full(),
+        ..EnvConfig::default()
+    };
+    let back = EnvConfig::from_toml_str(&c.to_toml()).unwrap();
+    assert_eq!(back, c);
+    let partial = EnvConfig::from_toml_str("[task]\nmax_steps = 50\n").unwrap();
+    assert_eq!(partial.task.max_steps, 50);
+    assert_eq!(partial.physics, EnvConfig::default().physics);
+}
+
+fn refused(toml: &str) -> String {
+    EnvConfig::from_toml_str(toml).unwrap_err().to_string()
+}
+
+#[test]
+fn invalid_values_are_refused_naming_the_field() {
+    assert!(refused("[physics]\nsubsteps = 0\n").contains("physics.substeps"));
+    assert!(refused("[scene]\ncube_mass = -0.1\n").contains("scene.cube_mass"));
+    assert!(refused("[scene]\ntable_friction = -1.0\n").contains("scene.table_friction"));
+    let m = refused("[randomization]\nfriction = [1.0, 0.3]\n");
+    assert!(
+        m.contains("randomization.friction") && m.contains("min must not exceed max"),
+        "{m}"
+    );
+    assert!(refused("[randomization]\nradius = [0.3, 0.2]\n").contains("randomization.radius"));
+    assert!(
+        refused("[arm]\nhome_joints = [0.0, 2.0, 0.0, 0.0, 0.0, 0.0]\n")
+            .contains("arm.home_joints")
+    );
+    assert!(
+        refused("[task]\nmax_stepz = 3\n").contains("max_stepz"),
+        "unknown fields are refused"
+    );
+    assert!(refused("[arm]\nmodel = \"hydraulic\"\n").contains("hydraulic"));
+}
+
+#[test]
+fn a_config_file_error_names_the_file() {
+    let dir = std::env::temp_dir().join(format!("fairgrasp-env-config-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad.toml");
+    std::fs::write(&path, "[physics]\ndt = 0.0\n").unwrap();
+    let err = EnvConfig::from_toml_file(&path).unwrap_err().to_string();
+    assert!(
+        err.contains("bad.toml") && err.contains("physics.dt"),
+        "{err}"
+    );
+    assert!(
+        EnvConfig::from_toml_file(dir.join("missing.toml"))
+            .unwrap_err()
+            .to_string()
+            .contains("missing.toml")
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn the_env_refuses_an_invalid_config_at_construction() {
+    let mut c = EnvConfig::default();
+    c.physics.substeps = 0;
+    match GraspEnv::new(c) {
+        Err(EnvError::Config(ConfigError::Invalid { field, .. })) => {
+            assert_eq!(field, "physics.substeps")
+        }
+        Err(other) => panic!("wrong error: {other}"),
+        Ok(_) => panic!("accepted zero substeps"),
+    }
+}

@@ -1,0 +1,50 @@
+//! Success and reward as pure functions: checked without any physics.
+
+use fairgrasp_env::config::TaskConfig;
+use fairgrasp_env::task::{TaskState, is_off_table, is_success, reward, tcp_object_distance};
+
+fn state(object_z: f64, pads: [bool; 2]) -> TaskState {
+    TaskState {
+        object: [0.3, 0.0, object_z],
+        object_rest_z: 0.625,
+        tcp: [0.3, 0.0, object_z + 0.002],
+        pad_contact: pads,
+        table_height: 0.6,
+        object_xy_from_table_centre: [0.3, 0.0],
+        table_half_size: [0.6, 0.6],
+    }
+}
+
+#[test]
+fn success_needs_the_lift_and_both_pads() {
+    let cfg = TaskConfig::default();
+    assert!(is_success(&state(0.656, [true, true]), &cfg));
+    assert!(
+        !is_success(&state(0.654, [true, true]), &cfg),
+        "2.9 cm is not 3 cm"
+    );
+    assert!(
+        !is_success(&state(0.70, [true, false]), &cfg),
+        "one pad is not a grasp"
+    );
+}
+
+#[test]
+fn reward_is_sparse_success_collision_or_dense_distance() {
+    let cfg = TaskConfig::default();
+    let s = state(0.625, [false, false]);
+    assert_eq!(reward(&s, true, false, &cfg), 10.0);
+    assert_eq!(reward(&s, false, true, &cfg), -1.0);
+    let d = tcp_object_distance(&s);
+    assert!((d - 0.002).abs() < 1e-12);
+    assert!((reward(&s, false, false, &cfg) + 0.005 * 0.002).abs() < 1e-15);
+}
+
+#[test]
+fn an_object_below_the_table_top_or_past_its_edge_is_off_the_table() {
+    assert!(!is_off_table(&state(0.625, [false; 2])));
+    assert!(is_off_table(&state(0.55, [false; 2])));
+    let mut s = state(0.625, [false; 2]);
+    s.object_xy_from_table_centre = [0.61, 0.0];
+    assert!(is_off_table(&s));
+}

@@ -1,0 +1,93 @@
+//! The vectorised env (auto-reset, thread-count independence) and trajectory export.
+
+use fairgrasp_env::trajectory::Trajectory;
+use fairgrasp_env::vec_env::VecEnv;
+use fairgrasp_env::{Action, EnvConfig, GraspEnv};
+
+fn cfg() -> EnvConfig {
+    let mut c = EnvConfig::default();
+    c.task.max_steps = 5;
+    c.randomization.position = true;
+    c
+}
+
+fn run(threads: usize) -> Vec<Vec<[f32; 23]>> {
+    let mut v = VecEnv::new(&cfg(), 4, threads, 100).unwrap();
+    let mut trace = vec![v.reset().unwrap()];
+    let actions: Vec<Action> = (0..4)
+        .map(|i| Action([0.3 * i as f64 - 0.5, 0.2, 0.0, 0.0, 0.0, 0.0, -1.0]))
+        .collect();
+    for _ in 0..12 {
+        trace.push(v.step(&actions).unwrap().obs);
+    }
+    trace
+}
+
+#[test]
+fn results_do_not_depend_on_the_number_of_threads() {
+    assert_eq!(run(1), run(2));
+}
+
+#[test]
+fn ended_episodes_are_reset_and_their_final_observation_kept() {
+    let mut v = VecEnv::new(&cfg(), 2, 2, 0).unwrap();
+    let first = v.reset().unwrap();
+    let actions = vec![Action::hold_open(); 2];
+    let mut ended = 0;
+    for n in 1..=10 {
+        let s = v.step(&actions).unwrap();
+        for i in 0..2 {
+            let done = s.terminated[i] || s.truncated[i];
+            assert_eq!(done, n % 5 == 0, "env {i} step {n}");
+            assert_eq!(s.final_obs[i].is_some(), done);
+            if done {
+                ended += 1;
+                assert!(s.truncated[i]);
+            }
+        }
+        if n == 5 {
+            // Episode 2 starts from another seed: another cube position.
+            assert_ne!(s.obs[0][12..15], first[0][12..15]);
+        }
+    }
+    assert_eq!(ended, 4);
+    assert!(
+        v.step(&[Action::hold_open()]).is_err(),
+        "wrong action count"
+    );
+}
+
+#[test]
+fn an_episode_exports_to_csv_and_json_with_one_row_per_step() {
+    let mut env = GraspEnv::new(EnvConfig::default()).unwrap();
+    let (obs, _) = env.reset(0).unwrap();
+    let mut t = Trajectory::default();
+    t.record_reset(&env, obs.gripper_opening);
+    let action = Action([0.5, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]);
+    for _ in 0..10 {
+        let step = env.step(&action).unwrap();
+        t.record_step(&env, &action, &step);
+    }
+    assert_eq!(t.rows.len(), 11);
+    assert!(t.rows[10].joints[0] > t.rows[0].joints[0]);
+    let dir = std::env::temp_dir().join(format!("fairgrasp-traj-{}", std::process::id()));
+    t.save(&dir, "episode_0").unwrap();
+    let csv = std::fs::read_to_string(dir.join("episode_0.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 12);
+    let columns = lines[0].split(',').count();
+    assert!(lines.iter().all(|l| l.split(',').count() == columns));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("episode_0.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["rows"].as_array().unwrap().len(), 11);
+    assert_eq!(json["rows"][3]["action"][0], 0.5);
+    assert!(
+        !std::fs::read_dir(&dir).unwrap().any(|e| e
+            .unwrap()
+            .path()
+            .to_string_lossy()
+            .contains(".tmp"))
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
