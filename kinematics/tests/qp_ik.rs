@@ -115,17 +115,17 @@ fn the_velocity_limit_bounds_every_joint_step() {
         scale: 1.0,
     };
     let dq = solve_step(&model, &Q_MID, &[&task], &[&limit], 1e-9, &mut ws).unwrap();
-    for i in 0..6 {
-        let bound = model.joints[i].max_velocity * 0.01;
+    for (i, (d, spec)) in dq.iter().zip(&model.joints).enumerate() {
+        let bound = spec.max_velocity * 0.01;
         assert!(
-            dq[i].abs() <= bound + 1e-9,
+            d.abs() <= bound + 1e-9,
             "joint {i}: {} > {bound}",
-            dq[i]
+            *d
         );
         assert!(
-            dq[i].abs() >= 0.99 * bound,
+            d.abs() >= 0.99 * bound,
             "joint {i} should saturate: {}",
-            dq[i]
+            *d
         );
     }
 }
