@@ -153,3 +153,25 @@ fn a_wrong_number_of_joints_is_a_usage_error() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--joints"));
 }
+
+#[test]
+fn bench_env_json_reports_throughput_and_reset_times() {
+    let (v, code) = json(&["bench", "env", "--steps", "20", "--resets", "2", "--json"]);
+    assert_eq!(code, 0);
+    for key in [
+        "env_steps_per_s",
+        "env_steps_per_cpu_s",
+        "soft_reset_ms",
+        "hard_reset_ms",
+    ] {
+        let value = v[key]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{key} missing: {v}"));
+        assert!(value.is_finite() && value > 0.0, "{key} = {value}");
+    }
+    assert_eq!(
+        v["env_steps"].as_f64(),
+        Some(80.0),
+        "1 thread × 4 envs × 20 steps"
+    );
+}

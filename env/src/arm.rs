@@ -9,7 +9,8 @@ use nalgebra::Isometry3;
 use rapier3d::prelude::*;
 
 use crate::config::ArmModelKind;
-use crate::scene::{SceneHandles, finger_anchor, from_rapier, to_rapier};
+use crate::convert::{from_rapier, to_rapier};
+use crate::scene::{SceneHandles, finger_anchor};
 
 /// Joint state of the arm, and the velocity the rate limiter has reached.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,6 +1,6 @@
 //! Reading the narrow phase: collisions (with the pair named) and finger–cube contacts.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 use fairgrasp_kinematics::ArmModel;
 use rapier3d::prelude::*;
@@ -54,6 +54,11 @@ impl CollisionFilter {
         Self { ignored }
     }
 
+    /// Is the pair `a`, `b` one whose contacts never matter?
+    pub fn ignores(&self, a: Part, b: Part) -> bool {
+        self.ignored.contains(&ordered(a, b))
+    }
+
     /// Is a contact between `a` and `b` a collision?
     pub fn is_collision(&self, a: Part, b: Part) -> bool {
         let robot_involved = a.is_robot() || b.is_robot();
@@ -105,4 +110,58 @@ pub fn analyze(
         }
     }
     report
+}
+
+/// The group bit of each part, so that ignored pairs are never even computed.
+fn group_bit(part: Part) -> u32 {
+    match part {
+        Part::Link(i) => i as u32,
+        Part::Palm => 7,
+        Part::Finger(f) | Part::Pad(f) => 8 + f as u32,
+        Part::Table => 10,
+        Part::Cube => 11,
+    }
+}
+
+const ALL_PARTS: [Part; 13] = [
+    Part::Link(0),
+    Part::Link(1),
+    Part::Link(2),
+    Part::Link(3),
+    Part::Link(4),
+    Part::Link(5),
+    Part::Link(6),
+    Part::Palm,
+    Part::Finger(0),
+    Part::Finger(1),
+    Part::Pad(0),
+    Part::Pad(1),
+    Part::Table,
+];
+
+/// Collision groups that skip the pairs [`CollisionFilter`] ignores (neighbouring links that
+/// always overlap, the gripper's own parts, the base on its table): they cost narrow-phase time
+/// every physics step and are never reported.
+pub fn set_collision_groups(
+    world: &mut PhysicsWorld,
+    parts: &HashMap<ColliderHandle, Part>,
+    model: &ArmModel,
+) {
+    let filter = CollisionFilter::new(model);
+    for (handle, part) in parts {
+        let mut allowed = 0u32;
+        for other in ALL_PARTS.iter().chain(&[Part::Cube]) {
+            if !filter.ignores(*part, *other) {
+                allowed |= 1 << group_bit(*other);
+            }
+        }
+        if let Some(c) = world.colliders.get_mut(*handle) {
+            let groups = InteractionGroups::new(
+                Group::from_bits_truncate(1 << group_bit(*part)),
+                Group::from_bits_truncate(allowed),
+                InteractionTestMode::And,
+            );
+            c.set_collision_groups(groups);
+        }
+    }
 }

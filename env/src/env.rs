@@ -5,84 +5,21 @@
 //! (−1 open, +1 closed) with a limited force. `terminated` means success or failure, `truncated`
 //! the time limit or a physics fault; never both.
 
+use crate::arm::{ArmDrive, drive_fingers, finger_travel, tcp_in_world};
+use crate::config::EnvConfig;
+use crate::contacts::{CollisionFilter, analyze};
+use crate::convert::{from_rapier, to_rapier};
+use crate::obs::Observation;
+use crate::randomize::{Scenario, object_pose_in_base};
+use crate::scene::{SceneHandles, build};
+pub use crate::step::{Action, EnvError, Info, Step};
+use crate::task::{Failure, TaskState, is_off_table, is_success, reward};
 use fairgrasp_kinematics::{ArmKind, ArmModel, Pose};
 use nalgebra::Isometry3;
 use rapier3d::prelude::*;
-use serde::Serialize;
-
-use crate::arm::{ArmDrive, drive_fingers, finger_travel, tcp_in_world};
-use crate::config::{ConfigError, EnvConfig};
-use crate::contacts::{CollisionFilter, analyze};
-use crate::obs::Observation;
-use crate::randomize::{Scenario, UngraspableRegion, object_pose_in_base};
-use crate::scene::{SceneHandles, build, from_rapier, to_rapier};
-use crate::task::{Failure, TaskState, is_off_table, is_success, reward};
 
 /// Physics substeps run at reset so the object settles on the table.
 const SETTLE_SUBSTEPS: usize = 24;
-
-/// One action: joint-velocity commands j1 … j6 and the gripper command, each in [-1, 1].
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Action(pub [f64; 7]);
-
-impl Action {
-    /// Hold the joints, gripper open.
-    pub fn hold_open() -> Self {
-        Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0])
-    }
-
-    /// From any slice of 7 numbers (e.g. a policy's `f32` output).
-    pub fn from_slice(values: &[f32]) -> Result<Self, EnvError> {
-        let array: [f32; 7] = values
-            .try_into()
-            .map_err(|_| EnvError::ActionLength(values.len()))?;
-        Ok(Action(array.map(f64::from)))
-    }
-}
-
-/// What else happened in a step.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct Info {
-    /// Steps taken in this episode.
-    pub step: usize,
-    /// The object is lifted and held.
-    pub success: bool,
-    /// Why the episode failed, if it did.
-    pub failure: Option<Failure>,
-    /// Deepest penetration of the reported collision [m].
-    pub collision_depth_m: Option<f64>,
-    /// A non-finite physics state ended the episode (as truncated): what was found.
-    pub physics_fault: Option<String>,
-    /// The scenario this episode started from.
-    pub scenario: Option<Scenario>,
-}
-
-/// The result of `step`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Step {
-    pub obs: Observation,
-    pub reward: f64,
-    pub terminated: bool,
-    pub truncated: bool,
-    pub info: Info,
-}
-
-/// Misuse of the environment.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum EnvError {
-    #[error(
-        "action[{index}] = {value} is not finite (actions are 6 joint velocities + 1 gripper command, each in [-1, 1])"
-    )]
-    NonFiniteAction { index: usize, value: f64 },
-    #[error("an action has 7 values (6 joints + gripper), got {0}")]
-    ActionLength(usize),
-    #[error("the episode has ended (terminated or truncated): call reset first")]
-    EpisodeOver,
-    #[error(transparent)]
-    Config(#[from] ConfigError),
-    #[error(transparent)]
-    Ungraspable(#[from] UngraspableRegion),
-}
 
 /// The cloneable part of the physics state, restored by a soft reset.
 #[derive(Clone)]

@@ -1,23 +1,28 @@
 //! fairgrasp-env: the FR3 grasping environment in rapier3d.
 //!
-//! - [`config`]: every setting, with defaults, TOML loading and validation.
+//! - [`config`]: every setting, with defaults and presets; [`validate`]: TOML and checks.
 //! - [`scene`]: the world built once: table, cube, arm (servo or multibody), gripper.
 //! - [`arm`]: how joint-velocity commands move each arm model, and how joints are read back.
 //! - [`contacts`]: collisions (with the pair named) and finger–cube contacts.
 //! - [`obs`]: the observation layout, in the arm's base frame.
 //! - [`task`]: success, failure and reward as pure functions of the state.
-//! - [`env`]: `GraspEnv`: `reset(seed)`, `step(&Action)`.
+//! - [`env`]: `GraspEnv`: `reset(seed)`, `step(&Action)`; [`step`]: the values it exchanges.
+//! - [`randomize`], [`curriculum`]: scenarios per seed, graspability, stages.
+//! - [`vec_env`], [`trajectory`]: parallel stepping with auto-reset; episode export.
 
 pub mod arm;
 pub mod config;
 pub mod contacts;
+pub mod convert;
 pub mod curriculum;
 pub mod env;
 pub mod obs;
 pub mod randomize;
 pub mod scene;
+pub mod step;
 pub mod task;
 pub mod trajectory;
+pub mod validate;
 pub mod vec_env;
 
 pub use config::{ArmModelKind, ConfigError, EnvConfig};

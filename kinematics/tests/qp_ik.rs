@@ -117,16 +117,8 @@ fn the_velocity_limit_bounds_every_joint_step() {
     let dq = solve_step(&model, &Q_MID, &[&task], &[&limit], 1e-9, &mut ws).unwrap();
     for (i, (d, spec)) in dq.iter().zip(&model.joints).enumerate() {
         let bound = spec.max_velocity * 0.01;
-        assert!(
-            d.abs() <= bound + 1e-9,
-            "joint {i}: {} > {bound}",
-            *d
-        );
-        assert!(
-            d.abs() >= 0.99 * bound,
-            "joint {i} should saturate: {}",
-            *d
-        );
+        assert!(d.abs() <= bound + 1e-9, "joint {i}: {} > {bound}", *d);
+        assert!(d.abs() >= 0.99 * bound, "joint {i} should saturate: {}", *d);
     }
 }
 

@@ -1,6 +1,7 @@
 //! Subcommands and their arguments.
 
 mod args;
+mod bench;
 mod fk;
 mod frames;
 mod ik;
@@ -31,6 +32,8 @@ enum Command {
     Ik(ik::IkArgs),
     /// Frame sanity checks: the zero pose, and a world point expressed in a rotated base frame.
     Frames(frames::FramesArgs),
+    /// Benchmarks: `bench env` measures environment steps per second and reset times.
+    Bench(bench::BenchArgs),
 }
 
 /// Runs one subcommand; `Ok` carries the exit code (non-zero when the answer is "no solution").
@@ -40,5 +43,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Fk(a) => fk::run(&a),
         Command::Ik(a) => ik::run(&a),
         Command::Frames(a) => frames::run(&a),
+        Command::Bench(a) => bench::run(&a),
     }
 }

@@ -1,0 +1,227 @@
+//! Loading and checking an [`EnvConfig`]: TOML in and out, and refusals that name the field.
+
+use std::path::Path;
+
+use crate::config::{EnvConfig, Range};
+
+/// A configuration value that is out of its allowed range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConfigError {
+    #[error("{field} = {value}: {rule}")]
+    Invalid {
+        field: &'static str,
+        value: String,
+        rule: &'static str,
+    },
+    #[error("{path}: {message}")]
+    File { path: String, message: String },
+}
+
+fn check(
+    ok: bool,
+    field: &'static str,
+    value: impl std::fmt::Debug,
+    rule: &'static str,
+) -> Result<(), ConfigError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(ConfigError::Invalid {
+            field,
+            value: format!("{value:?}"),
+            rule,
+        })
+    }
+}
+
+fn check_range(range: &Range, field: &'static str, lowest: f64) -> Result<(), ConfigError> {
+    check(
+        range.iter().all(|v| v.is_finite()),
+        field,
+        range,
+        "must be finite",
+    )?;
+    check(
+        range[0] <= range[1],
+        field,
+        range,
+        "min must not exceed max",
+    )?;
+    check(range[0] >= lowest, field, range, "must not be negative")
+}
+
+impl EnvConfig {
+    /// Reads a TOML file; missing fields take their defaults, unknown fields are refused.
+    pub fn from_toml_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
+        let path_str = path.as_ref().display().to_string();
+        let text = std::fs::read_to_string(path.as_ref()).map_err(|e| ConfigError::File {
+            path: path_str.clone(),
+            message: e.to_string(),
+        })?;
+        Self::from_toml_str(&text).map_err(|e| match e {
+            ConfigError::File { message, .. } => ConfigError::File {
+                path: path_str,
+                message,
+            },
+            ConfigError::Invalid { field, value, rule } => ConfigError::File {
+                path: path_str,
+                message: format!("{field} = {value}: {rule}"),
+            },
+        })
+    }
+
+    /// Parses TOML text and validates it.
+    pub fn from_toml_str(text: &str) -> Result<Self, ConfigError> {
+        let config: EnvConfig = toml::from_str(text).map_err(|e| ConfigError::File {
+            path: "<string>".into(),
+            message: e.to_string(),
+        })?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// The exact TOML of this configuration (for run folders).
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).expect("EnvConfig always serialises")
+    }
+
+    /// Refuses values outside their allowed ranges, naming the field.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let p = &self.physics;
+        check(
+            p.dt > 0.0 && p.dt <= 0.05,
+            "physics.dt",
+            p.dt,
+            "must be in (0, 0.05] s",
+        )?;
+        check(
+            p.substeps >= 1,
+            "physics.substeps",
+            p.substeps,
+            "must be at least 1",
+        )?;
+        check(
+            p.solver_iterations >= 1,
+            "physics.solver_iterations",
+            p.solver_iterations,
+            "must be at least 1",
+        )?;
+        check(
+            p.contact_natural_frequency > 0.0,
+            "physics.contact_natural_frequency",
+            p.contact_natural_frequency,
+            "must be positive",
+        )?;
+        let a = &self.arm;
+        check(
+            a.action_scale > 0.0 && a.action_scale <= 3.15,
+            "arm.action_scale",
+            a.action_scale,
+            "must be in (0, 3.15] rad/s (the FR3 velocity limit)",
+        )?;
+        check(
+            a.max_acceleration > 0.0,
+            "arm.max_acceleration",
+            a.max_acceleration,
+            "must be positive",
+        )?;
+        check(
+            a.base_xyz.iter().chain(&a.base_rpy).all(|v| v.is_finite()),
+            "arm.base_xyz/base_rpy",
+            (a.base_xyz, a.base_rpy),
+            "must be finite",
+        )?;
+        let model = fairgrasp_kinematics::ArmKind::Fr3.model();
+        check(
+            model.in_limits(&a.home_joints, 0.0),
+            "arm.home_joints",
+            a.home_joints,
+            "must be within the FR3 joint limits",
+        )?;
+        let g = &self.gripper;
+        check(
+            g.force > 0.0 && g.force <= 100.0,
+            "gripper.force",
+            g.force,
+            "must be in (0, 100] N",
+        )?;
+        check(
+            g.pad_friction >= 0.0,
+            "gripper.pad_friction",
+            g.pad_friction,
+            "must not be negative",
+        )?;
+        let s = &self.scene;
+        check(
+            s.table_height >= 0.0,
+            "scene.table_height",
+            s.table_height,
+            "must not be negative",
+        )?;
+        check(
+            s.table_size.iter().all(|v| *v > 0.2),
+            "scene.table_size",
+            s.table_size,
+            "must be above 0.2 m each",
+        )?;
+        check(
+            s.table_friction >= 0.0,
+            "scene.table_friction",
+            s.table_friction,
+            "must not be negative",
+        )?;
+        check(
+            s.cube_size >= 0.01 && s.cube_size <= 0.08,
+            "scene.cube_size",
+            s.cube_size,
+            "must be in [0.01, 0.08] m (the gripper opens 0.085 m)",
+        )?;
+        check(
+            s.cube_mass > 0.0,
+            "scene.cube_mass",
+            s.cube_mass,
+            "must be positive",
+        )?;
+        check(
+            s.cube_friction >= 0.0,
+            "scene.cube_friction",
+            s.cube_friction,
+            "must not be negative",
+        )?;
+        let t = &self.task;
+        check(
+            t.max_steps >= 1,
+            "task.max_steps",
+            t.max_steps,
+            "must be at least 1",
+        )?;
+        check(
+            t.lift_height > 0.0,
+            "task.lift_height",
+            t.lift_height,
+            "must be positive",
+        )?;
+        let r = &self.randomization;
+        check_range(&r.radius, "randomization.radius", 0.0)?;
+        check_range(&r.angle, "randomization.angle", -std::f64::consts::PI)?;
+        if let Some(f) = &r.friction {
+            check_range(f, "randomization.friction", 0.0)?;
+        }
+        if let Some(m) = &r.mass_scale {
+            check_range(m, "randomization.mass_scale", 0.0)?;
+            check(
+                m[0] > 0.0,
+                "randomization.mass_scale",
+                m,
+                "must be positive",
+            )?;
+        }
+        check(
+            r.joint_noise >= 0.0 && r.joint_noise.is_finite(),
+            "randomization.joint_noise",
+            r.joint_noise,
+            "must be a non-negative number",
+        )?;
+        Ok(())
+    }
+}
