@@ -97,3 +97,13 @@ fn the_env_refuses_an_invalid_config_at_construction() {
         Ok(_) => panic!("accepted zero substeps"),
     }
 }
+
+#[test]
+fn the_shipped_preset_files_equal_the_rust_presets() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/configs");
+    for (file, preset) in [("seed.toml", RandomizationConfig::seed_sector()), ("wide.toml", RandomizationConfig::wide_sector())] {
+        let config = EnvConfig::from_toml_file(format!("{dir}/{file}")).unwrap();
+        assert_eq!(config.randomization, preset, "{file}");
+        assert_eq!(config.physics, EnvConfig::default().physics, "{file}");
+    }
+}
