@@ -193,6 +193,10 @@ pub struct RandomizationConfig {
     pub mass_scale: Option<Range>,
     /// Standard deviation of Gaussian noise on the home joints [rad] (0 = none).
     pub joint_noise: f64,
+    /// Perception noise: a per-episode error on the *observed* object position [m] and yaw
+    /// [rad] (standard deviations; 0 = exact). The physics is unaffected.
+    pub observed_position_noise: f64,
+    pub observed_yaw_noise: f64,
 }
 
 impl Default for RandomizationConfig {
@@ -206,6 +210,8 @@ impl Default for RandomizationConfig {
             friction: None,
             mass_scale: None,
             joint_noise: 0.0,
+            observed_position_noise: 0.0,
+            observed_yaw_noise: 0.0,
         }
     }
 }
@@ -232,13 +238,22 @@ impl RandomizationConfig {
     }
 
     /// Everything switched on: the wide sector, friction U(0.3, 1.0), mass ×U(0.8, 1.2) and
-    /// N(0, 0.05 rad) joint noise, as the full randomisation.
+    /// N(0, 0.05 rad) joint noise.
     pub fn full() -> Self {
         Self {
             friction: Some([0.3, 1.0]),
             mass_scale: Some([0.8, 1.2]),
             joint_noise: 0.05,
             ..Self::wide_sector()
+        }
+    }
+
+    /// `full` plus perception noise: 1 cm on the observed position, 10° on the observed yaw.
+    pub fn hard() -> Self {
+        Self {
+            observed_position_noise: 0.01,
+            observed_yaw_noise: 10f64.to_radians(),
+            ..Self::full()
         }
     }
 }

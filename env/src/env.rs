@@ -344,7 +344,11 @@ impl GraspEnv {
         let q = self.drive.q;
         let tcp = self.model.fk_tcp(&q);
         let object_base = self.base.iso.inverse() * self.object_pose();
-        let rel = object_base.translation.vector - tcp.iso.translation.vector;
+        let (position_error, yaw_error) = self.scenario.map_or(([0.0; 3], 0.0), |s| {
+            (s.observed_position_error, s.observed_yaw_error)
+        });
+        let observed = object_base.translation.vector + nalgebra::Vector3::from(position_error);
+        let rel = observed - tcp.iso.translation.vector;
         let travel = finger_travel(&self.world, &self.handles, &self.model);
         let opening = self.model.gripper.opening(0.5 * (travel[0] + travel[1]));
         let contacts = analyze(&self.world, &self.handles, &self.filter);
@@ -353,7 +357,7 @@ impl GraspEnv {
             joint_velocities,
             object_rel_tcp: [rel.x, rel.y, rel.z],
             gripper_opening: opening,
-            object_yaw: yaw_about_z(&object_base),
+            object_yaw: yaw_about_z(&object_base) + yaw_error,
             tcp_position: tcp.xyz(),
             pad_contact: contacts.pad_contact,
         }

@@ -17,6 +17,8 @@ pub mod convert;
 pub mod curriculum;
 pub mod env;
 pub mod obs;
+pub mod policy;
+pub mod presets;
 pub mod randomize;
 pub mod scene;
 pub mod step;

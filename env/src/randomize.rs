@@ -32,6 +32,10 @@ pub struct Scenario {
     pub mass: f64,
     /// Home joints plus noise [rad].
     pub start_joints: [f64; 6],
+    /// Error added to the observed object position, base frame [m] (perception noise).
+    pub observed_position_error: [f64; 3],
+    /// Error added to the observed object yaw [rad] (perception noise).
+    pub observed_yaw_error: f64,
 }
 
 /// The object pose in `base_link` for a scenario: resting on the table top.
@@ -128,6 +132,17 @@ impl Scenario {
                     *q = (*q + noise.sample(&mut rng)).clamp(spec.lower, spec.upper);
                 }
             }
+            let gauss = |rng: &mut ChaCha8Rng, sigma: f64| {
+                if sigma > 0.0 {
+                    Normal::new(0.0, sigma).expect("positive sigma").sample(rng)
+                } else {
+                    0.0
+                }
+            };
+            let p = r.observed_position_noise;
+            // Perception noise lies on the table plane: the cube's height is known.
+            let observed_position_error = [gauss(&mut rng, p), gauss(&mut rng, p), 0.0];
+            let observed_yaw_error = gauss(&mut rng, r.observed_yaw_noise);
             let pose = object_pose_in_base(config, base, object_xy, object_yaw);
             if top_down_grasp(model, &pose, &start_joints).is_some() {
                 return Ok(Scenario {
@@ -137,6 +152,8 @@ impl Scenario {
                     friction,
                     mass,
                     start_joints,
+                    observed_position_error,
+                    observed_yaw_error,
                 });
             }
             if !r.position {

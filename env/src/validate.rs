@@ -222,6 +222,20 @@ impl EnvConfig {
             r.joint_noise,
             "must be a non-negative number",
         )?;
+        for (value, field) in [
+            (
+                r.observed_position_noise,
+                "randomization.observed_position_noise",
+            ),
+            (r.observed_yaw_noise, "randomization.observed_yaw_noise"),
+        ] {
+            check(
+                value >= 0.0 && value.is_finite(),
+                field,
+                value,
+                "must be a non-negative number",
+            )?;
+        }
         Ok(())
     }
 }

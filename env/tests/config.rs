@@ -99,11 +99,26 @@ fn the_env_refuses_an_invalid_config_at_construction() {
 }
 
 #[test]
-fn the_shipped_preset_files_equal_the_rust_presets() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/configs");
-    for (file, preset) in [("seed.toml", RandomizationConfig::seed_sector()), ("wide.toml", RandomizationConfig::wide_sector())] {
-        let config = EnvConfig::from_toml_file(format!("{dir}/{file}")).unwrap();
-        assert_eq!(config.randomization, preset, "{file}");
-        assert_eq!(config.physics, EnvConfig::default().physics, "{file}");
+fn the_shipped_presets_equal_the_rust_presets() {
+    let expected = [
+        ("fixed", RandomizationConfig::default()),
+        ("seed", RandomizationConfig::seed_sector()),
+        ("wide", RandomizationConfig::wide_sector()),
+        ("full", RandomizationConfig::full()),
+        ("hard", RandomizationConfig::hard()),
+    ];
+    for (name, randomization) in expected {
+        let config = fairgrasp_env::presets::load(name).unwrap();
+        assert_eq!(config.randomization, randomization, "{name}");
+        assert_eq!(config.physics, EnvConfig::default().physics, "{name}");
+        let file = format!(
+            "{}/../assets/configs/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        assert_eq!(EnvConfig::from_toml_file(file).unwrap(), config, "{name}");
     }
+    let err = fairgrasp_env::presets::load("easy")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("fixed, seed, wide, full, hard"), "{err}");
 }
