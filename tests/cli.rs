@@ -175,3 +175,46 @@ fn bench_env_json_reports_throughput_and_reset_times() {
         "1 thread × 4 envs × 20 steps"
     );
 }
+
+#[test]
+fn baseline_json_has_the_rate_its_interval_and_the_outcomes_and_records_trajectories() {
+    let dir = std::env::temp_dir().join(format!("fairgrasp-cli-baseline-{}", std::process::id()));
+    let (v, code) = json(&[
+        "baseline",
+        "--preset",
+        "fixed",
+        "--episodes",
+        "3",
+        "--json",
+        "--record",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0);
+    assert_eq!(v["episodes"], 3);
+    let (rate, low, high) = (
+        v["success_rate"].as_f64().unwrap(),
+        v["ci_low"].as_f64().unwrap(),
+        v["ci_high"].as_f64().unwrap(),
+    );
+    assert!(low <= rate && rate <= high && (0.0..=1.0).contains(&low) && high <= 1.0);
+    let total: u64 = v["outcomes"]
+        .as_object()
+        .unwrap()
+        .values()
+        .map(|n| n.as_u64().unwrap())
+        .sum();
+    assert_eq!(total, 3);
+    for i in 0..3 {
+        assert!(dir.join(format!("episode_{i:04}.csv")).exists());
+        assert!(dir.join(format!("episode_{i:04}.json")).exists());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_unknown_preset_is_refused_with_the_choices() {
+    let out = fairgrasp(&["baseline", "--preset", "easy", "--episodes", "1"]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("fixed, seed, wide, full, hard"), "{stderr}");
+}

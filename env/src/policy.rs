@@ -177,3 +177,51 @@ pub fn run_episode(
         }
     }
 }
+
+/// Evaluates a fresh policy from `make` on every scenario, spread over `threads` threads (each
+/// with its own env), in scenario order. Records each episode as `episode_NNNN.csv/.json` in
+/// `record` if given; calls `progress` after each episode.
+pub fn evaluate<P: Policy>(
+    config: &crate::config::EnvConfig,
+    scenarios: &[Scenario],
+    threads: usize,
+    record: Option<&std::path::Path>,
+    make: &(dyn Fn() -> P + Sync),
+    progress: &(dyn Fn() + Sync),
+) -> Result<EvalReport, EnvError> {
+    let chunk = scenarios.len().div_ceil(threads.max(1)).max(1);
+    let mut results = Vec::with_capacity(scenarios.len());
+    std::thread::scope(|scope| -> Result<(), EnvError> {
+        let handles: Vec<_> = scenarios
+            .chunks(chunk)
+            .enumerate()
+            .map(|(c, part)| {
+                scope.spawn(move || -> Result<Vec<EpisodeResult>, EnvError> {
+                    let mut env = GraspEnv::new(config.clone())?;
+                    let mut policy = make();
+                    let mut out = Vec::with_capacity(part.len());
+                    for (j, scenario) in part.iter().enumerate() {
+                        let mut trajectory = record.map(|_| Trajectory::default());
+                        out.push(run_episode(
+                            &mut env,
+                            &mut policy,
+                            scenario,
+                            trajectory.as_mut(),
+                        )?);
+                        if let (Some(dir), Some(t)) = (record, &trajectory) {
+                            t.save(dir, &format!("episode_{:04}", c * chunk + j))
+                                .map_err(|e| EnvError::Io(format!("{}: {e}", dir.display())))?;
+                        }
+                        progress();
+                    }
+                    Ok(out)
+                })
+            })
+            .collect();
+        for h in handles {
+            results.extend(h.join().expect("an evaluation thread panicked")?);
+        }
+        Ok(())
+    })?;
+    Ok(EvalReport::from_results(results))
+}

@@ -14,12 +14,12 @@ pub const PRESETS: [(&str, &str, &str); 5] = [
     (
         "seed",
         include_str!("../../assets/configs/seed.toml"),
-        "the seed recipe's sector (r 0.15–0.25 m, ±90°) and yaw",
+        "the seed recipe's sector moved out to r 0.25–0.35 m, ±90°, and yaw",
     ),
     (
         "wide",
         include_str!("../../assets/configs/wide.toml"),
-        "a wider sector (r 0.15–0.45 m, ±135°) and yaw",
+        "a wider sector (r 0.25–0.45 m, ±135°) and yaw",
     ),
     (
         "full",

@@ -48,10 +48,13 @@ pub fn object_pose_in_base(config: &EnvConfig, base: &Pose, xy: [f64; 2], yaw: f
 
 /// The in-limit top-down grasp (TCP at the object centre, fingers across a pair of faces) and
 /// its pre-grasp 10 cm above, as joint angles: among the yaws `yaw + k·90°` and the IK branches
-/// that admit both, the pair whose pre-grasp is nearest to `current` [rad]. `None` if none does.
+/// that admit both within the joint limits and without self-collision or table contact (the
+/// table top at `table_z` in `base_link`), the pair whose pre-grasp is nearest to `current`
+/// [rad]. `None` if none does.
 pub fn top_down_grasp(
     model: &ArmModel,
     object_in_base: &Pose,
+    table_z: f64,
     current: &[f64; 6],
 ) -> Option<([f64; 6], [f64; 6])> {
     let xyz = object_in_base.xyz();
@@ -72,7 +75,12 @@ pub fn top_down_grasp(
             continue;
         };
         for g in grasps.iter().filter(|s| s.in_limits) {
-            if let Some(a) = aboves.iter().find(|a| a.in_limits && a.branch == g.branch) {
+            if !collision_free(model, &g.joints, table_z) {
+                continue;
+            }
+            if let Some(a) = aboves.iter().find(|a| {
+                a.in_limits && a.branch == g.branch && collision_free(model, &a.joints, table_z)
+            }) {
                 let d = joint_distance(&a.joints, current);
                 if best.is_none_or(|(bd, _, _)| d < bd) {
                     best = Some((d, g.joints, a.joints));
@@ -81,6 +89,11 @@ pub fn top_down_grasp(
         }
     }
     best.map(|(_, g, a)| (g, a))
+}
+
+/// No self-collision (capsules), and nothing but the base below the table top plus 2 mm.
+pub fn collision_free(model: &ArmModel, q: &[f64; 6], table_z: f64) -> bool {
+    model.self_collisions(q, 0.0).is_empty() && model.lowest_point(q) > table_z + 0.002
 }
 
 /// Why no scenario could be drawn.
@@ -144,7 +157,8 @@ impl Scenario {
             let observed_position_error = [gauss(&mut rng, p), gauss(&mut rng, p), 0.0];
             let observed_yaw_error = gauss(&mut rng, r.observed_yaw_noise);
             let pose = object_pose_in_base(config, base, object_xy, object_yaw);
-            if top_down_grasp(model, &pose, &start_joints).is_some() {
+            let table_z = config.scene.table_height - base.xyz()[2];
+            if top_down_grasp(model, &pose, table_z, &start_joints).is_some() {
                 return Ok(Scenario {
                     seed,
                     object_xy,

@@ -70,6 +70,8 @@ pub enum EnvError {
     WorkerLost,
     #[error(transparent)]
     Config(#[from] ConfigError),
+    #[error("cannot write: {0}")]
+    Io(String),
     #[error(transparent)]
     Ungraspable(#[from] UngraspableRegion),
 }

@@ -29,7 +29,13 @@ fn every_sample_is_graspable(randomization: RandomizationConfig, base_rpy: [f64;
             yaw,
         );
         assert!(
-            top_down_grasp(&model, &pose, &HOME_JOINTS).is_some(),
+            top_down_grasp(
+                &model,
+                &pose,
+                cfg.scene.table_height - cfg.arm.base_xyz[2],
+                &HOME_JOINTS
+            )
+            .is_some(),
             "sample {n}: r {radius:.3} angle {angle:.3}"
         );
     }
@@ -125,4 +131,35 @@ fn the_curriculum_advances_only_past_the_threshold_over_a_full_window() {
     for _ in 0..20 {
         assert!(!c.record(true), "no stage after the last");
     }
+}
+
+#[test]
+fn perception_noise_shifts_only_the_observed_cube_and_is_fixed_per_episode() {
+    let config = fairgrasp_env::presets::load("hard").unwrap();
+    let mut env = GraspEnv::new(config).unwrap();
+    let (obs, info) = env.reset(3).unwrap();
+    let scenario = info.scenario.unwrap();
+    let actual = env.object_in_base().xyz();
+    let observed = obs.object_position();
+    for i in 0..3 {
+        assert!((observed[i] - actual[i] - scenario.observed_position_error[i]).abs() < 1e-9);
+    }
+    assert!(
+        scenario.observed_position_error[0].abs() + scenario.observed_position_error[1].abs()
+            > 1e-4
+    );
+    let yaw_error = obs.object_yaw - env.object_in_base().rpy()[2];
+    let wrapped = (yaw_error - scenario.observed_yaw_error + std::f64::consts::PI)
+        .rem_euclid(std::f64::consts::TAU)
+        - std::f64::consts::PI;
+    assert!(
+        wrapped.abs() < 1e-6,
+        "{yaw_error} vs {}",
+        scenario.observed_yaw_error
+    );
+    // The same error on the next step: it is per episode, not per step.
+    let step = env.step(&fairgrasp_env::Action::hold_open()).unwrap();
+    let after = step.obs.object_position();
+    let now = env.object_in_base().xyz();
+    assert!((after[0] - now[0] - scenario.observed_position_error[0]).abs() < 1e-9);
 }

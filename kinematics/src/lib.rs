@@ -34,6 +34,7 @@
 //! ```
 
 pub mod analytic_ik;
+pub mod collision;
 pub mod diff_ik;
 pub mod fairino;
 pub mod fk;

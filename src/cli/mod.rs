@@ -1,6 +1,7 @@
 //! Subcommands and their arguments.
 
 mod args;
+mod baseline;
 mod bench;
 mod fk;
 mod frames;
@@ -32,6 +33,8 @@ enum Command {
     Ik(ik::IkArgs),
     /// Frame sanity checks: the zero pose, and a world point expressed in a rotated base frame.
     Frames(frames::FramesArgs),
+    /// The scripted grasp baseline on a preset's seeded scenario set: success rate and failures.
+    Baseline(baseline::BaselineArgs),
     /// Benchmarks: `bench env` measures environment steps per second and reset times.
     Bench(bench::BenchArgs),
 }
@@ -44,5 +47,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Ik(a) => ik::run(&a),
         Command::Frames(a) => frames::run(&a),
         Command::Bench(a) => bench::run(&a),
+        Command::Baseline(a) => baseline::run(&a),
     }
 }

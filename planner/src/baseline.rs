@@ -1,0 +1,246 @@
+//! The scripted grasp baseline: approach → descend → close → lift → hold.
+//!
+//! Each motion phase follows a Ruckig trajectory between IK joint targets; each env step emits
+//! the joint velocity that moves along the reference over the coming step plus a small feedback
+//! term, `q̇ = (q_ref(t+Δ) − q_ref(t))/Δ + K·(q_ref(t) − q)`, scaled into the action range.
+
+use fairgrasp_env::policy::{Outcome, Policy};
+use fairgrasp_env::{Action, EnvConfig, Observation};
+use fairgrasp_kinematics::{ArmKind, ArmModel};
+use serde::Serialize;
+
+use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
+use crate::motion::{JointTrajectory, MotionLimits};
+
+/// Settings of the scripted grasp.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BaselineConfig {
+    /// Pre-grasp height above the object centre [m].
+    pub pre_grasp_height: f64,
+    /// Lift above the grasp [m].
+    pub lift_height: f64,
+    /// Fraction of the action's velocity range the trajectories may use (the rest is headroom
+    /// for the feedback term).
+    pub velocity_fraction: f64,
+    /// Trajectory acceleration limit [rad/s²] (the env's arm limit is 10).
+    pub max_acceleration: f64,
+    /// Trajectory jerk limit [rad/s³].
+    pub max_jerk: f64,
+    /// Feedback gain on the joint error [1/s].
+    pub feedback_gain: f64,
+    /// Env steps the gripper closes before lifting.
+    pub close_steps: usize,
+    /// Extra env steps a motion phase may take beyond its trajectory before it times out.
+    pub phase_slack_steps: usize,
+}
+
+impl Default for BaselineConfig {
+    fn default() -> Self {
+        Self {
+            pre_grasp_height: 0.10,
+            lift_height: 0.10,
+            velocity_fraction: 0.8,
+            max_acceleration: 2.0,
+            max_jerk: 20.0,
+            feedback_gain: 4.0,
+            close_steps: 8,
+            phase_slack_steps: 24,
+        }
+    }
+}
+
+/// Where the script is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Phase {
+    Plan,
+    Approach,
+    Descend,
+    Close,
+    Lift,
+    Hold,
+    /// Gave up: no IK solution, or a phase timed out.
+    Failed,
+}
+
+/// The scripted top-down grasp, as a [`Policy`].
+pub struct ScriptedGrasp {
+    config: BaselineConfig,
+    model: ArmModel,
+    action_scale: f64,
+    /// Duration of one env step [s].
+    step_dt: f64,
+    limits: MotionLimits,
+    /// Table top height in `base_link` [m].
+    table_z: f64,
+    phase: Phase,
+    steps_in_phase: usize,
+    targets: Option<GraspJoints>,
+    trajectory: Option<JointTrajectory>,
+    gave_up: Option<Outcome>,
+}
+
+impl ScriptedGrasp {
+    /// A baseline for the environment configured by `env`.
+    pub fn new(env: &EnvConfig, config: BaselineConfig) -> Self {
+        let model = ArmKind::Fr3.model();
+        let v = env.arm.action_scale * config.velocity_fraction;
+        let limits = MotionLimits {
+            max_velocity: model.joints.map(|j| v.min(j.max_velocity)),
+            max_acceleration: [config.max_acceleration.min(env.arm.max_acceleration); 6],
+            max_jerk: [config.max_jerk; 6],
+        };
+        Self {
+            step_dt: env.physics.dt * env.physics.substeps as f64,
+            action_scale: env.arm.action_scale,
+            table_z: env.scene.table_height - env.arm.base_xyz[2],
+            config,
+            model,
+            limits,
+            phase: Phase::Plan,
+            steps_in_phase: 0,
+            targets: None,
+            trajectory: None,
+            gave_up: None,
+        }
+    }
+
+    /// The current phase.
+    pub fn phase(&self) -> Phase {
+        self.phase
+    }
+
+    /// The joint targets of this episode's grasp, once planned.
+    pub fn targets(&self) -> Option<&GraspJoints> {
+        self.targets.as_ref()
+    }
+
+    /// The trajectory limits in use.
+    pub fn limits(&self) -> &MotionLimits {
+        &self.limits
+    }
+
+    /// The current phase's trajectory, if it has one.
+    pub fn trajectory(&self) -> Option<&JointTrajectory> {
+        self.trajectory.as_ref()
+    }
+
+    fn enter(&mut self, phase: Phase, obs: &Observation, target: Option<[f64; 6]>) {
+        self.phase = phase;
+        self.steps_in_phase = 0;
+        self.trajectory = target
+            .and_then(|t| JointTrajectory::plan(&obs.joints, &[0.0; 6], &t, &self.limits).ok());
+        if target.is_some() && self.trajectory.is_none() {
+            self.fail(Outcome::Timeout);
+        }
+    }
+
+    fn fail(&mut self, reason: Outcome) {
+        self.phase = Phase::Failed;
+        self.gave_up = Some(reason);
+        self.trajectory = None;
+    }
+
+    /// Velocity action following the current trajectory from the measured joints.
+    fn follow(&self, obs: &Observation, gripper: f64) -> Action {
+        let mut a = [0.0; 7];
+        a[6] = gripper;
+        let Some(traj) = &self.trajectory else {
+            return Action(a);
+        };
+        let t = self.steps_in_phase as f64 * self.step_dt;
+        let (q_now, _, _) = traj.sample(t);
+        let (q_next, _, _) = traj.sample(t + self.step_dt);
+        for i in 0..6 {
+            let feedforward = (q_next[i] - q_now[i]) / self.step_dt;
+            let feedback = self.config.feedback_gain * (q_now[i] - obs.joints[i]);
+            a[i] = ((feedforward + feedback) / self.action_scale).clamp(-1.0, 1.0);
+        }
+        Action(a)
+    }
+
+    /// Has the current motion phase finished (trajectory over, joints there)?
+    fn arrived(&self, obs: &Observation) -> bool {
+        let Some(traj) = &self.trajectory else {
+            return true;
+        };
+        let elapsed = self.steps_in_phase as f64 * self.step_dt;
+        let error = traj
+            .target()
+            .iter()
+            .zip(&obs.joints)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        elapsed >= traj.duration() && error < 0.01
+    }
+
+    fn timed_out(&self) -> bool {
+        let budget = self.trajectory.as_ref().map_or(0.0, |t| t.duration()) / self.step_dt;
+        self.steps_in_phase as f64 > budget + self.config.phase_slack_steps as f64
+    }
+}
+
+impl Policy for ScriptedGrasp {
+    fn reset(&mut self, _seed: u64) {
+        self.phase = Phase::Plan;
+        self.steps_in_phase = 0;
+        self.targets = None;
+        self.trajectory = None;
+        self.gave_up = None;
+    }
+
+    fn act(&mut self, obs: &Observation) -> Action {
+        if self.phase == Phase::Plan {
+            let c = &self.config;
+            let target = GraspTarget {
+                object: obs.object_position(),
+                object_yaw: obs.object_yaw,
+                table_z: self.table_z,
+            };
+            match plan_grasp_joints(
+                &self.model,
+                &target,
+                &obs.joints,
+                c.pre_grasp_height,
+                c.lift_height,
+            ) {
+                Some(t) => {
+                    self.targets = Some(t);
+                    self.enter(Phase::Approach, obs, Some(t.pre_grasp));
+                }
+                None => self.fail(Outcome::IkFailure),
+            }
+        }
+        let targets = self.targets;
+        let advance = self.arrived(obs);
+        let (next, gripper) = match (self.phase, targets) {
+            (Phase::Approach, Some(t)) if advance => (Some((Phase::Descend, Some(t.grasp))), -1.0),
+            (Phase::Descend, Some(_)) if advance => (Some((Phase::Close, None)), 1.0),
+            (Phase::Close, Some(t)) if self.steps_in_phase >= self.config.close_steps => {
+                (Some((Phase::Lift, Some(t.lift))), 1.0)
+            }
+            (Phase::Lift, Some(_)) if advance => (Some((Phase::Hold, None)), 1.0),
+            (Phase::Approach | Phase::Descend, _) => (None, -1.0),
+            (Phase::Close | Phase::Lift | Phase::Hold, _) => (None, 1.0),
+            (Phase::Plan | Phase::Failed, _) => (None, -1.0),
+        };
+        if let Some((phase, target)) = next {
+            self.enter(phase, obs, target);
+        } else if matches!(self.phase, Phase::Approach | Phase::Descend | Phase::Lift)
+            && self.timed_out()
+        {
+            self.fail(Outcome::Timeout);
+        }
+        let action = match self.phase {
+            Phase::Failed | Phase::Plan => Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, gripper]),
+            _ => self.follow(obs, gripper),
+        };
+        self.steps_in_phase += 1;
+        action
+    }
+
+    fn gave_up(&self) -> Option<Outcome> {
+        // A timed-out phase is reported by the episode's own end (timeout); only IK is ours.
+        self.gave_up.filter(|o| *o == Outcome::IkFailure)
+    }
+}

@@ -1,0 +1,177 @@
+//! `fairgrasp baseline`: the scripted grasp on a preset's seeded scenario set.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, ValueEnum};
+use fairgrasp_env::policy::{EvalReport, evaluate};
+use fairgrasp_env::presets::{self, PRESETS};
+use fairgrasp_env::randomize::scenario_set;
+use fairgrasp_env::{ArmModelKind, EnvConfig, GraspEnv};
+use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::json;
+
+/// Arm simulation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ArmArg {
+    /// Kinematic links placed by FK (fast; the default).
+    Servo,
+    /// rapier multibody with the FR3 masses and joint motors.
+    Multibody,
+}
+
+impl From<ArmArg> for ArmModelKind {
+    fn from(a: ArmArg) -> Self {
+        match a {
+            ArmArg::Servo => ArmModelKind::Servo,
+            ArmArg::Multibody => ArmModelKind::Multibody,
+        }
+    }
+}
+
+fn preset_help() -> String {
+    let names: Vec<String> = PRESETS
+        .iter()
+        .map(|(n, _, d)| format!("{n} ({d})"))
+        .collect();
+    format!("Preset name or a .toml file: {}", names.join("; "))
+}
+
+#[derive(Args, Debug)]
+pub struct BaselineArgs {
+    #[arg(long, default_value = "seed", help = preset_help())]
+    preset: String,
+    /// Episodes (scenarios) to run.
+    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
+    episodes: u32,
+    /// Seed of the scenario set: the same seed gives the same scenarios for every policy.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Arm simulation.
+    #[arg(long, value_enum, default_value = "servo")]
+    arm: ArmArg,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Write each episode's trajectory (CSV and JSON) into this folder.
+    #[arg(long, value_name = "DIR")]
+    record: Option<PathBuf>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The environment config for a preset and arm.
+pub fn preset_config(preset: &str, arm: ArmArg) -> anyhow::Result<EnvConfig> {
+    let mut config = presets::load(preset)?;
+    config.arm.model = arm.into();
+    Ok(config)
+}
+
+/// A progress bar on stderr when it is a terminal and the output is not JSON.
+pub fn progress_bar(len: u64, json: bool, label: &str) -> ProgressBar {
+    if json || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(len);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} episodes, {per_sec}, eta {eta}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(label.to_string());
+    bar
+}
+
+/// The report as the one JSON object the CLI prints.
+pub fn report_json(
+    method: &str,
+    preset: &str,
+    arm: ArmArg,
+    seed: u64,
+    r: &EvalReport,
+) -> serde_json::Value {
+    json!({
+        "method": method, "preset": preset, "arm": format!("{arm:?}").to_lowercase(), "seed": seed,
+        "episodes": r.episodes, "success_rate": r.success_rate, "ci_low": r.ci_low, "ci_high": r.ci_high,
+        "collision_rate": r.collision_rate, "mean_steps_to_success": r.mean_steps_to_success,
+        "mean_return": r.mean_return, "outcomes": r.outcomes, "results": r.results,
+    })
+}
+
+/// The report as text.
+pub fn print_report(method: &str, preset: &str, arm: ArmArg, seed: u64, r: &EvalReport) {
+    println!(
+        "{method} on preset `{preset}` ({arm:?} arm), {} episodes from seed {seed}",
+        r.episodes
+    );
+    println!(
+        "  success rate          {:5.1} %  (95 % Wilson CI {:.1}–{:.1} %)",
+        100.0 * r.success_rate,
+        100.0 * r.ci_low,
+        100.0 * r.ci_high
+    );
+    match r.mean_steps_to_success {
+        Some(s) => println!("  mean steps to success {s:5.1}"),
+        None => println!("  mean steps to success   n/a (no success)"),
+    }
+    println!("  collision rate        {:5.1} %", 100.0 * r.collision_rate);
+    println!("  mean return           {:7.3}", r.mean_return);
+    let breakdown: Vec<String> = r
+        .outcomes
+        .iter()
+        .map(|(o, n)| {
+            format!(
+                "{} {n}",
+                serde_json::to_value(o)
+                    .ok()
+                    .and_then(|v| v.as_str().map(String::from))
+                    .unwrap_or_default()
+            )
+        })
+        .collect();
+    println!("  outcomes              {}", breakdown.join(", "));
+}
+
+pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
+    let config = preset_config(&a.preset, a.arm)?;
+    let env = GraspEnv::new(config.clone())?;
+    let scenarios = scenario_set(
+        &config,
+        env.model(),
+        env.base_in_world(),
+        a.seed,
+        a.episodes as usize,
+    )?;
+    let threads = a
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let bar = progress_bar(scenarios.len() as u64, a.json, "baseline");
+    let make = || ScriptedGrasp::new(&config, BaselineConfig::default());
+    let report = evaluate(
+        &config,
+        &scenarios,
+        threads,
+        a.record.as_deref(),
+        &make,
+        &|| bar.inc(1),
+    )?;
+    bar.finish_and_clear();
+    if a.json {
+        println!(
+            "{}",
+            report_json("baseline", &a.preset, a.arm, a.seed, &report)
+        );
+    } else {
+        print_report("baseline", &a.preset, a.arm, a.seed, &report);
+        if let Some(dir) = &a.record {
+            println!(
+                "  trajectories          {}/episode_NNNN.csv and .json",
+                dir.display()
+            );
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
