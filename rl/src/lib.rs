@@ -1,0 +1,14 @@
+//! fairgrasp-rl: PPO in burn, and the residual grasping agent.
+//!
+//! - [`gae`]: generalised advantage estimation, advantage normalisation, explained variance.
+//! - [`model`]: the actor-critic MLPs.
+//! - [`normalizer`]: running observation statistics.
+//! - [`ppo`]: the PPO loop, CleanRL style.
+//! - [`vec_api`]: what PPO needs from environments; [`point_mass`]: a small task PPO must solve.
+
+pub mod gae;
+pub mod model;
+pub mod normalizer;
+pub mod point_mass;
+pub mod ppo;
+pub mod vec_api;

@@ -1,0 +1,140 @@
+//! The actor-critic: separate MLPs for the action mean and the value, a state-independent
+//! log standard deviation, orthogonal initialisation (as SB3 and CleanRL do).
+//!
+//! Shapes: observations `[batch, obs_dim]`, actions `[batch, act_dim]`, values `[batch]`.
+
+use burn::module::{Module, Param};
+use burn::nn::{Initializer, Linear, LinearConfig};
+use burn::tensor::{Device, Tensor};
+use serde::{Deserialize, Serialize};
+
+/// Sizes and initialisation of the network.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ModelConfig {
+    /// Hidden layer widths of both MLPs (SB3's default 64, 64).
+    pub hidden: Vec<usize>,
+    /// Initial log standard deviation of the action distribution.
+    pub log_std_init: f32,
+    /// Initialise the actor's output layer to zero, so the mean action starts at exactly 0
+    /// (the residual agent then starts exactly at the baseline).
+    pub zero_actor_output: bool,
+}
+
+impl Default for ModelConfig {
+    fn default() -> Self {
+        Self {
+            hidden: vec![64, 64],
+            log_std_init: 0.0,
+            zero_actor_output: false,
+        }
+    }
+}
+
+/// Actor and critic.
+#[derive(Module, Debug)]
+pub struct ActorCritic {
+    actor: Vec<Linear>,
+    critic: Vec<Linear>,
+    /// Log standard deviation per action dimension.
+    log_std: Param<Tensor<1>>,
+}
+
+fn mlp(sizes: &[usize], output_gain: f64, zero_output: bool, device: &Device) -> Vec<Linear> {
+    let n = sizes.len() - 1;
+    (0..n)
+        .map(|i| {
+            let last = i + 1 == n;
+            // Zero weights and bias, then orthogonal weights (burn's initializer would also
+            // apply to the 1-D bias, which orthogonal initialisation cannot fill).
+            let mut layer = LinearConfig::new(sizes[i], sizes[i + 1])
+                .with_initializer(Initializer::Zeros)
+                .init(device);
+            if !(last && zero_output) {
+                let gain = if last {
+                    output_gain
+                } else {
+                    std::f64::consts::SQRT_2
+                };
+                layer.weight =
+                    Initializer::Orthogonal { gain }.init([sizes[i], sizes[i + 1]], device);
+            }
+            layer
+        })
+        .collect()
+}
+
+/// `tanh` from `exp` (burn's `tanh` is slow on CPU; CRATES.md pitfall 7): `1 − 2/(e^{2x} + 1)`.
+fn fast_tanh<const D: usize>(x: Tensor<D>) -> Tensor<D> {
+    let e = x.clamp(-15.0, 15.0).mul_scalar(2.0).exp();
+    e.clone().sub_scalar(1.0).div(e.add_scalar(1.0))
+}
+
+fn forward_mlp(layers: &[Linear], x: Tensor<2>) -> Tensor<2> {
+    let n = layers.len();
+    let mut h = x;
+    for (i, layer) in layers.iter().enumerate() {
+        h = layer.forward(h);
+        if i + 1 < n {
+            h = fast_tanh(h);
+        }
+    }
+    h
+}
+
+impl ActorCritic {
+    /// A fresh network for `obs_dim` inputs and `act_dim` actions.
+    pub fn new(obs_dim: usize, act_dim: usize, config: &ModelConfig, device: &Device) -> Self {
+        let mut sizes = vec![obs_dim];
+        sizes.extend(&config.hidden);
+        let actor_sizes: Vec<usize> = sizes.iter().copied().chain([act_dim]).collect();
+        let critic_sizes: Vec<usize> = sizes.iter().copied().chain([1]).collect();
+        Self {
+            actor: mlp(&actor_sizes, 0.01, config.zero_actor_output, device),
+            critic: mlp(&critic_sizes, 1.0, false, device),
+            log_std: Param::from_tensor(Tensor::<1>::full([act_dim], config.log_std_init, device)),
+        }
+    }
+
+    /// Mean action `[batch, act_dim]`.
+    pub fn mean(&self, obs: Tensor<2>) -> Tensor<2> {
+        forward_mlp(&self.actor, obs)
+    }
+
+    /// State value `[batch]`.
+    pub fn value(&self, obs: Tensor<2>) -> Tensor<1> {
+        forward_mlp(&self.critic, obs).squeeze_dim(1)
+    }
+
+    /// Log standard deviation `[act_dim]`.
+    pub fn log_std(&self) -> Tensor<1> {
+        self.log_std.val()
+    }
+
+    /// Log-probability `[batch]` of `actions` under `N(mean, exp(log_std)²)` (summed over dims),
+    /// and the distribution's entropy `[batch]`.
+    pub fn log_prob_and_entropy(
+        &self,
+        obs: Tensor<2>,
+        actions: Tensor<2>,
+    ) -> (Tensor<1>, Tensor<1>) {
+        let mean = self.mean(obs);
+        let [batch, act_dim] = mean.dims();
+        let log_std = self
+            .log_std()
+            .unsqueeze_dim::<2>(0)
+            .expand([batch, act_dim]); // [batch, act]
+        let z = actions.sub(mean).div(log_std.clone().exp());
+        let half_log_2pi = 0.5 * (2.0 * std::f32::consts::PI).ln();
+        let log_prob = z
+            .powi_scalar(2)
+            .mul_scalar(-0.5)
+            .sub(log_std.clone())
+            .sub_scalar(half_log_2pi);
+        let entropy = log_std.add_scalar(0.5 + half_log_2pi);
+        (
+            log_prob.sum_dim(1).squeeze_dim(1),
+            entropy.sum_dim(1).squeeze_dim(1),
+        )
+    }
+}

@@ -1,0 +1,156 @@
+//! PPO: the losses against hand computations, config refusals, and learning a small task.
+
+use burn::tensor::{Device, Tensor, TensorData};
+use fairgrasp_rl::model::{ActorCritic, ModelConfig};
+use fairgrasp_rl::normalizer::RunningNorm;
+use fairgrasp_rl::point_mass::{HORIZON, PointMass};
+use fairgrasp_rl::ppo::{Ppo, PpoConfig, PpoConfigError, clipped_surrogate, value_loss};
+use fairgrasp_rl::vec_api::VecEnvironment;
+
+fn t1(v: &[f32]) -> Tensor<1> {
+    Tensor::from_data(TensorData::new(v.to_vec(), [v.len()]), &Device::flex())
+}
+
+fn scalar(t: Tensor<1>) -> f32 {
+    t.into_data().try_to_vec::<f32>().unwrap()[0]
+}
+
+#[test]
+fn the_clipped_surrogate_matches_a_hand_computation() {
+    // Ratios e^{0.5} = 1.6487 (clipped to 1.2), e^{-0.5} = 0.6065 (clipped to 0.8), 1.
+    let new = t1(&[0.5, -0.5, 0.0]);
+    let old = t1(&[0.0, 0.0, 0.0]);
+    let adv = t1(&[1.0, 1.0, -2.0]);
+    let (loss, ratio) = clipped_surrogate(new, old, adv, 0.2);
+    let r: Vec<f32> = ratio.into_data().try_to_vec().unwrap();
+    assert!((r[0] - 0.5f32.exp()).abs() < 1e-6);
+    // Per sample max(−A·r, −A·clip(r)): max(−1.6487, −1.2) = −1.2; max(−0.6065, −0.8) = −0.6065;
+    // max(2, 2) = 2. Mean = (−1.2 − 0.6065 + 2)/3.
+    let expected = (-1.2 - (-0.5f32).exp() + 2.0) / 3.0;
+    assert!((scalar(loss) - expected).abs() < 1e-6);
+}
+
+#[test]
+fn the_value_loss_matches_a_hand_computation_with_and_without_clipping() {
+    let values = t1(&[1.0, 3.0]);
+    let returns = t1(&[2.0, 0.0]);
+    let old = t1(&[1.5, 1.0]);
+    // Unclipped: ½·mean(1, 9) = 2.5.
+    assert!(
+        (scalar(value_loss(
+            values.clone(),
+            returns.clone(),
+            old.clone(),
+            None
+        )) - 2.5)
+            .abs()
+            < 1e-6
+    );
+    // Clipped (ε 0.2): V_c = (1.3, 1.2); (V_c − R)² = (0.49, 1.44); max with (1, 9) = (1, 9): 2.5.
+    // With ε 0.2 and returns far from the clip region the max keeps the unclipped terms.
+    assert!((scalar(value_loss(values, returns, old, Some(0.2))) - 2.5).abs() < 1e-6);
+    let values = t1(&[2.0]);
+    let returns = t1(&[1.0]);
+    let old = t1(&[0.0]);
+    // Unclipped (2−1)² = 1; clipped V_c = 0.2, (0.2−1)² = 0.64; max = 1 → 0.5.
+    assert!(
+        (scalar(value_loss(
+            values.clone(),
+            returns.clone(),
+            old.clone(),
+            Some(0.2)
+        )) - 0.5)
+            .abs()
+            < 1e-6
+    );
+    let returns = t1(&[3.0]);
+    // Unclipped (2−3)² = 1; clipped (0.2−3)² = 7.84; max = 7.84 → 3.92.
+    assert!((scalar(value_loss(values, returns, old, Some(0.2))) - 3.92).abs() < 1e-5);
+}
+
+#[test]
+fn a_rollout_that_is_not_a_multiple_of_the_batch_size_is_refused() {
+    let config = PpoConfig {
+        n_steps: 100,
+        batch_size: 64,
+        ..PpoConfig::default()
+    };
+    let err = config.validate(1).unwrap_err();
+    assert!(matches!(
+        err,
+        PpoConfigError::UnevenMinibatches { rollout: 100, .. }
+    ));
+    assert!(err.to_string().contains("batch_size 64"), "{err}");
+    assert!(
+        PpoConfig {
+            n_steps: 128,
+            ..config
+        }
+        .validate(1)
+        .is_ok()
+    );
+    assert!(PpoConfig::default().validate(1).is_ok(), "SB3's 2048 / 64");
+}
+
+fn evaluate(ppo: &Ppo, episodes: usize) -> f32 {
+    evaluate_with(&|o| ppo.mean_action(o), episodes)
+}
+
+fn evaluate_with(policy: &dyn Fn(&[f32]) -> Vec<f32>, episodes: usize) -> f32 {
+    let mut env = PointMass::new(1, 999);
+    let mut obs = env.reset();
+    let mut total = 0.0;
+    let mut done = 0;
+    while done < episodes {
+        let action = policy(&obs[0]);
+        let step = env.step(&[action]);
+        total += step.rewards[0];
+        if step.truncated[0] {
+            done += 1;
+        }
+        obs = step.obs;
+    }
+    total / episodes as f32
+}
+
+#[test]
+fn ppo_learns_to_drive_a_point_mass_to_its_goal() {
+    let device = Device::flex().autodiff();
+    device.seed(0);
+    let mut env = PointMass::new(8, 0);
+    let config = PpoConfig {
+        n_steps: 64,
+        batch_size: 64,
+        n_epochs: 10,
+        learning_rate: 3e-3,
+        gamma: 0.95,
+        ..PpoConfig::default()
+    };
+    config.validate(env.n_envs()).unwrap();
+    let model = ActorCritic::new(2, 1, &ModelConfig::default(), &device);
+    let mut ppo = Ppo::new(config, model, RunningNorm::new(2, true), device, 0);
+    let before = evaluate(&ppo, 20);
+    let iterations = 60; // 60 × 64 × 8 = 30 720 env steps
+    for k in 0..iterations {
+        ppo.iterate(&mut env, k as f64 / iterations as f64);
+    }
+    let after = evaluate(&ppo, 20);
+    // The reference: the best saturated PD controller a = clip(−kp·x − kd·v) over a gain grid,
+    // on the same 20 start states.
+    let mut best_pd = f32::NEG_INFINITY;
+    for kp in [1.0f32, 2.0, 4.0, 8.0, 16.0] {
+        for kd in [0.5f32, 1.0, 2.0, 4.0, 8.0] {
+            best_pd = best_pd.max(evaluate_with(
+                &|o: &[f32]| vec![(-kp * o[0] - kd * o[1]).clamp(-1.0, 1.0)],
+                20,
+            ));
+        }
+    }
+    eprintln!(
+        "return per episode: before {before:.2}, after {after:.2}, best PD {best_pd:.2} (horizon {HORIZON})"
+    );
+    assert!(
+        after >= 1.25 * best_pd,
+        "PPO {after:.2} is not near the best PD controller {best_pd:.2} (before {before:.2})"
+    );
+}
