@@ -64,6 +64,21 @@ impl Observation {
         [0, 1, 2].map(|i| self.tcp_position[i] + self.object_rel_tcp[i])
     }
 
+    /// Rebuilds an observation from its flat view (the yaw comes back modulo 90°, which is all
+    /// a cube's yaw means).
+    pub fn from_array(a: &[f32; OBS_DIM]) -> Self {
+        let f = |i: usize| a[i] as f64;
+        Observation {
+            joints: std::array::from_fn(|i| f(i)),
+            joint_velocities: std::array::from_fn(|i| f(6 + i)),
+            object_rel_tcp: [f(12), f(13), f(14)],
+            gripper_opening: f(15),
+            object_yaw: f(16).atan2(f(17)) / 4.0,
+            tcp_position: [f(18), f(19), f(20)],
+            pad_contact: [a[21] > 0.5, a[22] > 0.5],
+        }
+    }
+
     /// The flat view, in the order of [`OBS_NAMES`].
     pub fn to_array(&self) -> [f32; OBS_DIM] {
         let mut out = [0.0f32; OBS_DIM];

@@ -6,9 +6,13 @@
 //! - [`ppo`]: the PPO loop, CleanRL style.
 //! - [`vec_api`]: what PPO needs from environments; [`point_mass`]: a small task PPO must solve.
 
+pub mod agent;
+pub mod checkpoint;
 pub mod gae;
+pub mod grasp_env;
 pub mod model;
 pub mod normalizer;
 pub mod point_mass;
 pub mod ppo;
+pub mod train;
 pub mod vec_api;

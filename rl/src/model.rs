@@ -96,6 +96,14 @@ impl ActorCritic {
         }
     }
 
+    /// This network's actor and log-std with `other`'s critic (critic-only warm-up).
+    pub fn with_critic_of(self, other: ActorCritic) -> Self {
+        Self {
+            critic: other.critic,
+            ..self
+        }
+    }
+
     /// Mean action `[batch, act_dim]`.
     pub fn mean(&self, obs: Tensor<2>) -> Tensor<2> {
         forward_mlp(&self.actor, obs)

@@ -1,0 +1,137 @@
+//! The grasping agent: residual corrections on top of the scripted baseline, or pure PPO.
+//!
+//! Residual mode: the policy sees the observation and the baseline's action,
+//! `input = obs ⊕ a_base`, and the env receives `clip(a_base + scale · a_policy)`. The actor's
+//! output layer starts at zero, so an untrained agent *is* the baseline. With
+//! `gripper = "learned"` the gripper command is the policy's own output, not a correction.
+//! Pure mode (the seed's setup): `input = obs`, the env receives `clip(a_policy)`.
+
+use fairgrasp_env::policy::Policy;
+use fairgrasp_env::{Action, EnvConfig, Observation};
+use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+use serde::{Deserialize, Serialize};
+
+/// Residual or pure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Mode {
+    /// Corrections on top of the scripted baseline.
+    #[default]
+    Residual,
+    /// No baseline: the seed recipe's PPO.
+    Pure,
+}
+
+/// Who commands the gripper in residual mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum GripperMode {
+    /// The baseline's command plus a correction.
+    #[default]
+    Residual,
+    /// The policy's own output.
+    Learned,
+}
+
+/// How the policy's output becomes an env action.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AgentConfig {
+    pub mode: Mode,
+    /// Scale of the residual (action units per policy unit).
+    pub residual_scale: f32,
+    pub gripper: GripperMode,
+}
+
+impl Default for AgentConfig {
+    fn default() -> Self {
+        Self {
+            mode: Mode::Residual,
+            residual_scale: 0.3,
+            gripper: GripperMode::Residual,
+        }
+    }
+}
+
+/// Env observation size.
+pub const OBS_DIM: usize = fairgrasp_env::obs::OBS_DIM;
+/// Env action size.
+pub const ACT_DIM: usize = 7;
+
+impl AgentConfig {
+    /// The policy's input size.
+    pub fn input_dim(&self) -> usize {
+        match self.mode {
+            Mode::Residual => OBS_DIM + ACT_DIM,
+            Mode::Pure => OBS_DIM,
+        }
+    }
+
+    /// The policy input for an observation and (residual mode) the baseline's action.
+    pub fn input(&self, obs: &[f32; OBS_DIM], base: Option<&Action>) -> Vec<f32> {
+        let mut x = obs.to_vec();
+        if let (Mode::Residual, Some(b)) = (self.mode, base) {
+            x.extend(b.0.iter().map(|v| *v as f32));
+        }
+        x
+    }
+
+    /// The env action for the policy's output.
+    pub fn compose(&self, base: Option<&Action>, policy: &[f32]) -> Action {
+        Action(std::array::from_fn(|i| {
+            let p = policy[i] as f64;
+            let v = match (self.mode, base) {
+                (Mode::Residual, Some(_)) if i == 6 && self.gripper == GripperMode::Learned => p,
+                (Mode::Residual, Some(b)) => b.0[i] + self.residual_scale as f64 * p,
+                _ => p,
+            };
+            v.clamp(-1.0, 1.0)
+        }))
+    }
+
+    /// A baseline for residual mode.
+    pub fn baseline(&self, env: &EnvConfig) -> Option<ScriptedGrasp> {
+        (self.mode == Mode::Residual).then(|| ScriptedGrasp::new(env, BaselineConfig::default()))
+    }
+}
+
+/// A trained (or fresh) agent as a [`Policy`]: deterministic, mean actions.
+pub struct GraspAgent {
+    pub agent: AgentConfig,
+    baseline: Option<ScriptedGrasp>,
+    mean_action: Box<dyn Fn(&[f32]) -> Vec<f32> + Send>,
+}
+
+impl GraspAgent {
+    /// `mean_action` maps a raw policy input to the mean policy output.
+    pub fn new(
+        agent: AgentConfig,
+        env: &EnvConfig,
+        mean_action: Box<dyn Fn(&[f32]) -> Vec<f32> + Send>,
+    ) -> Self {
+        Self {
+            baseline: agent.baseline(env),
+            agent,
+            mean_action,
+        }
+    }
+}
+
+impl Policy for GraspAgent {
+    fn reset(&mut self, seed: u64) {
+        if let Some(b) = &mut self.baseline {
+            b.reset(seed);
+        }
+    }
+
+    fn act(&mut self, obs: &Observation) -> Action {
+        let base = self.baseline.as_mut().map(|b| b.act(obs));
+        let input = self.agent.input(&obs.to_array(), base.as_ref());
+        let out = (self.mean_action)(&input);
+        self.agent.compose(base.as_ref(), &out)
+    }
+
+    fn gave_up(&self) -> Option<fairgrasp_env::policy::Outcome> {
+        self.baseline.as_ref().and_then(|b| b.gave_up())
+    }
+}
