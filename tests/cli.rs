@@ -218,3 +218,69 @@ fn an_unknown_preset_is_refused_with_the_choices() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("fixed, seed, wide, full, hard"), "{stderr}");
 }
+
+#[test]
+fn train_writes_a_run_folder_and_eval_reads_its_checkpoint() {
+    let dir = std::env::temp_dir().join(format!("fairgrasp-cli-train-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let config = dir.join("tiny.toml");
+    std::fs::write(
+        &config,
+        "preset = \"fixed\"\ntotal_timesteps = 64\nn_envs = 2\nthreads = 1\neval_every = 2\neval_episodes = 2\n\
+         [ppo]\nn_steps = 16\nbatch_size = 16\nn_epochs = 1\n",
+    )
+    .unwrap();
+    let run = dir.join("run");
+    let out = fairgrasp(&[
+        "train",
+        "--config",
+        config.to_str().unwrap(),
+        "--run-dir",
+        run.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for file in [
+        "config.toml",
+        "metrics.csv",
+        "eval.json",
+        "checkpoints/latest/meta.json",
+        "checkpoints/best/model.bpk",
+    ] {
+        assert!(run.join(file).exists(), "{file} missing");
+    }
+    // A second train into the same folder without --resume is refused.
+    let again = fairgrasp(&[
+        "train",
+        "--config",
+        config.to_str().unwrap(),
+        "--run-dir",
+        run.to_str().unwrap(),
+    ]);
+    assert_eq!(again.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&again.stderr).contains("--resume"));
+    let policy = run.join("checkpoints/latest");
+    let (v, code) = json(&[
+        "eval",
+        "--policy",
+        policy.to_str().unwrap(),
+        "--preset",
+        "fixed",
+        "--episodes",
+        "2",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    for key in ["success_rate", "ci_low", "ci_high", "episodes"] {
+        assert!(v.get(key).is_some(), "{key} missing: {v}");
+    }
+    let out = fairgrasp(&["eval", "--policy", dir.to_str().unwrap(), "--episodes", "1"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("meta.json"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -69,7 +69,7 @@ impl Observation {
     pub fn from_array(a: &[f32; OBS_DIM]) -> Self {
         let f = |i: usize| a[i] as f64;
         Observation {
-            joints: std::array::from_fn(|i| f(i)),
+            joints: std::array::from_fn(f),
             joint_velocities: std::array::from_fn(|i| f(6 + i)),
             object_rel_tcp: [f(12), f(13), f(14)],
             gripper_opening: f(15),

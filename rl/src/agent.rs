@@ -95,20 +95,19 @@ impl AgentConfig {
     }
 }
 
+/// Maps a raw policy input to the mean policy output.
+pub type MeanAction = Box<dyn Fn(&[f32]) -> Vec<f32> + Send>;
+
 /// A trained (or fresh) agent as a [`Policy`]: deterministic, mean actions.
 pub struct GraspAgent {
     pub agent: AgentConfig,
     baseline: Option<ScriptedGrasp>,
-    mean_action: Box<dyn Fn(&[f32]) -> Vec<f32> + Send>,
+    mean_action: MeanAction,
 }
 
 impl GraspAgent {
     /// `mean_action` maps a raw policy input to the mean policy output.
-    pub fn new(
-        agent: AgentConfig,
-        env: &EnvConfig,
-        mean_action: Box<dyn Fn(&[f32]) -> Vec<f32> + Send>,
-    ) -> Self {
+    pub fn new(agent: AgentConfig, env: &EnvConfig, mean_action: MeanAction) -> Self {
         Self {
             baseline: agent.baseline(env),
             agent,

@@ -33,6 +33,9 @@ pub struct TrainConfig {
     pub seed: u64,
     /// Environment steps to train for.
     pub total_timesteps: u64,
+    /// Stop earlier once this much wall-clock time has passed in this invocation [s] (for
+    /// comparisons at an equal time budget); None = no limit.
+    pub max_wall_time_s: Option<f64>,
     /// Parallel environments.
     pub n_envs: usize,
     /// Threads stepping them.
@@ -57,6 +60,7 @@ impl Default for TrainConfig {
             arm: ArmModelKind::Servo,
             seed: 0,
             total_timesteps: 200_000,
+            max_wall_time_s: None,
             n_envs: 4,
             threads: 2,
             eval_every: 10,
@@ -126,7 +130,7 @@ impl TrainConfig {
                 self.model.hidden
             ));
         }
-        if !(self.agent.residual_scale > 0.0) {
+        if self.agent.residual_scale.is_nan() || self.agent.residual_scale <= 0.0 {
             return Err(format!(
                 "agent.residual_scale = {}: must be positive",
                 self.agent.residual_scale
@@ -314,7 +318,12 @@ pub fn train(
     let start = Instant::now();
     let mut best = meta.eval_success_rate.unwrap_or(-1.0);
     let mut last_report = None;
-    while meta.timesteps < config.total_timesteps {
+    let out_of_time = |start: &Instant| {
+        config
+            .max_wall_time_s
+            .is_some_and(|t| start.elapsed().as_secs_f64() >= t)
+    };
+    while meta.timesteps < config.total_timesteps && !out_of_time(&start) {
         if let Some(c) = &curriculum {
             env.inner_mut().set_randomization(&c.randomization())?;
         }

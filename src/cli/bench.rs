@@ -20,6 +20,18 @@ pub struct BenchArgs {
 enum BenchWhat {
     /// Env steps per second (wall and CPU), soft and hard reset times, random actions.
     Env(EnvBenchArgs),
+    /// PPO update throughput (samples/s, 64×64 network) and training throughput with the env.
+    Ppo(PpoBenchArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct PpoBenchArgs {
+    /// PPO iterations to time (each: 512 steps × 4 envs, 10 epochs of minibatches of 64).
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
+    iterations: u32,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -65,7 +77,13 @@ fn cpu_seconds() -> f64 {
 }
 
 pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
-    let BenchWhat::Env(a) = &a.what;
+    match &a.what {
+        BenchWhat::Env(a) => run_env(a),
+        BenchWhat::Ppo(a) => super::bench_ppo::run(a.iterations, a.json),
+    }
+}
+
+fn run_env(a: &EnvBenchArgs) -> anyhow::Result<ExitCode> {
     let mut config = EnvConfig::default();
     config.arm.model = match a.arm {
         ArmArg::Servo => ArmModelKind::Servo,

@@ -3,10 +3,12 @@
 mod args;
 mod baseline;
 mod bench;
+mod bench_ppo;
 mod fk;
 mod frames;
 mod ik;
 mod joints;
+mod train;
 
 use std::process::ExitCode;
 
@@ -35,6 +37,10 @@ enum Command {
     Frames(frames::FramesArgs),
     /// The scripted grasp baseline on a preset's seeded scenario set: success rate and failures.
     Baseline(baseline::BaselineArgs),
+    /// Train a PPO agent (residual on the baseline, or pure) from a TOML config.
+    Train(train::TrainArgs),
+    /// Evaluate a trained agent (default: the shipped residual policy) on a preset.
+    Eval(train::EvalArgs),
     /// Benchmarks: `bench env` measures environment steps per second and reset times.
     Bench(bench::BenchArgs),
 }
@@ -48,5 +54,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Frames(a) => frames::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Baseline(a) => baseline::run(&a),
+        Command::Train(a) => train::run_train(&a),
+        Command::Eval(a) => train::run_eval(&a),
     }
 }

@@ -1,0 +1,175 @@
+//! `fairgrasp train` and `fairgrasp eval`: the PPO agent.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context, bail};
+use burn::tensor::Device;
+use clap::Args;
+use fairgrasp_env::GraspEnv;
+use fairgrasp_env::policy::evaluate;
+use fairgrasp_env::randomize::scenario_set;
+use fairgrasp_rl::checkpoint;
+use fairgrasp_rl::train::{TrainConfig, agent_policy, train};
+
+use super::baseline::{ArmArg, preset_config, print_report, progress_bar, report_json};
+
+#[derive(Args, Debug)]
+pub struct TrainArgs {
+    /// Training config (TOML); see assets/policies/*/config.toml for complete examples.
+    #[arg(long, value_name = "FILE")]
+    config: PathBuf,
+    /// Run folder (config.toml, metrics.csv, checkpoints/, eval.json). Default: runs/<config name>.
+    #[arg(long, value_name = "DIR")]
+    run_dir: Option<PathBuf>,
+    /// Continue the run in --run-dir from its latest checkpoint.
+    #[arg(long)]
+    resume: bool,
+    /// Override the config's seed.
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Override the config's total_timesteps.
+    #[arg(long)]
+    timesteps: Option<u64>,
+}
+
+pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
+    let mut config = TrainConfig::from_toml_file(&a.config)?;
+    if let Some(s) = a.seed {
+        config.seed = s;
+    }
+    if let Some(t) = a.timesteps {
+        config.total_timesteps = t;
+    }
+    let run_dir = a.run_dir.clone().unwrap_or_else(|| {
+        let stem = a
+            .config
+            .file_stem()
+            .map_or("run".into(), |s| s.to_string_lossy().into_owned());
+        Path::new("runs").join(stem)
+    });
+    if !a.resume && run_dir.join("metrics.csv").exists() {
+        bail!(
+            "{} already holds a run: pass --resume to continue it, or choose another --run-dir",
+            run_dir.display()
+        );
+    }
+    let bar = indicatif::ProgressBar::new(config.total_timesteps);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} steps {per_sec} eta {eta} {msg}",
+        )
+        .expect("valid template")
+        .progress_chars("=> "),
+    );
+    let report = train(&config, &run_dir, a.resume, &mut |p| {
+        let n = p.stats.episodes.len().max(1) as f64;
+        let success = p.stats.episodes.iter().filter(|e| e.success).count() as f64 / n;
+        let ret = p
+            .stats
+            .episodes
+            .iter()
+            .map(|e| e.episode_return as f64)
+            .sum::<f64>()
+            / n;
+        bar.set_position(p.timesteps);
+        let eval = p
+            .eval
+            .map_or(String::new(), |e| format!(" eval {:.0}%", 100.0 * e));
+        bar.set_message(format!(
+            "success {:.0}% return {ret:.2} stage {}{eval}",
+            100.0 * success,
+            p.stage
+        ));
+    })?;
+    bar.finish_and_clear();
+    println!("run folder {}", run_dir.display());
+    print_report(
+        "trained agent",
+        &config.preset,
+        arm_arg(&config),
+        1_000_000,
+        &report,
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+fn arm_arg(c: &TrainConfig) -> ArmArg {
+    match c.arm {
+        fairgrasp_env::ArmModelKind::Servo => ArmArg::Servo,
+        fairgrasp_env::ArmModelKind::Multibody => ArmArg::Multibody,
+    }
+}
+
+/// The shipped residual policy, used when `--policy` is omitted.
+pub fn default_policy() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/policies/residual_hard/checkpoint")
+}
+
+#[derive(Args, Debug)]
+pub struct EvalArgs {
+    /// Checkpoint folder (a run's checkpoints/best or checkpoints/latest). Default: the shipped
+    /// residual policy, assets/policies/residual_hard/checkpoint.
+    #[arg(long, value_name = "DIR")]
+    policy: Option<PathBuf>,
+    /// Preset name or .toml file.
+    #[arg(long, default_value = "hard")]
+    preset: String,
+    /// Episodes (scenarios).
+    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
+    episodes: u32,
+    /// Seed of the scenario set (the same as `fairgrasp baseline --seed` gives the same scenarios).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Arm simulation.
+    #[arg(long, value_enum, default_value = "servo")]
+    arm: ArmArg,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Write each episode's trajectory into this folder.
+    #[arg(long, value_name = "DIR")]
+    record: Option<PathBuf>,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
+    let policy = a.policy.clone().unwrap_or_else(default_policy);
+    let (meta, model) = checkpoint::load_model(&policy, &Device::flex())
+        .context("loading the policy (pass --policy DIR to choose one)")?;
+    let config = preset_config(&a.preset, a.arm)?;
+    let env = GraspEnv::new(config.clone())?;
+    let scenarios = scenario_set(
+        &config,
+        env.model(),
+        env.base_in_world(),
+        a.seed,
+        a.episodes as usize,
+    )?;
+    let threads = a
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let bar = progress_bar(scenarios.len() as u64, a.json, "eval");
+    let make = || agent_policy(&meta, &model, &config);
+    let report = evaluate(
+        &config,
+        &scenarios,
+        threads,
+        a.record.as_deref(),
+        &make,
+        &|| bar.inc(1),
+    )?;
+    bar.finish_and_clear();
+    let method = format!("{:?} agent ({})", meta.agent.mode, policy.display()).to_lowercase();
+    if a.json {
+        let mut v = report_json(&method, &a.preset, a.arm, a.seed, &report);
+        v["policy"] = serde_json::json!(policy.display().to_string());
+        v["trained_timesteps"] = serde_json::json!(meta.timesteps);
+        println!("{v}");
+    } else {
+        print_report(&method, &a.preset, a.arm, a.seed, &report);
+    }
+    Ok(ExitCode::SUCCESS)
+}
