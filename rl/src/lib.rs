@@ -14,5 +14,6 @@ pub mod model;
 pub mod normalizer;
 pub mod point_mass;
 pub mod ppo;
+pub mod ppo_config;
 pub mod train;
 pub mod vec_api;

@@ -281,6 +281,7 @@ pub fn train(
             obs_norm: RunningNorm::new(input_dim, config.ppo.norm_obs),
             timesteps: 0,
             updates: 0,
+            wall_time_s: 0.0,
             eval_success_rate: None,
         };
         (
@@ -316,6 +317,7 @@ pub fn train(
         .map(|c| Curriculum::new(c, env_config.randomization.clone()));
     let per_update = (config.ppo.n_steps * config.n_envs) as u64;
     let start = Instant::now();
+    let wall_before = meta.wall_time_s;
     let mut best = meta.eval_success_rate.unwrap_or(-1.0);
     let mut last_report = None;
     let out_of_time = |start: &Instant| {
@@ -338,6 +340,7 @@ pub fn train(
         }
         meta.timesteps += per_update;
         meta.updates += 1;
+        meta.wall_time_s = wall_before + start.elapsed().as_secs_f64();
         meta.obs_norm = ppo.obs_norm.clone();
         if let Some(c) = &mut curriculum {
             for e in &stats.episodes {
@@ -365,7 +368,7 @@ pub fn train(
         let row = metrics_row(
             meta.updates,
             meta.timesteps,
-            start.elapsed().as_secs_f64(),
+            meta.wall_time_s,
             &stats,
             stage,
             eval,

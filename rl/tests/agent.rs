@@ -30,6 +30,7 @@ fn fresh_meta(agent: AgentConfig) -> (CheckpointMeta, ActorCritic) {
         obs_norm: RunningNorm::new(input_dim, true),
         timesteps: 0,
         updates: 0,
+        wall_time_s: 0.0,
         eval_success_rate: None,
     };
     (meta, model)
@@ -170,6 +171,9 @@ fn resume_continues_the_timestep_count_and_the_metrics() {
     let rows: Vec<&str> = csv.lines().collect();
     assert_eq!(rows.len(), 1 + 4, "header + 4 updates");
     assert!(rows[4].starts_with("4,128,"), "{}", rows[4]);
+    // Wall time keeps counting across the resume.
+    let wall = |row: &str| row.split(',').nth(2).unwrap().parse::<f64>().unwrap();
+    assert!(wall(rows[3]) >= wall(rows[2]) && wall(rows[4]) >= wall(rows[3]), "{csv}");
     assert!(dir.join("config.toml").exists());
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -31,6 +31,9 @@ pub struct TrainArgs {
     /// Override the config's total_timesteps.
     #[arg(long)]
     timesteps: Option<u64>,
+    /// Override the config's max_wall_time_s: stop after this many seconds of this invocation.
+    #[arg(long, value_name = "SECONDS")]
+    max_wall_time: Option<f64>,
 }
 
 pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
@@ -40,6 +43,9 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
     }
     if let Some(t) = a.timesteps {
         config.total_timesteps = t;
+    }
+    if let Some(t) = a.max_wall_time {
+        config.max_wall_time_s = Some(t);
     }
     let run_dir = a.run_dir.clone().unwrap_or_else(|| {
         let stem = a
