@@ -12,6 +12,7 @@ use crate::convert::{from_rapier, to_rapier};
 use crate::obs::Observation;
 use crate::randomize::{Scenario, object_pose_in_base};
 use crate::scene::{SceneHandles, build};
+use crate::snapshot::Snapshot;
 pub use crate::step::{Action, EnvError, Info, Step};
 use crate::task::{Failure, TaskState, is_off_table, is_success, reward};
 use fairgrasp_kinematics::{ArmKind, ArmModel, Pose};
@@ -20,45 +21,6 @@ use rapier3d::prelude::*;
 
 /// Physics substeps run at reset so the object settles on the table.
 const SETTLE_SUBSTEPS: usize = 24;
-
-/// The cloneable part of the physics state, restored by a soft reset.
-#[derive(Clone)]
-struct Snapshot {
-    islands: IslandManager,
-    broad_phase: BroadPhaseBvh,
-    narrow_phase: NarrowPhase,
-    bodies: RigidBodySet,
-    colliders: ColliderSet,
-    impulse_joints: ImpulseJointSet,
-    multibody_joints: MultibodyJointSet,
-    ccd_solver: CCDSolver,
-}
-
-impl Snapshot {
-    fn take(w: &PhysicsWorld) -> Self {
-        Snapshot {
-            islands: w.islands.clone(),
-            broad_phase: w.broad_phase.clone(),
-            narrow_phase: w.narrow_phase.clone(),
-            bodies: w.bodies.clone(),
-            colliders: w.colliders.clone(),
-            impulse_joints: w.impulse_joints.clone(),
-            multibody_joints: w.multibody_joints.clone(),
-            ccd_solver: w.ccd_solver.clone(),
-        }
-    }
-
-    fn restore(&self, w: &mut PhysicsWorld) {
-        w.islands = self.islands.clone();
-        w.broad_phase = self.broad_phase.clone();
-        w.narrow_phase = self.narrow_phase.clone();
-        w.bodies = self.bodies.clone();
-        w.colliders = self.colliders.clone();
-        w.impulse_joints = self.impulse_joints.clone();
-        w.multibody_joints = self.multibody_joints.clone();
-        w.ccd_solver = self.ccd_solver.clone();
-    }
-}
 
 /// The FR3 grasping environment.
 pub struct GraspEnv {

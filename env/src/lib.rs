@@ -21,6 +21,7 @@ pub mod policy;
 pub mod presets;
 pub mod randomize;
 pub mod scene;
+mod snapshot;
 pub mod step;
 pub mod task;
 pub mod trajectory;

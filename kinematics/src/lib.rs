@@ -38,11 +38,13 @@ pub mod collision;
 pub mod diff_ik;
 pub mod fairino;
 pub mod fk;
+mod ik_tasks;
 pub mod model;
 pub mod pose;
 pub mod qp_ik;
 pub mod urdf;
 mod urdf_check;
+mod urdf_error;
 
 pub use analytic_ik::{AnalyticIkOptions, IkError, IkSolution, nearest_solution};
 pub use fk::{EndFrame, manipulability, min_singular_value};

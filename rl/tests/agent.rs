@@ -173,7 +173,10 @@ fn resume_continues_the_timestep_count_and_the_metrics() {
     assert!(rows[4].starts_with("4,128,"), "{}", rows[4]);
     // Wall time keeps counting across the resume.
     let wall = |row: &str| row.split(',').nth(2).unwrap().parse::<f64>().unwrap();
-    assert!(wall(rows[3]) >= wall(rows[2]) && wall(rows[4]) >= wall(rows[3]), "{csv}");
+    assert!(
+        wall(rows[3]) >= wall(rows[2]) && wall(rows[4]) >= wall(rows[3]),
+        "{csv}"
+    );
     assert!(dir.join("config.toml").exists());
     std::fs::remove_dir_all(&dir).ok();
 }

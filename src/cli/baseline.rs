@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
-use fairgrasp_env::policy::{EvalReport, evaluate};
+use fairgrasp_env::policy::{EvalReport, Policy, evaluate};
 use fairgrasp_env::presets::{self, PRESETS};
 use fairgrasp_env::randomize::scenario_set;
 use fairgrasp_env::{ArmModelKind, EnvConfig, GraspEnv};
@@ -39,28 +39,83 @@ fn preset_help() -> String {
     format!("Preset name or a .toml file: {}", names.join("; "))
 }
 
+/// The scenario set a policy is evaluated on, and how the result is shown.
 #[derive(Args, Debug)]
-pub struct BaselineArgs {
+pub struct ScenarioArgs {
     #[arg(long, default_value = "seed", help = preset_help())]
-    preset: String,
+    pub preset: String,
     /// Episodes (scenarios) to run.
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
-    episodes: u32,
+    pub episodes: u32,
     /// Seed of the scenario set: the same seed gives the same scenarios for every policy.
     #[arg(long, default_value_t = 0)]
-    seed: u64,
+    pub seed: u64,
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
-    arm: ArmArg,
+    pub arm: ArmArg,
     /// Worker threads (default: all cores).
     #[arg(long)]
-    threads: Option<usize>,
+    pub threads: Option<usize>,
     /// Write each episode's trajectory (CSV and JSON) into this folder.
     #[arg(long, value_name = "DIR")]
-    record: Option<PathBuf>,
+    pub record: Option<PathBuf>,
     /// Print one JSON object instead of text.
     #[arg(long)]
-    json: bool,
+    pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct BaselineArgs {
+    #[command(flatten)]
+    scenarios: ScenarioArgs,
+}
+
+/// Runs a fresh policy from `make` on the scenario set of `a`, and prints the report (text, or
+/// one JSON object extended with `extra`).
+pub fn evaluate_and_print<P: Policy>(
+    a: &ScenarioArgs,
+    method: &str,
+    make: &(dyn Fn(&EnvConfig) -> P + Sync),
+    extra: serde_json::Value,
+) -> anyhow::Result<ExitCode> {
+    let config = preset_config(&a.preset, a.arm)?;
+    let env = GraspEnv::new(config.clone())?;
+    let scenarios = scenario_set(
+        &config,
+        env.model(),
+        env.base_in_world(),
+        a.seed,
+        a.episodes as usize,
+    )?;
+    let threads = a
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let bar = progress_bar(scenarios.len() as u64, a.json, method);
+    let report = evaluate(
+        &config,
+        &scenarios,
+        threads,
+        a.record.as_deref(),
+        &|| make(&config),
+        &|| bar.inc(1),
+    )?;
+    bar.finish_and_clear();
+    if a.json {
+        let mut v = report_json(method, &a.preset, a.arm, a.seed, &report);
+        if let (Some(v), serde_json::Value::Object(extra)) = (v.as_object_mut(), extra) {
+            v.extend(extra);
+        }
+        println!("{v}");
+    } else {
+        print_report(method, &a.preset, a.arm, a.seed, &report);
+        if let Some(dir) = &a.record {
+            println!(
+                "  trajectories          {}/episode_NNNN.csv and .json",
+                dir.display()
+            );
+        }
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 /// The environment config for a preset and arm.
@@ -136,42 +191,6 @@ pub fn print_report(method: &str, preset: &str, arm: ArmArg, seed: u64, r: &Eval
 }
 
 pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
-    let config = preset_config(&a.preset, a.arm)?;
-    let env = GraspEnv::new(config.clone())?;
-    let scenarios = scenario_set(
-        &config,
-        env.model(),
-        env.base_in_world(),
-        a.seed,
-        a.episodes as usize,
-    )?;
-    let threads = a
-        .threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let bar = progress_bar(scenarios.len() as u64, a.json, "baseline");
-    let make = || ScriptedGrasp::new(&config, BaselineConfig::default());
-    let report = evaluate(
-        &config,
-        &scenarios,
-        threads,
-        a.record.as_deref(),
-        &make,
-        &|| bar.inc(1),
-    )?;
-    bar.finish_and_clear();
-    if a.json {
-        println!(
-            "{}",
-            report_json("baseline", &a.preset, a.arm, a.seed, &report)
-        );
-    } else {
-        print_report("baseline", &a.preset, a.arm, a.seed, &report);
-        if let Some(dir) = &a.record {
-            println!(
-                "  trajectories          {}/episode_NNNN.csv and .json",
-                dir.display()
-            );
-        }
-    }
-    Ok(ExitCode::SUCCESS)
+    let make = |config: &EnvConfig| ScriptedGrasp::new(config, BaselineConfig::default());
+    evaluate_and_print(&a.scenarios, "baseline", &make, serde_json::json!({}))
 }

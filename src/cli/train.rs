@@ -6,13 +6,11 @@ use std::process::ExitCode;
 use anyhow::{Context, bail};
 use burn::tensor::Device;
 use clap::Args;
-use fairgrasp_env::GraspEnv;
-use fairgrasp_env::policy::evaluate;
-use fairgrasp_env::randomize::scenario_set;
+use fairgrasp_env::EnvConfig;
 use fairgrasp_rl::checkpoint;
 use fairgrasp_rl::train::{TrainConfig, agent_policy, train};
 
-use super::baseline::{ArmArg, preset_config, print_report, progress_bar, report_json};
+use super::baseline::{ArmArg, ScenarioArgs, evaluate_and_print, print_report};
 
 #[derive(Args, Debug)]
 pub struct TrainArgs {
@@ -118,64 +116,16 @@ pub struct EvalArgs {
     /// residual policy, assets/policies/residual_hard/checkpoint.
     #[arg(long, value_name = "DIR")]
     policy: Option<PathBuf>,
-    /// Preset name or .toml file.
-    #[arg(long, default_value = "hard")]
-    preset: String,
-    /// Episodes (scenarios).
-    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
-    episodes: u32,
-    /// Seed of the scenario set (the same as `fairgrasp baseline --seed` gives the same scenarios).
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
-    /// Arm simulation.
-    #[arg(long, value_enum, default_value = "servo")]
-    arm: ArmArg,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
-    threads: Option<usize>,
-    /// Write each episode's trajectory into this folder.
-    #[arg(long, value_name = "DIR")]
-    record: Option<PathBuf>,
-    /// Print one JSON object.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    scenarios: ScenarioArgs,
 }
 
 pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
     let policy = a.policy.clone().unwrap_or_else(default_policy);
     let (meta, model) = checkpoint::load_model(&policy, &Device::flex())
         .context("loading the policy (pass --policy DIR to choose one)")?;
-    let config = preset_config(&a.preset, a.arm)?;
-    let env = GraspEnv::new(config.clone())?;
-    let scenarios = scenario_set(
-        &config,
-        env.model(),
-        env.base_in_world(),
-        a.seed,
-        a.episodes as usize,
-    )?;
-    let threads = a
-        .threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let bar = progress_bar(scenarios.len() as u64, a.json, "eval");
-    let make = || agent_policy(&meta, &model, &config);
-    let report = evaluate(
-        &config,
-        &scenarios,
-        threads,
-        a.record.as_deref(),
-        &make,
-        &|| bar.inc(1),
-    )?;
-    bar.finish_and_clear();
     let method = format!("{:?} agent ({})", meta.agent.mode, policy.display()).to_lowercase();
-    if a.json {
-        let mut v = report_json(&method, &a.preset, a.arm, a.seed, &report);
-        v["policy"] = serde_json::json!(policy.display().to_string());
-        v["trained_timesteps"] = serde_json::json!(meta.timesteps);
-        println!("{v}");
-    } else {
-        print_report(&method, &a.preset, a.arm, a.seed, &report);
-    }
-    Ok(ExitCode::SUCCESS)
+    let make = |config: &EnvConfig| agent_policy(&meta, &model, config);
+    let extra = serde_json::json!({"policy": policy.display().to_string(), "trained_timesteps": meta.timesteps});
+    evaluate_and_print(&a.scenarios, &method, &make, extra)
 }
