@@ -7,7 +7,7 @@
 
 use crate::arm::{ArmDrive, drive_fingers, finger_travel, tcp_in_world};
 use crate::config::EnvConfig;
-use crate::contacts::{CollisionFilter, analyze};
+use crate::contacts::{CollisionFilter, ContactReport, analyze};
 use crate::convert::{from_rapier, to_rapier};
 use crate::obs::Observation;
 use crate::randomize::{Scenario, object_pose_in_base};
@@ -229,8 +229,9 @@ impl GraspEnv {
                 info,
             });
         }
-        let obs = self.observe(velocities);
+        // One contact scan serves the observation and the collision check.
         let contacts = analyze(&self.world, &self.handles, &self.filter);
+        let obs = self.observe_with(velocities, &contacts);
         let state = self.task_state(&obs);
         let success = is_success(&state, &self.config.task);
         let collision = contacts.collision.map(|(a, b, depth)| {
@@ -303,6 +304,11 @@ impl GraspEnv {
     }
 
     fn observe(&self, joint_velocities: [f64; 6]) -> Observation {
+        let contacts = analyze(&self.world, &self.handles, &self.filter);
+        self.observe_with(joint_velocities, &contacts)
+    }
+
+    fn observe_with(&self, joint_velocities: [f64; 6], contacts: &ContactReport) -> Observation {
         let q = self.drive.q;
         let tcp = self.model.fk_tcp(&q);
         let object_base = self.base.iso.inverse() * self.object_pose();
@@ -313,7 +319,6 @@ impl GraspEnv {
         let rel = observed - tcp.iso.translation.vector;
         let travel = finger_travel(&self.world, &self.handles, &self.model);
         let opening = self.model.gripper.opening(0.5 * (travel[0] + travel[1]));
-        let contacts = analyze(&self.world, &self.handles, &self.filter);
         Observation {
             joints: q,
             joint_velocities,
