@@ -8,6 +8,7 @@
 
 pub mod agent;
 pub mod checkpoint;
+pub mod evaluate;
 pub mod gae;
 pub mod grasp_env;
 pub mod model;

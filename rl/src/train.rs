@@ -7,15 +7,16 @@ use std::time::Instant;
 
 use burn::tensor::Device;
 use fairgrasp_env::curriculum::{Curriculum, CurriculumConfig};
-use fairgrasp_env::policy::{EvalReport, evaluate};
+use fairgrasp_env::policy::EvalReport;
 use fairgrasp_env::presets;
 use fairgrasp_env::randomize::scenario_set;
 use fairgrasp_env::trajectory::write_atomic;
 use fairgrasp_env::{ArmModelKind, EnvConfig, GraspEnv};
 use serde::{Deserialize, Serialize};
 
-use crate::agent::{ACT_DIM, AgentConfig, GraspAgent};
+use crate::agent::{ACT_DIM, AgentConfig};
 use crate::checkpoint::{self, CheckpointMeta};
+pub use crate::evaluate::{agent_policy, evaluate_model};
 use crate::grasp_env::GraspVecEnv;
 use crate::model::{ActorCritic, ModelConfig};
 use crate::normalizer::RunningNorm;
@@ -191,49 +192,6 @@ pub struct Progress<'a> {
     pub eval: Option<f64>,
 }
 
-/// Evaluates a model deterministically on `n` scenarios of the run's preset (seed 1 000 000).
-pub fn evaluate_model(
-    config: &TrainConfig,
-    meta: &CheckpointMeta,
-    model: &ActorCritic,
-    n: usize,
-) -> Result<EvalReport, TrainError> {
-    let env_config = config
-        .env_config()
-        .map_err(|e| TrainError::Config(e.to_string()))?;
-    let env = GraspEnv::new(env_config.clone())?;
-    let scenarios = scenario_set(&env_config, env.model(), env.base_in_world(), 1_000_000, n)
-        .map_err(|e| TrainError::Config(e.to_string()))?;
-    let make = || agent_policy(meta, model, &env_config);
-    Ok(evaluate(
-        &env_config,
-        &scenarios,
-        config.threads,
-        None,
-        &make,
-        &|| {},
-    )?)
-}
-
-/// The deterministic agent policy of a checkpoint's model.
-pub fn agent_policy(meta: &CheckpointMeta, model: &ActorCritic, env: &EnvConfig) -> GraspAgent {
-    let inference = burn::module::Module::valid(model);
-    let norm = meta.obs_norm.clone();
-    let device = Device::flex();
-    let mean = move |x: &[f32]| {
-        let input = burn::tensor::Tensor::<2>::from_data(
-            burn::tensor::TensorData::new(norm.normalize(x), [1, x.len()]),
-            &device,
-        );
-        inference
-            .mean(input)
-            .into_data()
-            .try_to_vec::<f32>()
-            .expect("f32 output")
-    };
-    GraspAgent::new(meta.agent.clone(), env, Box::new(mean))
-}
-
 /// Trains (or resumes) in `run_dir`; `report` is called after every update.
 pub fn train(
     config: &TrainConfig,
@@ -290,6 +248,16 @@ pub fn train(
             None,
         )
     };
+    // Fail here, with the reason, rather than inside the rollout if no scenario can be drawn.
+    let probe = GraspEnv::new(env_config.clone())?;
+    scenario_set(
+        &env_config,
+        probe.model(),
+        probe.base_in_world(),
+        config.seed,
+        1,
+    )
+    .map_err(|e| TrainError::Config(format!("preset {}: {e}", config.preset)))?;
     let episode_seed = config
         .seed
         .wrapping_mul(7_919)

@@ -1,0 +1,54 @@
+//! A model as a deterministic policy, and its evaluation on a fixed scenario set.
+
+use burn::tensor::Device;
+use fairgrasp_env::policy::{EvalReport, evaluate};
+use fairgrasp_env::randomize::scenario_set;
+use fairgrasp_env::{EnvConfig, GraspEnv};
+
+use crate::agent::GraspAgent;
+use crate::checkpoint::CheckpointMeta;
+use crate::model::ActorCritic;
+use crate::train::{TrainConfig, TrainError};
+
+/// Evaluates a model deterministically on `n` scenarios of the run's preset (seed 1 000 000).
+pub fn evaluate_model(
+    config: &TrainConfig,
+    meta: &CheckpointMeta,
+    model: &ActorCritic,
+    n: usize,
+) -> Result<EvalReport, TrainError> {
+    let env_config = config
+        .env_config()
+        .map_err(|e| TrainError::Config(e.to_string()))?;
+    let env = GraspEnv::new(env_config.clone())?;
+    let scenarios = scenario_set(&env_config, env.model(), env.base_in_world(), 1_000_000, n)
+        .map_err(|e| TrainError::Config(e.to_string()))?;
+    let make = || agent_policy(meta, model, &env_config);
+    Ok(evaluate(
+        &env_config,
+        &scenarios,
+        config.threads,
+        None,
+        &make,
+        &|| {},
+    )?)
+}
+
+/// The deterministic agent policy of a checkpoint's model.
+pub fn agent_policy(meta: &CheckpointMeta, model: &ActorCritic, env: &EnvConfig) -> GraspAgent {
+    let inference = burn::module::Module::valid(model);
+    let norm = meta.obs_norm.clone();
+    let device = Device::flex();
+    let mean = move |x: &[f32]| {
+        let input = burn::tensor::Tensor::<2>::from_data(
+            burn::tensor::TensorData::new(norm.normalize(x), [1, x.len()]),
+            &device,
+        );
+        inference
+            .mean(input)
+            .into_data()
+            .try_to_vec::<f32>()
+            .expect("f32 output")
+    };
+    GraspAgent::new(meta.agent.clone(), env, Box::new(mean))
+}
