@@ -38,14 +38,8 @@ impl CollisionFilter {
             }
         }
         ignored.insert(ordered(Part::Link(0), Part::Table));
-        let gripper = [
-            Part::Link(6),
-            Part::Palm,
-            Part::Finger(0),
-            Part::Finger(1),
-            Part::Pad(0),
-            Part::Pad(1),
-        ];
+        // wrist3_link and the gripper's parts: ALL_PARTS[6..12].
+        let gripper = &ALL_PARTS[6..12];
         for (i, a) in gripper.iter().enumerate() {
             for b in &gripper[i + 1..] {
                 ignored.insert(ordered(*a, *b));
@@ -123,6 +117,7 @@ fn group_bit(part: Part) -> u32 {
     }
 }
 
+/// Every part but the cube; indices 6..12 are wrist3_link and the gripper.
 const ALL_PARTS: [Part; 13] = [
     Part::Link(0),
     Part::Link(1),
