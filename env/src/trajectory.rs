@@ -6,6 +6,8 @@ use std::path::Path;
 
 use serde::Serialize;
 
+use fairgrasp_kinematics::world_to_base;
+
 use crate::env::{Action, GraspEnv, Step};
 
 /// One recorded step; poses in `base_link`, quaternions `[x, y, z, w]`.
@@ -24,11 +26,29 @@ pub struct TrajectoryRow {
     /// The action that led here (zeros for step 0).
     pub action: [f64; 7],
     pub reward: f64,
+    /// The arm's and gripper's collision capsules at this step, in the order of
+    /// [`TrajectoryScene::capsule_names`]: `[ax, ay, az, bx, by, bz, radius]` in `base_link` [m]
+    /// (JSON only; for replays).
+    pub capsules: Vec<[f64; 7]>,
+}
+
+/// What a replay needs besides the rows: the table and cube in `base_link` [m].
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct TrajectoryScene {
+    /// Table top corners x, y in `base_link` (the table is axis-aligned in `world`).
+    pub table_corners_xy: [[f64; 2]; 4],
+    /// Table top height in `base_link`.
+    pub table_top_z: f64,
+    /// Cube edge length.
+    pub cube_size: f64,
+    /// Names of the capsules in each row (links, then palm and fingers).
+    pub capsule_names: Vec<String>,
 }
 
 /// A recorded episode.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Trajectory {
+    pub scene: TrajectoryScene,
     pub rows: Vec<TrajectoryRow>,
 }
 
@@ -37,6 +57,12 @@ impl Trajectory {
         let step = self.rows.len();
         let cfg = &env.config().physics;
         let (tcp, object) = (env.tcp_in_base(), env.object_in_base());
+        let placed = env
+            .model()
+            .placed_capsules_with_opening(&env.joints(), opening);
+        if step == 0 {
+            self.scene = scene_of(env, placed.iter().map(|c| c.name.to_string()).collect());
+        }
         self.rows.push(TrajectoryRow {
             step,
             time_s: step as f64 * cfg.dt * cfg.substeps as f64,
@@ -48,6 +74,10 @@ impl Trajectory {
             object_quat_xyzw: object.quat_xyzw(),
             action,
             reward,
+            capsules: placed
+                .iter()
+                .map(|c| [c.a[0], c.a[1], c.a[2], c.b[0], c.b[1], c.b[2], c.radius])
+                .collect(),
         });
     }
 
@@ -116,6 +146,29 @@ impl Trajectory {
         write_atomic(&dir.join(format!("{stem}.csv")), self.to_csv().as_bytes())?;
         let json = serde_json::to_vec_pretty(self).map_err(std::io::Error::other)?;
         write_atomic(&dir.join(format!("{stem}.json")), &json)
+    }
+}
+
+/// The table and cube of `env`'s scene in `base_link`.
+fn scene_of(env: &GraspEnv, capsule_names: Vec<String>) -> TrajectoryScene {
+    let scene = &env.config().scene;
+    let base = env.base_in_world();
+    let [bx, by, _] = base.xyz();
+    let [hx, hy] = scene.table_size.map(|s| 0.5 * s);
+    let corner = |sx: f64, sy: f64| {
+        let p = world_to_base(base, [bx + sx * hx, by + sy * hy, scene.table_height]);
+        [p[0], p[1]]
+    };
+    TrajectoryScene {
+        table_corners_xy: [
+            corner(-1.0, -1.0),
+            corner(1.0, -1.0),
+            corner(1.0, 1.0),
+            corner(-1.0, 1.0),
+        ],
+        table_top_z: world_to_base(base, [bx, by, scene.table_height])[2],
+        cube_size: scene.cube_size,
+        capsule_names,
     }
 }
 

@@ -82,6 +82,24 @@ fn an_episode_exports_to_csv_and_json_with_one_row_per_step() {
             .unwrap();
     assert_eq!(json["rows"].as_array().unwrap().len(), 11);
     assert_eq!(json["rows"][3]["action"][0], 0.5);
+    // Replay geometry: one capsule per name; the finger capsules sit the opening plus one pad
+    // apart, centred on the line through the TCP along tool0 z.
+    let names = &t.scene.capsule_names;
+    let row = &t.rows[10];
+    assert_eq!(row.capsules.len(), names.len());
+    let finger = |n: &str| row.capsules[names.iter().position(|x| x == n).unwrap()];
+    let (l, r) = (finger("finger_left"), finger("finger_right"));
+    let gap = ((l[3] - r[3]).powi(2) + (l[4] - r[4]).powi(2) + (l[5] - r[5]).powi(2)).sqrt();
+    let pad = env.model().gripper.pad_size[0];
+    assert!((gap - row.gripper_opening_m - pad).abs() < 1e-9, "finger gap {gap}");
+    let mid = [0.5 * (l[3] + r[3]), 0.5 * (l[4] + r[4]), 0.5 * (l[5] + r[5])];
+    let tcp = row.tcp_xyz;
+    let off = [mid[0] - tcp[0], mid[1] - tcp[1], mid[2] - tcp[2]];
+    let along = off.iter().map(|v| v * v).sum::<f64>().sqrt();
+    assert!(along < 0.03, "finger tips {along} m from the TCP");
+    let cfg = env.config();
+    let table_z = cfg.scene.table_height - cfg.arm.base_xyz[2];
+    assert!((t.scene.table_top_z - table_z).abs() < 1e-12);
     assert!(
         !std::fs::read_dir(&dir).unwrap().any(|e| e
             .unwrap()

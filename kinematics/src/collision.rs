@@ -59,12 +59,15 @@ pub fn segment_distance(p1: [f64; 3], q1: [f64; 3], p2: [f64; 3], q2: [f64; 3]) 
     ((p1 + d1 * s) - (p2 + d2 * t)).norm()
 }
 
-/// The gripper as capsules in the `tool0` frame with the fingers open: the palm, and each finger
-/// from the palm's bottom face to the pad's tip.
-fn gripper_capsules(model: &ArmModel) -> [(&'static str, [f64; 3], [f64; 3], f64); 3] {
+/// The gripper as capsules in the `tool0` frame with the pads' inner faces `opening` [m] apart:
+/// the palm, and each finger from the palm's bottom face to the pad's tip.
+fn gripper_capsules(
+    model: &ArmModel,
+    opening: f64,
+) -> [(&'static str, [f64; 3], [f64; 3], f64); 3] {
     let g = &model.gripper;
     let palm_radius = 0.5 * g.palm_size[0].hypot(g.palm_size[1]) * 0.75;
-    let x = g.finger_travel + 0.5 * g.pad_size[0];
+    let x = 0.5 * opening + 0.5 * g.pad_size[0];
     let tip = g.tcp_offset + 0.5 * g.pad_size[2];
     let finger_radius = 0.5 * g.pad_size[1];
     [
@@ -94,8 +97,13 @@ fn gripper_capsules(model: &ArmModel) -> [(&'static str, [f64; 3], [f64; 3], f64
 }
 
 impl ArmModel {
-    /// Every link capsule and the gripper's capsules, placed at joints `q`.
+    /// Every link capsule and the gripper's capsules (fingers fully open), placed at joints `q`.
     pub fn placed_capsules(&self, q: &[f64; 6]) -> Vec<PlacedCapsule> {
+        self.placed_capsules_with_opening(q, self.gripper.opening(0.0))
+    }
+
+    /// Like [`ArmModel::placed_capsules`], with the pads' inner faces `opening` [m] apart.
+    pub fn placed_capsules_with_opening(&self, q: &[f64; 6], opening: f64) -> Vec<PlacedCapsule> {
         let poses = self.link_poses(q);
         let mut out = Vec::with_capacity(self.capsules.len() + 3);
         for c in &self.capsules {
@@ -114,7 +122,7 @@ impl ArmModel {
             });
         }
         let tool0 = self.fk_flange(q);
-        for (name, a, b, radius) in gripper_capsules(self) {
+        for (name, a, b, radius) in gripper_capsules(self, opening) {
             out.push(PlacedCapsule {
                 name,
                 a: tool0.transform_point(a),
