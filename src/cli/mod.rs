@@ -4,10 +4,12 @@ mod args;
 mod baseline;
 mod bench;
 mod bench_ppo;
+mod compare;
 mod fk;
 mod frames;
 mod ik;
 mod joints;
+mod report;
 mod train;
 
 use std::process::ExitCode;
@@ -41,6 +43,13 @@ enum Command {
     Train(train::TrainArgs),
     /// Evaluate a trained agent (default: the shipped residual policy) on a preset.
     Eval(train::EvalArgs),
+    /// The baseline and learned policies on identical scenario sets: table, CSV/JSON, charts,
+    /// replays, report.md and report.ipynb in one folder (the main job).
+    Compare(compare::CompareArgs),
+    /// Learning curves of run folders; episode charts and GIF replays of recorded episodes.
+    Plot(report::PlotArgs),
+    /// report.md and a Jupyter notebook (report.ipynb) from comparison and run folders.
+    Report(report::ReportArgs),
     /// Benchmarks: `bench env` measures environment steps per second and reset times.
     Bench(bench::BenchArgs),
 }
@@ -56,5 +65,8 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Baseline(a) => baseline::run(&a),
         Command::Train(a) => train::run_train(&a),
         Command::Eval(a) => train::run_eval(&a),
+        Command::Compare(a) => compare::run(&a),
+        Command::Plot(a) => report::run_plot(&a),
+        Command::Report(a) => report::run_report(&a),
     }
 }

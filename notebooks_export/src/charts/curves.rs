@@ -1,0 +1,169 @@
+//! Learning curves of one or more training runs: success rate, return, losses, entropy and
+//! explained variance against environment steps, with curriculum stage changes marked.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::{min_max, padded, series_color};
+use crate::error::ReportError;
+use crate::raster::{FONT, de, render_png};
+use crate::runs::RunFolder;
+
+/// Pixel size of the learning-curve chart.
+pub const SIZE: (u32, u32) = (1500, 900);
+
+/// The panels: metrics.csv column, panel title, y-axis label.
+const PANELS: [(&str, &str, &str); 6] = [
+    ("success_rate", "Training success rate", "success rate"),
+    ("episode_return", "Episode return", "mean return"),
+    ("entropy", "Policy entropy", "entropy [nats]"),
+    ("policy_loss", "Policy (clipped surrogate) loss", "loss"),
+    ("value_loss", "Value loss", "loss"),
+    (
+        "explained_variance",
+        "Explained variance of the value",
+        "1 − Var[R−V]/Var[R]",
+    ),
+];
+
+/// Draws `path` with one line per run in each panel; the success panel also shows evaluation
+/// success (`eval_success_rate`) as dots, and dashed verticals mark curriculum stage changes.
+pub fn learning_curves(runs: &[RunFolder], path: &Path) -> Result<(), ReportError> {
+    let names: Vec<&str> = runs.iter().map(|r| r.name.as_str()).collect();
+    render_png(path, SIZE, |root| {
+        let (title, body) = root.split_vertically(70);
+        title
+            .draw(&Text::new(
+                format!("Learning curves: {}", names.join(", ")),
+                (16, 8),
+                (FONT, 26),
+            ))
+            .map_err(de)?;
+        title
+            .draw(&Text::new(
+                "thin: per PPO update · thick: moving average over 15 updates · dots: evaluation success on the run's \
+                 fixed scenario set · dashed: curriculum stage change",
+                (16, 44),
+                (FONT, 14).into_font().color(&RGBColor(90, 90, 90)),
+            ))
+            .map_err(de)?;
+        let panels = body.split_evenly((2, 3));
+        let (x_lo, x_hi) = min_max(
+            runs.iter()
+                .flat_map(|r| r.metrics.column("timesteps").unwrap_or_default()),
+        );
+        let x_hi = if x_hi > x_lo { x_hi } else { x_lo + 1.0 };
+        for ((column, caption, y_desc), area) in PANELS.iter().zip(&panels) {
+            let series: Vec<Vec<(f64, f64)>> =
+                runs.iter().map(|r| r.metrics.series(column)).collect();
+            let eval: Vec<Vec<(f64, f64)>> = runs
+                .iter()
+                .map(|r| {
+                    if *column == "success_rate" {
+                        r.metrics.series("eval_success_rate")
+                    } else {
+                        Vec::new()
+                    }
+                })
+                .collect();
+            let (y_lo, y_hi) = if *column == "success_rate" {
+                (-0.03, 1.03)
+            } else {
+                let (lo, hi) = min_max(series.iter().flatten().map(|p| p.1));
+                padded(lo, hi, 0.08, 1e-3)
+            };
+            let mut chart = ChartBuilder::on(area)
+                .caption(*caption, (FONT, 18))
+                .margin(10)
+                .x_label_area_size(36)
+                .y_label_area_size(64)
+                .build_cartesian_2d(0.0..x_hi, y_lo..y_hi)
+                .map_err(de)?;
+            chart
+                .configure_mesh()
+                .x_labels(5)
+                .y_labels(6)
+                .x_label_formatter(&|x| format_steps(*x))
+                .x_desc("environment steps")
+                .y_desc(*y_desc)
+                .label_style((FONT, 13))
+                .axis_desc_style((FONT, 14))
+                .light_line_style(WHITE.mix(0.0))
+                .draw()
+                .map_err(de)?;
+            for (i, run) in runs.iter().enumerate() {
+                let color = series_color(i);
+                for (x, _) in run.metrics.stage_changes() {
+                    chart
+                        .draw_series(DashedLineSeries::new(
+                            vec![(x, y_lo), (x, y_hi)],
+                            6,
+                            4,
+                            color.mix(0.7).stroke_width(1),
+                        ))
+                        .map_err(de)?;
+                }
+                // Raw values thin and light, a moving average on top: PPO metrics are noisy,
+                // and plotters' thick polylines spike at sharp turns.
+                chart
+                    .draw_series(LineSeries::new(
+                        series[i].clone(),
+                        color.mix(0.35).stroke_width(1),
+                    ))
+                    .map_err(de)?;
+                let line = chart
+                    .draw_series(LineSeries::new(
+                        moving_average(&series[i], SMOOTHING),
+                        color.stroke_width(2),
+                    ))
+                    .map_err(de)?;
+                if *column == "success_rate" {
+                    line.label(run.name.as_str()).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(3))
+                    });
+                }
+                chart
+                    .draw_series(eval[i].iter().map(|p| Circle::new(*p, 4, color.filled())))
+                    .map_err(de)?;
+            }
+            if *column == "success_rate" {
+                chart
+                    .configure_series_labels()
+                    .position(SeriesLabelPosition::LowerRight)
+                    .background_style(WHITE.mix(0.9))
+                    .border_style(BLACK)
+                    .label_font((FONT, 13))
+                    .draw()
+                    .map_err(de)?;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// Updates averaged by the smoothed line.
+pub const SMOOTHING: usize = 15;
+
+/// Centred moving average over `window` points (shorter at the ends).
+pub fn moving_average(points: &[(f64, f64)], window: usize) -> Vec<(f64, f64)> {
+    let half = window / 2;
+    (0..points.len())
+        .map(|i| {
+            let part = &points[i.saturating_sub(half)..(i + half + 1).min(points.len())];
+            let mean = part.iter().map(|p| p.1).sum::<f64>() / part.len() as f64;
+            (points[i].0, mean)
+        })
+        .collect()
+}
+
+/// `1.2M`, `350k`, `900`.
+pub fn format_steps(x: f64) -> String {
+    if x.abs() >= 1e6 {
+        format!("{:.1}M", x / 1e6)
+    } else if x.abs() >= 1e3 {
+        format!("{:.0}k", x / 1e3)
+    } else {
+        format!("{x:.0}")
+    }
+}

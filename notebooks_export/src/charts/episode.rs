@@ -1,0 +1,222 @@
+//! One episode: joint angles and gripper opening over time, and the TCP and cube paths in top
+//! (x–y) and side (x–z) views of `base_link`.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::{PALETTE, equal_aspect, min_max, padded};
+use crate::error::ReportError;
+use crate::raster::{FONT, de, render_png};
+use crate::trajectory::EpisodeTrajectory;
+
+/// Pixel size of the episode chart.
+pub const SIZE: (u32, u32) = (1400, 860);
+
+const TCP_COLOR: RGBColor = RGBColor(78, 121, 167);
+const CUBE_COLOR: RGBColor = RGBColor(225, 87, 89);
+
+/// Draws the episode chart of `t` titled `title`.
+pub fn episode_chart(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<(), ReportError> {
+    let time: Vec<f64> = t.rows.iter().map(|r| r.time_s).collect();
+    let t_end = time.last().copied().unwrap_or(1.0).max(1e-3);
+    render_png(path, SIZE, |root| {
+        let (head, body) = root.split_vertically(44);
+        head.draw(&Text::new(title.to_string(), (14, 10), (FONT, 22)))
+            .map_err(de)?;
+        let (left, right) = body.split_horizontally(760);
+        let (joints_area, grip_area) = left.split_vertically(body.dim_in_pixel().1 / 2 + 40);
+        let (top_area, side_area) = right.split_vertically(body.dim_in_pixel().1 / 2 + 40);
+
+        // Joint angles.
+        let deg: Vec<[f64; 6]> = t
+            .rows
+            .iter()
+            .map(|r| r.joints.map(f64::to_degrees))
+            .collect();
+        let (lo, hi) = min_max(deg.iter().flatten().copied());
+        let (lo, hi) = padded(lo, hi, 0.05, 10.0);
+        let mut chart = ChartBuilder::on(&joints_area)
+            .caption("Joint angles", (FONT, 17))
+            .margin(8)
+            .x_label_area_size(34)
+            .y_label_area_size(52)
+            .build_cartesian_2d(0.0..t_end, lo..hi)
+            .map_err(de)?;
+        chart
+            .configure_mesh()
+            .x_desc("time [s]")
+            .y_desc("angle [deg]")
+            .label_style((FONT, 12))
+            .axis_desc_style((FONT, 13))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(de)?;
+        for j in 0..6 {
+            let color = PALETTE[j];
+            chart
+                .draw_series(LineSeries::new(
+                    time.iter().zip(&deg).map(|(s, q)| (*s, q[j])),
+                    color.stroke_width(2),
+                ))
+                .map_err(de)?
+                .label(format!("j{}", j + 1))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 12))
+            .draw()
+            .map_err(de)?;
+
+        // Gripper opening and cube height above the table.
+        let table = t.scene.table_top_z;
+        let half = 0.5 * t.scene.cube_size;
+        let opening: Vec<(f64, f64)> = time
+            .iter()
+            .zip(&t.rows)
+            .map(|(s, r)| (*s, 1e3 * r.gripper_opening_m))
+            .collect();
+        let lift: Vec<(f64, f64)> = time
+            .iter()
+            .zip(&t.rows)
+            .map(|(s, r)| (*s, 1e3 * (r.object_xyz[2] - half - table)))
+            .collect();
+        let (lo, hi) = min_max(opening.iter().chain(&lift).map(|p| p.1).chain([0.0]));
+        let mut chart = ChartBuilder::on(&grip_area)
+            .caption("Gripper opening and cube lift", (FONT, 17))
+            .margin(8)
+            .x_label_area_size(34)
+            .y_label_area_size(52)
+            .build_cartesian_2d(0.0..t_end, lo - 5.0..hi + 8.0)
+            .map_err(de)?;
+        chart
+            .configure_mesh()
+            .x_desc("time [s]")
+            .y_desc("[mm]")
+            .label_style((FONT, 12))
+            .axis_desc_style((FONT, 13))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(de)?;
+        for (points, color, label) in [
+            (opening, TCP_COLOR, "opening between the pads"),
+            (lift, CUBE_COLOR, "cube bottom above the table"),
+        ] {
+            chart
+                .draw_series(LineSeries::new(points, color.stroke_width(2)))
+                .map_err(de)?
+                .label(label)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 12))
+            .draw()
+            .map_err(de)?;
+
+        // Paths: top view (x, y) and side view (x, z).
+        for (area, axis, caption) in [
+            (&top_area, 1usize, "TCP and cube paths, top view"),
+            (&side_area, 2usize, "TCP and cube paths, side view"),
+        ] {
+            let tcp: Vec<(f64, f64)> = t
+                .rows
+                .iter()
+                .map(|r| (r.tcp_xyz[0], r.tcp_xyz[axis]))
+                .collect();
+            let cube: Vec<(f64, f64)> = t
+                .rows
+                .iter()
+                .map(|r| (r.object_xyz[0], r.object_xyz[axis]))
+                .collect();
+            let all = tcp.iter().chain(&cube);
+            let xr = min_max(all.clone().map(|p| p.0));
+            let yr = min_max(
+                all.map(|p| p.1)
+                    .chain(if axis == 2 { vec![table] } else { vec![] }),
+            );
+            let (w, h) = area.dim_in_pixel();
+            let (xr, yr) = equal_aspect(
+                padded(xr.0, xr.1, 0.15, 0.06),
+                padded(yr.0, yr.1, 0.15, 0.06),
+                ((w - 80) as f64, (h - 80) as f64),
+            );
+            let mut chart = ChartBuilder::on(area)
+                .caption(caption, (FONT, 17))
+                .margin(8)
+                .x_label_area_size(34)
+                .y_label_area_size(56)
+                .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+                .map_err(de)?;
+            chart
+                .configure_mesh()
+                .x_labels(5)
+                .y_labels(5)
+                .x_desc("x [m]")
+                .y_desc(if axis == 1 { "y [m]" } else { "z [m]" })
+                .label_style((FONT, 12))
+                .axis_desc_style((FONT, 13))
+                .light_line_style(WHITE.mix(0.0))
+                .draw()
+                .map_err(de)?;
+            if axis == 2 {
+                chart
+                    .draw_series([Rectangle::new(
+                        [(xr.0, yr.0), (xr.1, table)],
+                        RGBColor(215, 200, 175).filled(),
+                    )])
+                    .map_err(de)?;
+            }
+            let first = cube[0];
+            chart
+                .draw_series([Rectangle::new(
+                    [
+                        (first.0 - half, first.1 - half),
+                        (first.0 + half, first.1 + half),
+                    ],
+                    CUBE_COLOR.mix(0.25).filled(),
+                )])
+                .map_err(de)?;
+            chart
+                .draw_series(LineSeries::new(tcp.clone(), TCP_COLOR.stroke_width(2)))
+                .map_err(de)?
+                .label("TCP")
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], TCP_COLOR.stroke_width(3))
+                });
+            chart
+                .draw_series(LineSeries::new(cube.clone(), CUBE_COLOR.stroke_width(2)))
+                .map_err(de)?
+                .label("cube centre (start: shaded square)")
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], CUBE_COLOR.stroke_width(3))
+                });
+            chart
+                .draw_series([
+                    Circle::new(tcp[0], 5, TCP_COLOR.filled()),
+                    Circle::new(*tcp.last().unwrap_or(&tcp[0]), 5, BLACK.filled()),
+                ])
+                .map_err(de)?;
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperLeft)
+                .background_style(WHITE.mix(0.9))
+                .border_style(BLACK)
+                .label_font((FONT, 12))
+                .draw()
+                .map_err(de)?;
+        }
+        Ok(())
+    })
+}

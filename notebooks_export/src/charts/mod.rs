@@ -1,0 +1,76 @@
+//! PNG charts and the GIF replay, drawn with plotters and the embedded DejaVu font.
+
+pub mod curves;
+pub mod episode;
+pub mod replay;
+pub mod success;
+pub mod workspace;
+
+use plotters::style::RGBColor;
+
+/// Tableau 10: readable on white, distinguishable in greyscale print by lightness.
+pub const PALETTE: [RGBColor; 8] = [
+    RGBColor(78, 121, 167),
+    RGBColor(242, 142, 43),
+    RGBColor(89, 161, 79),
+    RGBColor(225, 87, 89),
+    RGBColor(176, 122, 161),
+    RGBColor(118, 183, 178),
+    RGBColor(156, 117, 95),
+    RGBColor(237, 201, 72),
+];
+
+/// The colour of the `i`-th method or run (the same in every chart).
+pub fn series_color(i: usize) -> RGBColor {
+    PALETTE[i % PALETTE.len()]
+}
+
+/// The colour of an episode outcome in workspace maps.
+pub fn outcome_color(outcome: &str) -> RGBColor {
+    match outcome {
+        "success" => RGBColor(89, 161, 79),
+        "missed_grasp" => RGBColor(242, 142, 43),
+        "slip_or_drop" => RGBColor(176, 122, 161),
+        "collision" => RGBColor(225, 87, 89),
+        "ik_failure" => RGBColor(156, 117, 95),
+        "object_off_table" => RGBColor(118, 183, 178),
+        "timeout" => RGBColor(120, 120, 120),
+        _ => RGBColor(0, 0, 0),
+    }
+}
+
+/// `[lo, hi]` widened by `margin` of its span (and to at least `min_span`).
+pub(crate) fn padded(lo: f64, hi: f64, margin: f64, min_span: f64) -> (f64, f64) {
+    let (lo, hi) = if lo.is_finite() && hi.is_finite() && lo <= hi {
+        (lo, hi)
+    } else {
+        (0.0, 1.0)
+    };
+    let mid = 0.5 * (lo + hi);
+    let half = (0.5 * (hi - lo)).max(0.5 * min_span) * (1.0 + margin);
+    (mid - half, mid + half)
+}
+
+/// The smallest and largest finite value.
+pub(crate) fn min_max(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
+}
+
+/// Ranges for an equal-aspect plot of `(x, y)` bounds in a `w × h` pixel area.
+pub(crate) fn equal_aspect(
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    (w, h): (f64, f64),
+) -> ((f64, f64), (f64, f64)) {
+    let scale = ((x1 - x0) / w).max((y1 - y0) / h);
+    let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    (
+        (cx - 0.5 * scale * w, cx + 0.5 * scale * w),
+        (cy - 0.5 * scale * h, cy + 0.5 * scale * h),
+    )
+}

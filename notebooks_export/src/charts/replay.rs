@@ -1,0 +1,265 @@
+//! An episode replay as an animated GIF: the arm's and gripper's capsules, the cube and the
+//! table in two orthographic views of `base_link` (top: x–y; side: x–z, seen from −y).
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::{equal_aspect, min_max, padded};
+use crate::error::ReportError;
+use crate::raster::{FONT, de, gif_palette, render_gif, render_png};
+use crate::trajectory::{EpisodeTrajectory, StepRecord};
+
+/// Pixel size of a replay frame.
+pub const SIZE: (u32, u32) = (960, 500);
+/// At most this many frames (long episodes are subsampled; playback stays real time).
+pub const MAX_FRAMES: usize = 60;
+
+const TABLE: RGBColor = RGBColor(222, 208, 184);
+/// Alternating link colours, so neighbouring housings stay apart.
+const LINK_SHADES: [RGBColor; 2] = [RGBColor(150, 172, 196), RGBColor(110, 136, 166)];
+const SKELETON: RGBColor = RGBColor(40, 55, 75);
+const GRIPPER: RGBColor = RGBColor(80, 80, 80);
+const CUBE: RGBColor = RGBColor(225, 87, 89);
+const CUBE_EDGE: RGBColor = RGBColor(140, 30, 30);
+
+/// Writes the replay GIF of `t` with `title` above both views.
+pub fn replay_gif(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<(), ReportError> {
+    let n = t.rows.len();
+    let stride = n.div_ceil(MAX_FRAMES).max(1);
+    let frames: Vec<usize> = (0..n).step_by(stride).chain([n - 1]).collect();
+    let dt = if n > 1 {
+        (t.rows[n - 1].time_s - t.rows[0].time_s) / (n - 1) as f64
+    } else {
+        0.05
+    };
+    let step_cs = ((100.0 * dt * stride as f64).round() as u16).max(2);
+    let mut delays: Vec<u16> = vec![step_cs; frames.len()];
+    if let Some(last) = delays.last_mut() {
+        *last = 200;
+    }
+    let bounds = view_bounds(t);
+    let palette = gif_palette(&[
+        TABLE,
+        LINK_SHADES[0],
+        LINK_SHADES[1],
+        SKELETON,
+        GRIPPER,
+        CUBE,
+        CUBE_EDGE,
+    ]);
+    render_gif(path, SIZE, &delays, &palette, |i, root| {
+        draw_frame(t, &t.rows[frames[i]], title, &bounds, root)
+    })
+}
+
+/// Writes one frame of the replay (step `step`, clamped to the episode) as a PNG: a still for
+/// documents that cannot show GIFs.
+pub fn replay_still(
+    t: &EpisodeTrajectory,
+    title: &str,
+    step: usize,
+    path: &Path,
+) -> Result<(), ReportError> {
+    let bounds = view_bounds(t);
+    let row = &t.rows[step.min(t.rows.len() - 1)];
+    render_png(path, SIZE, |root| draw_frame(t, row, title, &bounds, root))
+}
+
+/// The fixed view bounds of a replay [m]: everything that moves, over the whole episode.
+struct ViewBounds {
+    x: (f64, f64),
+    y: (f64, f64),
+    z: (f64, f64),
+}
+
+fn view_bounds(t: &EpisodeTrajectory) -> ViewBounds {
+    let points = t.rows.iter().flat_map(|r| {
+        r.capsules
+            .iter()
+            .flat_map(|c| [[c[0], c[1], c[2]], [c[3], c[4], c[5]]])
+            .chain(r.cube_corners(t.scene.cube_size))
+    });
+    let bounds = |k: usize| min_max(points.clone().map(|p| p[k]));
+    let z = bounds(2);
+    ViewBounds {
+        x: bounds(0),
+        y: bounds(1),
+        z: (z.0.min(t.scene.table_top_z), z.1),
+    }
+}
+
+/// One frame: the title with the time, the top view and the side view.
+fn draw_frame(
+    t: &EpisodeTrajectory,
+    row: &StepRecord,
+    title: &str,
+    b: &ViewBounds,
+    root: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
+) -> Result<(), String> {
+    root.fill(&WHITE).map_err(de)?;
+    let (head, body) = root.split_vertically(40);
+    head.draw(&Text::new(
+        format!("{title} — t = {:.2} s", row.time_s),
+        (12, 10),
+        (FONT, 18),
+    ))
+    .map_err(de)?;
+    let (left, right) = body.split_horizontally(SIZE.0 / 2);
+    draw_view(t, row, &left, [0, 1], (b.x, b.y), "top view (x–y)")?;
+    draw_view(t, row, &right, [0, 2], (b.x, b.z), "side view (x–z)")
+}
+
+/// One orthographic view onto axes `axes` of `base_link`.
+fn draw_view(
+    t: &EpisodeTrajectory,
+    row: &StepRecord,
+    area: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
+    axes: [usize; 2],
+    (ur, vr): ((f64, f64), (f64, f64)),
+    caption: &str,
+) -> Result<(), String> {
+    let (w, h) = area.dim_in_pixel();
+    let (ur, vr) = equal_aspect(
+        padded(ur.0, ur.1, 0.08, 0.1),
+        padded(vr.0, vr.1, 0.08, 0.1),
+        ((w - 70) as f64, (h - 70) as f64),
+    );
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, (FONT, 15))
+        .margin(6)
+        .x_label_area_size(30)
+        .y_label_area_size(44)
+        .build_cartesian_2d(ur.0..ur.1, vr.0..vr.1)
+        .map_err(de)?;
+    chart
+        .configure_mesh()
+        .x_labels(5)
+        .y_labels(5)
+        .x_desc(["x [m]", "y [m]", "z [m]"][axes[0]])
+        .y_desc(["x [m]", "y [m]", "z [m]"][axes[1]])
+        .label_style((FONT, 11))
+        .axis_desc_style((FONT, 12))
+        .light_line_style(WHITE.mix(0.0))
+        .bold_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(de)?;
+    let px_per_m = {
+        let a = chart.backend_coord(&(0.0, 0.0));
+        let b = chart.backend_coord(&(1.0, 0.0));
+        f64::from(b.0 - a.0).abs()
+    };
+    let scene = &t.scene;
+    if axes[1] == 1 {
+        let corners: Vec<(f64, f64)> = scene
+            .table_corners_xy
+            .iter()
+            .map(|c| (c[0], c[1]))
+            .collect();
+        chart
+            .draw_series([Polygon::new(corners, TABLE.filled())])
+            .map_err(de)?;
+    } else {
+        chart
+            .draw_series([Rectangle::new(
+                [(ur.0, vr.0), (ur.1, scene.table_top_z)],
+                TABLE.filled(),
+            )])
+            .map_err(de)?;
+    }
+    // Depth order: lowest first in the top view, largest y first in the side view; the cube
+    // takes part so that the gripper hides it from above and it hides what is behind it.
+    let depth = |c: &[f64; 7]| {
+        if axes[1] == 1 {
+            c[2].max(c[5])
+        } else {
+            -c[1].min(c[4])
+        }
+    };
+    let corners = row.cube_corners(scene.cube_size);
+    let cube_depth = if axes[1] == 1 {
+        corners.iter().map(|p| p[2]).fold(f64::MIN, f64::max)
+    } else {
+        -corners.iter().map(|p| p[1]).fold(f64::MAX, f64::min)
+    };
+    let mut order: Vec<(f64, Option<usize>)> = row
+        .capsules
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (depth(c), Some(i)))
+        .chain([(cube_depth, None)])
+        .collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (_, item) in order {
+        let Some(i) = item else {
+            // The cube: the convex hull of its projected corners.
+            let projected: Vec<(f64, f64)> =
+                corners.iter().map(|p| (p[axes[0]], p[axes[1]])).collect();
+            let hull = convex_hull(projected);
+            chart
+                .draw_series([Polygon::new(hull.clone(), CUBE.filled())])
+                .map_err(de)?;
+            let mut outline = hull.clone();
+            outline.extend(hull.first());
+            chart
+                .draw_series([PathElement::new(outline, CUBE_EDGE.stroke_width(1))])
+                .map_err(de)?;
+            continue;
+        };
+        let c = row.capsules[i];
+        let name = scene.capsule_names.get(i).map_or("", String::as_str);
+        let fill = if name == "palm" || name.starts_with("finger") {
+            GRIPPER
+        } else {
+            LINK_SHADES[i % LINK_SHADES.len()]
+        };
+        let a = (c[axes[0]], c[axes[1]]);
+        let b = (c[3 + axes[0]], c[3 + axes[1]]);
+        let r_px = (c[6] * px_per_m).max(1.0);
+        for (color, extra) in [(BLACK.mix(0.8), 2.0), (fill.mix(1.0), 0.0)] {
+            let width = (2.0 * r_px + extra).round() as u32;
+            let radius = (r_px + 0.5 * extra).round() as i32;
+            chart
+                .draw_series([PathElement::new(vec![a, b], color.stroke_width(width))])
+                .map_err(de)?;
+            chart
+                .draw_series([a, b].map(|p| Circle::new(p, radius, color.filled())))
+                .map_err(de)?;
+        }
+        // The capsule's axis: the kinematic skeleton shows through the housings.
+        chart
+            .draw_series([PathElement::new(vec![a, b], SKELETON.stroke_width(2))])
+            .map_err(de)?;
+    }
+    Ok(())
+}
+
+/// The convex hull of 2-D points, counter-clockwise (Andrew's monotone chain).
+fn convex_hull(mut p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    if p.len() < 3 {
+        return p;
+    }
+    let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    let mut hull: Vec<(f64, f64)> = Vec::new();
+    for pass in 0..2 {
+        let start = hull.len();
+        let points: Box<dyn Iterator<Item = &(f64, f64)>> = if pass == 0 {
+            Box::new(p.iter())
+        } else {
+            Box::new(p.iter().rev())
+        };
+        for &q in points {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(q);
+        }
+        hull.pop();
+    }
+    hull
+}

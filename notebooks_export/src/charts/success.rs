@@ -1,0 +1,122 @@
+//! Success rate per method and preset: grouped bars with 95 % Wilson-interval whiskers.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+use super::series_color;
+use crate::compare::Comparison;
+use crate::error::ReportError;
+use crate::raster::{FONT, de, render_png};
+
+/// Pixel size of the success-rate chart.
+pub const SIZE: (u32, u32) = (1000, 560);
+
+/// Draws `success_rate.png`: one group per preset, one bar per method, value on top.
+pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
+    let presets = &c.presets;
+    let methods = &c.methods;
+    let n = presets.len().max(1) as f64;
+    let bar_width = 0.8 / methods.len().max(1) as f64;
+    let episodes = c.results.first().map_or(0, |r| r.episodes);
+    render_png(path, SIZE, |root| {
+        let (head, body) = root.split_vertically(80);
+        head.draw(&Text::new(
+            format!("Grasp success rate ({episodes} seeded episodes per preset, 95 % CI)"),
+            ((SIZE.0 / 2) as i32, 12),
+            TextStyle::from((FONT, 24).into_font()).pos(Pos::new(HPos::Center, VPos::Top)),
+        ))
+        .map_err(de)?;
+        // The legend as one row under the title, clear of the bars.
+        let mut x = 80;
+        for (m, method) in methods.iter().enumerate() {
+            head.draw(&Rectangle::new(
+                [(x, 52), (x + 16, 68)],
+                series_color(m).filled(),
+            ))
+            .map_err(de)?;
+            head.draw(&Text::new(method.clone(), (x + 22, 52), (FONT, 15)))
+                .map_err(de)?;
+            let (w, _) = head
+                .estimate_text_size(method, &TextStyle::from((FONT, 15).into_font()))
+                .map_err(de)?;
+            x += 22 + w as i32 + 30;
+        }
+        let mut chart = ChartBuilder::on(&body)
+            .margin(16)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(-0.5..n - 0.5, 0.0..108.0)
+            .map_err(de)?;
+        let names = presets.clone();
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(2 * presets.len() + 1)
+            .x_label_formatter(&|x| {
+                let i = x.round();
+                if (x - i).abs() < 1e-6 && i >= 0.0 {
+                    names.get(i as usize).cloned().unwrap_or_default()
+                } else {
+                    String::new()
+                }
+            })
+            .y_labels(6)
+            .y_label_formatter(&|y| {
+                if *y <= 100.0 {
+                    format!("{y:.0}")
+                } else {
+                    String::new()
+                }
+            })
+            .y_desc("success rate [%]")
+            .x_desc("preset")
+            .label_style((FONT, 16))
+            .axis_desc_style((FONT, 16))
+            .draw()
+            .map_err(de)?;
+        for (m, method) in methods.iter().enumerate() {
+            let color = series_color(m);
+            let bars: Vec<_> = presets
+                .iter()
+                .enumerate()
+                .filter_map(|(p, preset)| c.get(method, preset).map(|r| (p, r)))
+                .collect();
+            let left = |p: usize| p as f64 - 0.4 + m as f64 * bar_width;
+            chart
+                .draw_series(bars.iter().map(|(p, r)| {
+                    Rectangle::new(
+                        [
+                            (left(*p) + 0.1 * bar_width, 0.0),
+                            (left(*p) + 0.9 * bar_width, 100.0 * r.success_rate),
+                        ],
+                        color.filled(),
+                    )
+                }))
+                .map_err(de)?;
+            for (p, r) in &bars {
+                let x = left(*p) + 0.5 * bar_width;
+                let cap = 0.15 * bar_width;
+                let (lo, hi) = (100.0 * r.ci_low, 100.0 * r.ci_high);
+                let whisker = BLACK.stroke_width(2);
+                chart
+                    .draw_series([
+                        PathElement::new(vec![(x, lo), (x, hi)], whisker),
+                        PathElement::new(vec![(x - cap, lo), (x + cap, lo)], whisker),
+                        PathElement::new(vec![(x - cap, hi), (x + cap, hi)], whisker),
+                    ])
+                    .map_err(de)?;
+                chart
+                    .draw_series([Text::new(
+                        format!("{:.1}", 100.0 * r.success_rate),
+                        (x, hi + 1.5),
+                        TextStyle::from((FONT, 14).into_font())
+                            .pos(Pos::new(HPos::Center, VPos::Bottom)),
+                    )])
+                    .map_err(de)?;
+            }
+        }
+        Ok(())
+    })
+}

@@ -1,0 +1,73 @@
+//! The one error type of the report crate: every variant names the file it is about.
+
+use std::path::{Path, PathBuf};
+
+/// Why a report, chart or table could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    /// A folder given as input holds none of the files a run or comparison folder has.
+    #[error("{path}: {what}")]
+    NotAReportInput { path: PathBuf, what: String },
+    /// A file exists but its content is not what fairgrasp writes.
+    #[error("{path}: {what}")]
+    Malformed { path: PathBuf, what: String },
+    /// plotters or the image encoder failed.
+    #[error("chart {path}: {what}")]
+    Chart { path: PathBuf, what: String },
+}
+
+impl ReportError {
+    pub(crate) fn io(path: &Path, source: std::io::Error) -> Self {
+        Self::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+
+    pub(crate) fn malformed(path: &Path, what: impl Into<String>) -> Self {
+        Self::Malformed {
+            path: path.to_path_buf(),
+            what: what.into(),
+        }
+    }
+
+    pub(crate) fn chart(path: &Path, what: impl std::fmt::Display) -> Self {
+        Self::Chart {
+            path: path.to_path_buf(),
+            what: what.to_string(),
+        }
+    }
+}
+
+/// Reads a text file, naming it on failure.
+pub(crate) fn read_text(path: &Path) -> Result<String, ReportError> {
+    std::fs::read_to_string(path).map_err(|e| ReportError::io(path, e))
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so an
+/// interrupted run never leaves a half-written file. Creates the parent folder.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
+    use std::io::Write;
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))?;
+    }
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(format!(".tmp{}", std::process::id()));
+    let tmp = path.with_file_name(name);
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        std::fs::remove_file(&tmp).ok();
+    }
+    result.map_err(|e| ReportError::io(path, e))
+}
