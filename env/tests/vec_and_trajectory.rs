@@ -91,8 +91,15 @@ fn an_episode_exports_to_csv_and_json_with_one_row_per_step() {
     let (l, r) = (finger("finger_left"), finger("finger_right"));
     let gap = ((l[3] - r[3]).powi(2) + (l[4] - r[4]).powi(2) + (l[5] - r[5]).powi(2)).sqrt();
     let pad = env.model().gripper.pad_size[0];
-    assert!((gap - row.gripper_opening_m - pad).abs() < 1e-9, "finger gap {gap}");
-    let mid = [0.5 * (l[3] + r[3]), 0.5 * (l[4] + r[4]), 0.5 * (l[5] + r[5])];
+    assert!(
+        (gap - row.gripper_opening_m - pad).abs() < 1e-9,
+        "finger gap {gap}"
+    );
+    let mid = [
+        0.5 * (l[3] + r[3]),
+        0.5 * (l[4] + r[4]),
+        0.5 * (l[5] + r[5]),
+    ];
     let tcp = row.tcp_xyz;
     let off = [mid[0] - tcp[0], mid[1] - tcp[1], mid[2] - tcp[2]];
     let along = off.iter().map(|v| v * v).sum::<f64>().sqrt();

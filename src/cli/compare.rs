@@ -266,7 +266,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
         &a.out.join("compare.csv"),
         compare::to_csv(&comparison).as_bytes(),
     )?;
-    let written = build_report(&[a.out.clone()], &a.out)?;
+    let written = build_report(std::slice::from_ref(&a.out), &a.out)?;
     if a.json {
         println!("{}", comparison.to_json());
     } else {

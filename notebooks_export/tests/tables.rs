@@ -1,0 +1,169 @@
+//! compare.csv, compare.json and the printed table say the same; bad folders are named.
+
+mod common;
+
+use common::{method_result, temp_dir, write_comparison, write_run};
+use fairgrasp_report::compare::{self, Comparison, OUTCOMES};
+use fairgrasp_report::{Input, ReportError, RunFolder};
+
+/// Splits a CSV line (fields here hold no quotes except around commas).
+fn fields(line: &str) -> Vec<String> {
+    let mut out = vec![String::new()];
+    let mut quoted = false;
+    for c in line.chars() {
+        match c {
+            '"' => quoted = !quoted,
+            ',' if !quoted => out.push(String::new()),
+            _ => out.last_mut().unwrap().push(c),
+        }
+    }
+    out
+}
+
+#[test]
+fn csv_json_and_text_table_agree() {
+    let dir = temp_dir("tables-agree");
+    let mut c = write_comparison(&dir, Vec::new());
+    c.results[1].method = "residual, with a comma".into();
+    c.methods[1] = c.results[1].method.clone();
+    let csv = compare::to_csv(&c);
+    let reread: Comparison = serde_json::from_str(&c.to_json()).unwrap();
+    assert!(
+        reread == c,
+        "compare.json does not read back to the same comparison"
+    );
+    let lines: Vec<&str> = csv.lines().collect();
+    let header = fields(lines[0]);
+    assert_eq!(header.len(), 12 + OUTCOMES.len());
+    assert_eq!(lines.len(), 1 + c.results.len());
+    let table = compare::text_table(&c);
+    for (line, r) in lines[1..].iter().zip(&c.results) {
+        let row = fields(line);
+        assert_eq!(row.len(), header.len(), "{line}");
+        let col = |name: &str| &row[header.iter().position(|h| h == name).unwrap()];
+        assert_eq!(col("method"), &r.method);
+        assert_eq!(col("preset"), &r.preset);
+        assert_eq!(col("success_rate").parse::<f64>().unwrap(), r.success_rate);
+        assert_eq!(col("ci_low").parse::<f64>().unwrap(), r.ci_low);
+        for o in OUTCOMES {
+            assert_eq!(
+                col(o).parse::<usize>().unwrap(),
+                r.outcomes.get(o).copied().unwrap_or(0)
+            );
+        }
+        // The printed line for this method and preset carries the same rounded numbers.
+        let printed = table
+            .lines()
+            .find(|l| l.starts_with(&r.preset) && l.contains(&r.method))
+            .unwrap_or_else(|| panic!("no table line for {} on {}", r.method, r.preset));
+        let rate: f64 = col("success_rate").parse().unwrap();
+        let ci_hi: f64 = col("ci_high").parse().unwrap();
+        assert!(
+            printed.contains(&format!("{:.1} % (", 100.0 * rate)),
+            "{printed}"
+        );
+        assert!(
+            printed.contains(&format!("–{:.1})", 100.0 * ci_hi)),
+            "{printed}"
+        );
+        assert!(
+            printed.contains(&compare::failure_breakdown(r)),
+            "{printed}"
+        );
+    }
+    let md = compare::markdown_table(&c);
+    assert_eq!(md.lines().count(), 2 + c.results.len());
+}
+
+#[test]
+fn inconsistent_comparisons_are_refused() {
+    let mut r = method_result("baseline", "seed", 10, 7, 0);
+    r.outcomes.insert("teleported".into(), 0);
+    let c = Comparison {
+        command: String::new(),
+        presets: vec!["seed".into()],
+        methods: vec!["baseline".into()],
+        preset_configs: Default::default(),
+        run_folders: vec![],
+        recorded: vec![],
+        results: vec![r.clone()],
+    };
+    assert!(
+        c.check()
+            .unwrap_err()
+            .contains("unknown outcome `teleported`")
+    );
+    let mut wrong = c.clone();
+    wrong.results[0] = method_result("baseline", "seed", 10, 7, 0);
+    wrong.results[0].successes = 8;
+    assert!(wrong.check().unwrap_err().contains("success_rate"));
+    let mut short = c.clone();
+    short.results[0] = method_result("baseline", "seed", 10, 7, 0);
+    short.results[0].results.pop();
+    assert!(short.check().unwrap_err().contains("9 episode records"));
+
+    let dir = temp_dir("tables-bad-json");
+    std::fs::write(dir.join("compare.json"), "{\"presets\": 3}").unwrap();
+    let e = Comparison::load(&dir.join("compare.json"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("compare.json") && e.contains("not a fairgrasp compare.json"),
+        "{e}"
+    );
+}
+
+#[test]
+fn missing_and_malformed_run_folders_are_named() {
+    let dir = temp_dir("tables-bad-runs");
+    let missing = dir.join("nope");
+    let e = Input::load(&missing).unwrap_err();
+    assert!(matches!(e, ReportError::NotAReportInput { .. }));
+    assert!(e.to_string().contains("nope: no such folder"), "{e}");
+
+    std::fs::create_dir_all(dir.join("empty")).unwrap();
+    let e = Input::load(&dir.join("empty")).unwrap_err().to_string();
+    assert!(e.contains("neither a comparison folder"), "{e}");
+    let e = RunFolder::load(&dir.join("empty")).unwrap_err().to_string();
+    assert!(e.contains("no metrics.csv"), "{e}");
+
+    write_run(&dir.join("bad_number"), 5, 0);
+    let text = std::fs::read_to_string(dir.join("bad_number/metrics.csv")).unwrap();
+    let broken = text.replacen(",20,", ",twenty,", 2);
+    std::fs::write(dir.join("bad_number/metrics.csv"), broken).unwrap();
+    let e = RunFolder::load(&dir.join("bad_number"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("metrics.csv") && e.contains("line 2, column `episodes`: `twenty`"),
+        "{e}"
+    );
+
+    write_run(&dir.join("no_entropy"), 5, 0);
+    let text = std::fs::read_to_string(dir.join("no_entropy/metrics.csv")).unwrap();
+    std::fs::write(
+        dir.join("no_entropy/metrics.csv"),
+        text.replacen("entropy", "ent", 1),
+    )
+    .unwrap();
+    let e = RunFolder::load(&dir.join("no_entropy"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no `entropy` column"), "{e}");
+
+    write_run(&dir.join("ragged"), 5, 0);
+    let mut text = std::fs::read_to_string(dir.join("ragged/metrics.csv")).unwrap();
+    text.push_str("7,1\n");
+    std::fs::write(dir.join("ragged/metrics.csv"), text).unwrap();
+    let e = RunFolder::load(&dir.join("ragged"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("line 7: 2 fields, the header has 16"), "{e}");
+
+    write_run(&dir.join("no_config"), 5, 0);
+    std::fs::remove_file(dir.join("no_config/config.toml")).unwrap();
+    let e = RunFolder::load(&dir.join("no_config"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("without config.toml"), "{e}");
+}

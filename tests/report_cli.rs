@@ -1,0 +1,210 @@
+//! `fairgrasp compare | plot | report` end to end: the printed table, compare.csv and
+//! compare.json agree; the folder holds every chart; bad inputs are named.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn fairgrasp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}"));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn ok(out: &Output) -> String {
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout.clone()).unwrap()
+}
+
+#[test]
+fn compare_writes_agreeing_table_csv_json_and_every_chart() {
+    let dir = temp_dir("compare");
+    let out_dir = dir.join("report");
+    let stdout = ok(&fairgrasp(&[
+        "compare",
+        "--preset",
+        "fixed",
+        "--preset",
+        "hard",
+        "--episodes",
+        "6",
+        "--threads",
+        "2",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]));
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("compare.json")).unwrap())
+            .unwrap();
+    let results = json["results"].as_array().unwrap();
+    // Baseline and the two shipped policies on two presets.
+    assert_eq!(results.len(), 6);
+    assert_eq!(json["methods"].as_array().unwrap().len(), 3);
+
+    let csv = std::fs::read_to_string(out_dir.join("compare.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), results.len());
+    for (row, r) in rows.iter().zip(results) {
+        let col = |name: &str| row[header.iter().position(|h| *h == name).unwrap()];
+        let (method, preset) = (r["method"].as_str().unwrap(), r["preset"].as_str().unwrap());
+        assert_eq!(col("method"), method);
+        assert_eq!(col("preset"), preset);
+        let rate = r["success_rate"].as_f64().unwrap();
+        assert_eq!(col("success_rate").parse::<f64>().unwrap(), rate);
+        assert_eq!(
+            col("successes").parse::<u64>().unwrap(),
+            r["successes"].as_u64().unwrap()
+        );
+        // The printed table shows the same rate, interval and collision rate, rounded.
+        let line = stdout
+            .lines()
+            .find(|l| l.starts_with(preset) && l.contains(method))
+            .unwrap_or_else(|| panic!("no printed line for {method} on {preset}:\n{stdout}"));
+        let ci_low = r["ci_low"].as_f64().unwrap();
+        let collisions = r["collision_rate"].as_f64().unwrap();
+        assert!(
+            line.contains(&format!("{:.1} % ({:.1}–", 100.0 * rate, 100.0 * ci_low)),
+            "{line}"
+        );
+        assert!(
+            line.contains(&format!("{:.1} %", 100.0 * collisions)),
+            "{line}"
+        );
+    }
+    // Every method saw the identical scenarios: same seeds and cube positions per preset.
+    for preset in ["fixed", "hard"] {
+        let sets: Vec<Vec<(u64, String)>> = results
+            .iter()
+            .filter(|r| r["preset"] == preset)
+            .map(|r| {
+                r["results"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|e| (e["seed"].as_u64().unwrap(), e["object_xy"].to_string()))
+                    .collect()
+            })
+            .collect();
+        assert!(
+            sets.windows(2).all(|w| w[0] == w[1]),
+            "{preset}: scenarios differ"
+        );
+    }
+    let names: Vec<String> = std::fs::read_dir(&out_dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    for expected in [
+        "success_rate.png",
+        "workspace_fixed.png",
+        "workspace_hard.png",
+        "learning_curves.png",
+        "report.md",
+        "report.ipynb",
+    ] {
+        assert!(
+            names.iter().any(|n| n == expected),
+            "{expected} missing: {names:?}"
+        );
+    }
+    assert_eq!(
+        names.iter().filter(|n| n.starts_with("episode_")).count(),
+        3
+    );
+    assert_eq!(names.iter().filter(|n| n.ends_with(".gif")).count(), 3);
+    assert!(!names.iter().any(|n| n.contains(".tmp")), "{names:?}");
+
+    // `report` redraws the same report from the folder alone.
+    let again = dir.join("again");
+    ok(&fairgrasp(&[
+        "report",
+        out_dir.to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+    ]));
+    assert_eq!(
+        std::fs::read(again.join("success_rate.png")).unwrap(),
+        std::fs::read(out_dir.join("success_rate.png")).unwrap(),
+        "the same data must give the same chart"
+    );
+
+    // `plot` draws a recorded episode next to its file.
+    let episode = std::fs::read_dir(out_dir.join("episodes"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "json"))
+        .unwrap();
+    ok(&fairgrasp(&["plot", episode.to_str().unwrap()]));
+    assert!(episode.with_extension("png").is_file());
+    assert!(episode.with_extension("gif").is_file());
+}
+
+#[test]
+fn plot_draws_the_shipped_learning_curves() {
+    let dir = temp_dir("plot");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/policies");
+    let png = dir.join("curves.png");
+    let stdout = ok(&fairgrasp(&[
+        "plot",
+        root.join("residual_hard").to_str().unwrap(),
+        root.join("pure_hard").to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+    ]));
+    assert!(stdout.contains("2 run(s)"), "{stdout}");
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+}
+
+#[test]
+fn missing_or_wrong_folders_are_named_and_nothing_is_written() {
+    let dir = temp_dir("report-errors");
+    let out = fairgrasp(&[
+        "report",
+        dir.join("no_such_run").to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("no_such_run: no such folder"), "{stderr}");
+    assert!(!dir.join("out").exists());
+
+    let out = fairgrasp(&["plot", dir.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("not a run folder: no metrics.csv"),
+        "{stderr}"
+    );
+
+    let out = fairgrasp(&[
+        "compare",
+        "--policy",
+        dir.to_str().unwrap(),
+        "--episodes",
+        "1",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("loading the policy") && stderr.contains("meta.json"),
+        "{stderr}"
+    );
+}
