@@ -72,6 +72,69 @@ pub struct ContactReport {
     pub pad_penetration: f64,
 }
 
+/// How a touching pair is judged.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PairKind {
+    /// Counts as a collision (ends the episode by default).
+    Collision,
+    /// A contact with the object: resting on the table, or held by the pads.
+    Object,
+    /// A robot pair fairgrasp never counts (adjacent links, the base on its table, gripper parts).
+    Ignored,
+    /// Neither part belongs to the robot.
+    Scene,
+}
+
+/// One touching pair: its parts, signed distance [m] (negative = penetrating) and kind.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TouchingPair {
+    pub a: Part,
+    pub b: Part,
+    pub distance: f64,
+    pub kind: PairKind,
+}
+
+/// Every pair of the narrow phase closer than [`TOUCH_DISTANCE`], deepest first, judged by
+/// `filter`. Pairs excluded by collision groups are never computed and do not appear.
+pub fn touching_pairs(
+    world: &PhysicsWorld,
+    handles: &SceneHandles,
+    filter: &CollisionFilter,
+) -> Vec<TouchingPair> {
+    let mut out = Vec::new();
+    for pair in world.narrow_phase.contact_pairs() {
+        let (Some(&a), Some(&b)) = (
+            handles.parts.get(&pair.collider1),
+            handles.parts.get(&pair.collider2),
+        ) else {
+            continue;
+        };
+        let Some((_, contact)) = pair.find_deepest_contact() else {
+            continue;
+        };
+        if contact.dist > TOUCH_DISTANCE {
+            continue;
+        }
+        let kind = if filter.is_collision(a, b) {
+            PairKind::Collision
+        } else if a == Part::Cube || b == Part::Cube {
+            PairKind::Object
+        } else if a.is_robot() || b.is_robot() {
+            PairKind::Ignored
+        } else {
+            PairKind::Scene
+        };
+        out.push(TouchingPair {
+            a,
+            b,
+            distance: f64::from(contact.dist),
+            kind,
+        });
+    }
+    out.sort_by(|x, y| x.distance.total_cmp(&y.distance));
+    out
+}
+
 /// Scans every contact pair of the narrow phase.
 pub fn analyze(
     world: &PhysicsWorld,

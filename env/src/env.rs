@@ -352,6 +352,11 @@ impl GraspEnv {
         analyze(&self.world, &self.handles, &self.filter)
     }
 
+    /// Every touching pair of the narrow phase now, deepest first, with how it is judged.
+    pub fn touching_pairs(&self) -> Vec<crate::contacts::TouchingPair> {
+        crate::contacts::touching_pairs(&self.world, &self.handles, &self.filter)
+    }
+
     /// Current joint angles [rad].
     pub fn joints(&self) -> [f64; 6] {
         self.drive.q

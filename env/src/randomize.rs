@@ -98,16 +98,49 @@ pub fn collision_free(model: &ArmModel, q: &[f64; 6], table_z: f64) -> bool {
 
 /// Why no scenario could be drawn.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error(
-    "no graspable object position in {draws} draws: randomization.radius {radius:?} / angle {angle:?} lies outside what the FR3 reaches top-down"
-)]
+#[error("{}", self.describe())]
 pub struct UngraspableRegion {
     pub draws: usize,
     pub radius: [f64; 2],
     pub angle: [f64; 2],
+    /// The fixed object position when `randomization.position` is off.
+    pub fixed_xy: Option<[f64; 2]>,
+}
+
+impl UngraspableRegion {
+    fn describe(&self) -> String {
+        match self.fixed_xy {
+            Some(xy) => format!(
+                "scene.cube_xy {xy:?} (randomization.position = false) has no collision-free \
+                 top-down grasp within the FR3's joint limits, or the cube would spawn inside \
+                 the arm; move it (the shipped presets use 0.25–0.45 m from the base)"
+            ),
+            None => format!(
+                "no graspable object position in {} draws: randomization.radius {:?} / angle \
+                 {:?} lies outside what the FR3 reaches top-down",
+                self.draws, self.radius, self.angle
+            ),
+        }
+    }
 }
 
 impl Scenario {
+    /// The config's own values with nothing drawn and nothing checked: the cube at
+    /// `scene.cube_xy`, yaw 0, the arm at home. For diagnosing a scene that [`Scenario::sample`]
+    /// refuses (`fairgrasp scene`).
+    pub fn unchecked(config: &EnvConfig, seed: u64) -> Scenario {
+        Scenario {
+            seed,
+            object_xy: config.scene.cube_xy,
+            object_yaw: 0.0,
+            friction: config.scene.cube_friction,
+            mass: config.scene.cube_mass,
+            start_joints: config.arm.home_joints,
+            observed_position_error: [0.0; 3],
+            observed_yaw_error: 0.0,
+        }
+    }
+
     /// Draws the scenario for `seed` (redrawing ungraspable positions with the same generator).
     pub fn sample(
         config: &EnvConfig,
@@ -178,6 +211,7 @@ impl Scenario {
             draws: MAX_DRAWS,
             radius: r.radius,
             angle: r.angle,
+            fixed_xy: (!r.position).then_some(config.scene.cube_xy),
         })
     }
 }

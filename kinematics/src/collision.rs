@@ -135,7 +135,7 @@ impl ArmModel {
 
     /// Is the pair never checked (adjacent links, the model's ignored pairs, the gripper's own
     /// parts and its mount)?
-    fn collision_ignored(&self, a: &str, b: &str) -> bool {
+    pub fn collision_ignored(&self, a: &str, b: &str) -> bool {
         let index = |n: &str| self.links.iter().position(|l| *l == n);
         if let (Some(i), Some(j)) = (index(a), index(b))
             && i.abs_diff(j) <= 1

@@ -56,6 +56,10 @@ pub struct EnvBenchArgs {
     /// Steps of each environment (each 20 physics steps of 1/240 s by default).
     #[arg(long, default_value_t = 5000, value_parser = clap::value_parser!(u32).range(1..))]
     steps: u32,
+    /// Preset or env config (.toml) to bench. Default: the default scene with the cube's
+    /// position and yaw randomised.
+    #[arg(long)]
+    preset: Option<String>,
     /// Resets timed for each of soft and hard reset.
     #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u32).range(1..))]
     resets: u32,
@@ -84,13 +88,19 @@ pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
 }
 
 fn run_env(a: &EnvBenchArgs) -> anyhow::Result<ExitCode> {
-    let mut config = EnvConfig::default();
+    let mut config = match &a.preset {
+        Some(p) => fairgrasp_env::presets::load(p)?,
+        None => {
+            let mut c = EnvConfig::default();
+            c.randomization.position = true;
+            c.randomization.yaw = true;
+            c
+        }
+    };
     config.arm.model = match a.arm {
         ArmArg::Servo => ArmModelKind::Servo,
         ArmArg::Multibody => ArmModelKind::Multibody,
     };
-    config.randomization.position = true;
-    config.randomization.yaw = true;
 
     // Resets, on one env.
     let mut env = GraspEnv::new(config.clone())?;

@@ -10,6 +10,7 @@ mod frames;
 mod ik;
 mod joints;
 mod report;
+mod scene;
 mod train;
 
 use std::process::ExitCode;
@@ -37,6 +38,8 @@ enum Command {
     Ik(ik::IkArgs),
     /// Frame sanity checks: the zero pose, and a world point expressed in a rotated base frame.
     Frames(frames::FramesArgs),
+    /// The scene's numbers and every contact right after a reset: collisions, ignored pairs.
+    Scene(scene::SceneArgs),
     /// The scripted grasp baseline on a preset's seeded scenario set: success rate and failures.
     Baseline(baseline::BaselineArgs),
     /// Train a PPO agent (residual on the baseline, or pure) from a TOML config.
@@ -66,6 +69,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Train(a) => train::run_train(&a),
         Command::Eval(a) => train::run_eval(&a),
         Command::Compare(a) => compare::run(&a),
+        Command::Scene(a) => scene::run(&a),
         Command::Plot(a) => report::run_plot(&a),
         Command::Report(a) => report::run_report(&a),
     }
