@@ -284,3 +284,47 @@ fn train_writes_a_run_folder_and_eval_reads_its_checkpoint() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("meta.json"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn scene_finds_no_collision_at_reset_and_flags_a_cube_spawned_inside_the_base() {
+    let (v, code) = json(&["scene", "--preset", "seed", "--seeds", "20", "--json"]);
+    assert_eq!(code, 0, "{v}");
+    assert!(v["refused"].is_null());
+    assert_eq!(v["bad_starts"].as_array().unwrap().len(), 0);
+    // The only contact of a clean start is the cube resting on the table, barely moved.
+    let contacts = v["contacts"].as_array().unwrap();
+    assert!(
+        contacts
+            .iter()
+            .all(|c| c["verdict"] != "COLLISION (counted)"),
+        "{v}"
+    );
+    assert!(v["object_pushed_m"].as_f64().unwrap() < 0.001, "{v}");
+    // Neighbouring capsules overlap at home, and every such pair is ignored.
+    let overlaps = v["capsule_overlaps_at_home"].as_array().unwrap();
+    assert!(!overlaps.is_empty());
+    assert!(overlaps.iter().all(|o| o["ignored"] == true), "{v}");
+
+    let config = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/configs/pitfall1_spawn_touching.toml");
+    let (v, code) = json(&["scene", "--preset", config.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 1, "{v}");
+    assert!(
+        v["refused"]
+            .as_str()
+            .unwrap()
+            .contains("scene.cube_xy [0.07, 0.0]"),
+        "{v}"
+    );
+    // Spawned inside the base housing, the cube is pushed out by more than a centimetre.
+    assert!(v["object_pushed_m"].as_f64().unwrap() > 0.01, "{v}");
+    assert!(
+        v["contacts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|c| c["a"] == "cube" && c["b"] == "base_link"
+                || c["b"] == "cube" && c["a"] == "base_link"),
+        "{v}"
+    );
+}

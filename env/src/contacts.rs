@@ -94,6 +94,20 @@ pub struct TouchingPair {
     pub kind: PairKind,
 }
 
+/// The deepest contact of every narrow-phase pair between two scene parts: `(a, b, signed
+/// distance [m])`.
+fn part_contacts<'a>(
+    world: &'a PhysicsWorld,
+    handles: &'a SceneHandles,
+) -> impl Iterator<Item = (Part, Part, f32)> + 'a {
+    world.narrow_phase.contact_pairs().filter_map(|pair| {
+        let a = *handles.parts.get(&pair.collider1)?;
+        let b = *handles.parts.get(&pair.collider2)?;
+        let (_, contact) = pair.find_deepest_contact()?;
+        Some((a, b, contact.dist))
+    })
+}
+
 /// Every pair of the narrow phase closer than [`TOUCH_DISTANCE`], deepest first, judged by
 /// `filter`. Pairs excluded by collision groups are never computed and do not appear.
 pub fn touching_pairs(
@@ -102,17 +116,8 @@ pub fn touching_pairs(
     filter: &CollisionFilter,
 ) -> Vec<TouchingPair> {
     let mut out = Vec::new();
-    for pair in world.narrow_phase.contact_pairs() {
-        let (Some(&a), Some(&b)) = (
-            handles.parts.get(&pair.collider1),
-            handles.parts.get(&pair.collider2),
-        ) else {
-            continue;
-        };
-        let Some((_, contact)) = pair.find_deepest_contact() else {
-            continue;
-        };
-        if contact.dist > TOUCH_DISTANCE {
+    for (a, b, dist) in part_contacts(world, handles) {
+        if dist > TOUCH_DISTANCE {
             continue;
         }
         let kind = if filter.is_collision(a, b) {
@@ -127,7 +132,7 @@ pub fn touching_pairs(
         out.push(TouchingPair {
             a,
             b,
-            distance: f64::from(contact.dist),
+            distance: f64::from(dist),
             kind,
         });
     }
@@ -142,17 +147,7 @@ pub fn analyze(
     filter: &CollisionFilter,
 ) -> ContactReport {
     let mut report = ContactReport::default();
-    for pair in world.narrow_phase.contact_pairs() {
-        let (Some(&a), Some(&b)) = (
-            handles.parts.get(&pair.collider1),
-            handles.parts.get(&pair.collider2),
-        ) else {
-            continue;
-        };
-        let Some((_, contact)) = pair.find_deepest_contact() else {
-            continue;
-        };
-        let dist = contact.dist;
+    for (a, b, dist) in part_contacts(world, handles) {
         for f in 0..2 {
             if (a, b) == (Part::Pad(f), Part::Cube) || (b, a) == (Part::Pad(f), Part::Cube) {
                 report.pad_contact[f] |= dist < PAD_CONTACT_DISTANCE;

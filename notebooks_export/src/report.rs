@@ -210,10 +210,23 @@ fn comparison_section(
          `{}`).",
         dir.display()
     ));
+    // Jupyter runs a notebook from its own folder: name the CSV relative to it when it is there.
+    let same = dir
+        .canonicalize()
+        .ok()
+        .zip(out.canonicalize().ok())
+        .is_some_and(|(a, b)| a == b);
+    let csv = if same {
+        PathBuf::from("compare.csv")
+    } else {
+        dir.join("compare.csv")
+            .canonicalize()
+            .unwrap_or_else(|_| dir.join("compare.csv"))
+    };
     doc.code(format!(
         "import csv\nrows = list(csv.DictReader(open(r\"{}\")))\nfor r in rows:\n    \
          print(f\"{{r['preset']:>8}} {{r['method']:<32}} {{100 * float(r['success_rate']):5.1f}} %\")",
-        dir.join("compare.csv").display()
+        csv.display()
     ));
     doc.markdown("### Environment configs\n\nThe complete config of each preset (TOML; pass the file to `--preset` to rerun it).");
     for (preset, toml) in &c.preset_configs {

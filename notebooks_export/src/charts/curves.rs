@@ -5,7 +5,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::{min_max, padded, series_color};
+use super::{draw_legend, line_mark, min_max, padded, series_color};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 use crate::runs::RunFolder;
@@ -119,23 +119,14 @@ pub fn learning_curves(runs: &[RunFolder], path: &Path) -> Result<(), ReportErro
                     ))
                     .map_err(de)?;
                 if *column == "success_rate" {
-                    line.label(run.name.as_str()).legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(3))
-                    });
+                    line.label(run.name.as_str()).legend(line_mark(color));
                 }
                 chart
                     .draw_series(eval[i].iter().map(|p| Circle::new(*p, 4, color.filled())))
                     .map_err(de)?;
             }
             if *column == "success_rate" {
-                chart
-                    .configure_series_labels()
-                    .position(SeriesLabelPosition::LowerRight)
-                    .background_style(WHITE.mix(0.9))
-                    .border_style(BLACK)
-                    .label_font((FONT, 13))
-                    .draw()
-                    .map_err(de)?;
+                draw_legend(&mut chart, SeriesLabelPosition::LowerRight, 13)?;
             }
         }
         Ok(())

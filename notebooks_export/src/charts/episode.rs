@@ -5,7 +5,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::{PALETTE, equal_aspect, min_max, padded};
+use super::{PALETTE, draw_legend, equal_aspect, line_mark, min_max, padded};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 use crate::trajectory::EpisodeTrajectory;
@@ -61,18 +61,9 @@ pub fn episode_chart(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<
                 ))
                 .map_err(de)?
                 .label(format!("j{}", j + 1))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
-                });
+                .legend(line_mark(color));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font((FONT, 12))
-            .draw()
-            .map_err(de)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)?;
 
         // Gripper opening and cube height above the table.
         let table = t.scene.table_top_z;
@@ -112,18 +103,9 @@ pub fn episode_chart(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<
                 .draw_series(LineSeries::new(points, color.stroke_width(2)))
                 .map_err(de)?
                 .label(label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
-                });
+                .legend(line_mark(color));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font((FONT, 12))
-            .draw()
-            .map_err(de)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft, 12)?;
 
         // Paths: top view (x, y) and side view (x, z).
         for (area, axis, caption) in [
@@ -208,14 +190,7 @@ pub fn episode_chart(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<
                     Circle::new(*tcp.last().unwrap_or(&tcp[0]), 5, BLACK.filled()),
                 ])
                 .map_err(de)?;
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperLeft)
-                .background_style(WHITE.mix(0.9))
-                .border_style(BLACK)
-                .label_font((FONT, 12))
-                .draw()
-                .map_err(de)?;
+            draw_legend(&mut chart, SeriesLabelPosition::UpperLeft, 12)?;
         }
         Ok(())
     })

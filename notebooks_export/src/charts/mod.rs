@@ -6,7 +6,35 @@ pub mod replay;
 pub mod success;
 pub mod workspace;
 
-use plotters::style::RGBColor;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+
+use crate::raster::{FONT, de};
+
+/// Every chart here: f64 × f64 Cartesian axes on the bitmap backend.
+pub(crate) type Chart<'a, 'b> =
+    ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws the chart's legend at `position` in the house style (white box, black border).
+pub(crate) fn draw_legend<'a, 'b: 'a>(
+    chart: &mut Chart<'a, 'b>,
+    position: SeriesLabelPosition,
+    font_size: u32,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .label_font((FONT, font_size))
+        .draw()
+        .map_err(de)
+}
+
+/// A legend entry for a line series: a short thick stroke.
+pub(crate) fn line_mark(color: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
+    move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
+}
 
 /// Tableau 10: readable on white, distinguishable in greyscale print by lightness.
 pub const PALETTE: [RGBColor; 8] = [
