@@ -106,6 +106,15 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
             "{preset}: scenarios differ"
         );
     }
+    // The recorded episode replays its evaluation exactly: same outcome for every method.
+    for rec in json["recorded"].as_array().unwrap() {
+        let k = rec["episode"].as_u64().unwrap() as usize;
+        let r = results
+            .iter()
+            .find(|r| r["method"] == rec["method"] && r["preset"] == rec["preset"])
+            .unwrap();
+        assert_eq!(r["results"][k]["outcome"], rec["outcome"], "{rec}");
+    }
     let names: Vec<String> = std::fs::read_dir(&out_dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())

@@ -150,6 +150,20 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     } else {
         a.policies.clone()
     };
+    if let Some(dup) = presets
+        .iter()
+        .enumerate()
+        .find_map(|(i, p)| presets[..i].contains(p).then_some(p))
+    {
+        bail!("--preset {dup} is given twice");
+    }
+    if let Some(k) = a.episode.filter(|&k| k >= a.episodes as usize) {
+        bail!(
+            "--episode {k}: the scenario sets have {} episodes (0–{})",
+            a.episodes,
+            a.episodes - 1
+        );
+    }
     let learned = load_policies(&policy_paths)?;
     let configs: Vec<EnvConfig> = presets
         .iter()
@@ -205,13 +219,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
             .find(|&i| last.len() > 1 && last[0].results[i].outcome != last[1].results[i].outcome)
             .unwrap_or(0)
     });
-    let Some(scenario) = last_scenarios.get(k) else {
-        bail!(
-            "--episode {k}: the scenario set has {} episodes (0–{})",
-            last_scenarios.len(),
-            last_scenarios.len() - 1
-        );
-    };
+    let scenario = &last_scenarios[k];
     let mut recorded = Vec::new();
     let mut env = GraspEnv::new(last_config.clone())?;
     for (i, method) in methods.iter().enumerate() {
