@@ -17,6 +17,8 @@ pub enum Input {
     Comparison {
         dir: PathBuf,
         comparison: Comparison,
+        /// The recorded episodes, in the order of `comparison.recorded`.
+        trajectories: Vec<EpisodeTrajectory>,
     },
     /// A training run folder (holds `metrics.csv`).
     Run(RunFolder),
@@ -33,9 +35,15 @@ impl Input {
         }
         if path.join("compare.json").is_file() {
             let comparison = Comparison::load(&path.join("compare.json"))?;
+            let trajectories = comparison
+                .recorded
+                .iter()
+                .map(|r| EpisodeTrajectory::load(&path.join(&r.trajectory)))
+                .collect::<Result<_, _>>()?;
             return Ok(Self::Comparison {
                 dir: path.to_path_buf(),
                 comparison,
+                trajectories,
             });
         }
         if path.join("metrics.csv").is_file() || !path.is_dir() {
@@ -93,13 +101,23 @@ pub fn build_report(inputs: &[PathBuf], out: &Path) -> Result<Vec<PathBuf>, Repo
     for (k, input) in loaded.iter().enumerate() {
         match input {
             Input::Run(run) => runs.push(run.clone()),
-            Input::Comparison { dir, comparison } => {
+            Input::Comparison {
+                dir,
+                comparison,
+                trajectories,
+            } => {
                 let prefix = if many {
                     format!("c{}_", k + 1)
                 } else {
                     String::new()
                 };
-                comparison_section(&mut doc, dir, comparison, out, &prefix, &mut written)?;
+                comparison_section(
+                    &mut doc,
+                    (dir, comparison, trajectories),
+                    out,
+                    &prefix,
+                    &mut written,
+                )?;
                 for folder in &comparison.run_folders {
                     match RunFolder::load(Path::new(folder)) {
                         Ok(run) => runs.push(run),
@@ -136,8 +154,7 @@ pub fn build_report(inputs: &[PathBuf], out: &Path) -> Result<Vec<PathBuf>, Repo
 /// Charts and text for one comparison folder.
 fn comparison_section(
     doc: &mut Document,
-    dir: &Path,
-    c: &Comparison,
+    (dir, c, trajectories): (&Path, &Comparison, &[EpisodeTrajectory]),
     out: &Path,
     prefix: &str,
     written: &mut Vec<PathBuf>,
@@ -182,8 +199,7 @@ fn comparison_section(
              cube and the table).",
         );
     }
-    for rec in &c.recorded {
-        let trajectory = EpisodeTrajectory::load(&dir.join(&rec.trajectory))?;
+    for (rec, trajectory) in c.recorded.iter().zip(trajectories) {
         let stem = format!(
             "{prefix}{}_{}_ep{}",
             slug(&rec.method),
@@ -195,9 +211,9 @@ fn comparison_section(
             rec.method, rec.preset, rec.episode, rec.outcome
         );
         let png = format!("episode_{stem}.png");
-        episode::episode_chart(&trajectory, &title, &out.join(&png))?;
+        episode::episode_chart(trajectory, &title, &out.join(&png))?;
         let gif = format!("replay_{stem}.gif");
-        replay::replay_gif(&trajectory, &title, &out.join(&gif))?;
+        replay::replay_gif(trajectory, &title, &out.join(&gif))?;
         written.extend([out.join(&png), out.join(&gif)]);
         doc.markdown(format!("#### {title}"));
         doc.image(&png, &title);

@@ -121,3 +121,25 @@ fn a_broken_input_writes_nothing() {
         "files written before the inputs were checked"
     );
 }
+
+#[test]
+fn a_broken_recorded_episode_stops_the_report_before_any_chart() {
+    let dir = temp_dir("notebook-broken-episode");
+    write_comparison(&dir.join("cmp"), Vec::new());
+    std::fs::write(
+        dir.join("cmp/episodes/baseline_hard_ep0.json"),
+        "{\"rows\": 3}",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let e = build_report(&[dir.join("cmp")], &out).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("baseline_hard_ep0.json: not a fairgrasp trajectory JSON"),
+        "{e}"
+    );
+    assert!(
+        !out.exists(),
+        "charts written before the episode was checked"
+    );
+}
