@@ -104,6 +104,25 @@ fn robot_collision_types() -> ActiveCollisionTypes {
         | ActiveCollisionTypes::KINEMATIC_KINEMATIC
 }
 
+/// Inserts a collider of the robot on `body` with the robot's collision types and solver
+/// groups, and records which part it is.
+fn insert_robot_collider(
+    world: &mut PhysicsWorld,
+    parts: &mut HashMap<ColliderHandle, Part>,
+    collider: ColliderBuilder,
+    body: RigidBodyHandle,
+    part: Part,
+) {
+    let collider = collider
+        .active_collision_types(robot_collision_types())
+        .solver_groups(robot_solver_groups())
+        .build();
+    let h = world
+        .colliders
+        .insert_with_parent(collider, body, &mut world.bodies);
+    parts.insert(h, part);
+}
+
 /// Builds the world with the arm at `q`, the fingers open and the cube at `cube_pose` (world).
 pub fn build(
     config: &EnvConfig,
@@ -173,14 +192,8 @@ pub fn build(
         let c = &model.capsules[i];
         let collider =
             ColliderBuilder::capsule_from_endpoints(vec3(c.from), vec3(c.to), c.radius as f32)
-                .density(0.0)
-                .active_collision_types(robot_collision_types())
-                .solver_groups(robot_solver_groups())
-                .build();
-        let h = world
-            .colliders
-            .insert_with_parent(collider, body, &mut world.bodies);
-        parts.insert(h, Part::Link(i));
+                .density(0.0);
+        insert_robot_collider(&mut world, &mut parts, collider, body, Part::Link(i));
         links.push(body);
     }
     let links: [RigidBodyHandle; 7] = links.try_into().expect("seven links");
@@ -200,14 +213,8 @@ pub fn build(
         (g.palm_size[2] / 2.0) as f32,
     )
     .translation(vec3([0.0, 0.0, g.palm_size[2] / 2.0]))
-    .mass(g.palm_mass as f32)
-    .active_collision_types(robot_collision_types())
-    .solver_groups(robot_solver_groups())
-    .build();
-    let h = world
-        .colliders
-        .insert_with_parent(palm_collider, palm, &mut world.bodies);
-    parts.insert(h, Part::Palm);
+    .mass(g.palm_mass as f32);
+    insert_robot_collider(&mut world, &mut parts, palm_collider, palm, Part::Palm);
 
     // Multibody arm: revolute joints j1..j6 with velocity motors, palm fixed on wrist3.
     let arm_joints = dynamic.then(|| insert_multibody_arm(&mut world, model, &links, palm, q));
@@ -228,14 +235,8 @@ pub fn build(
             0.0105,
         )
         .translation(vec3([outboard, 0.0, 0.0105]))
-        .mass((g.finger_mass * 0.4) as f32)
-        .active_collision_types(robot_collision_types())
-        .solver_groups(robot_solver_groups())
-        .build();
-        let h = world
-            .colliders
-            .insert_with_parent(strut, body, &mut world.bodies);
-        parts.insert(h, Part::Finger(f));
+        .mass((g.finger_mass * 0.4) as f32);
+        insert_robot_collider(&mut world, &mut parts, strut, body, Part::Finger(f));
         let pad = ColliderBuilder::cuboid(
             (g.pad_size[0] / 2.0) as f32,
             (g.pad_size[1] / 2.0) as f32,
@@ -243,14 +244,8 @@ pub fn build(
         )
         .translation(vec3(pad_offset(model)))
         .mass((g.finger_mass * 0.6) as f32)
-        .friction(config.gripper.pad_friction as f32)
-        .active_collision_types(robot_collision_types())
-        .solver_groups(robot_solver_groups())
-        .build();
-        let h = world
-            .colliders
-            .insert_with_parent(pad, body, &mut world.bodies);
-        parts.insert(h, Part::Pad(f));
+        .friction(config.gripper.pad_friction as f32);
+        insert_robot_collider(&mut world, &mut parts, pad, body, Part::Pad(f));
         let joint = PrismaticJointBuilder::new(vec3(axis))
             .local_anchor1(vec3(anchor))
             .local_anchor2(Vector::ZERO)

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::{PALETTE, draw_legend, equal_aspect, line_mark, min_max, padded};
+use super::{PALETTE, draw_axes, draw_legend, equal_aspect, line_mark, min_max, padded};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 use crate::trajectory::EpisodeTrajectory;
@@ -43,15 +43,7 @@ pub fn episode_chart(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<
             .y_label_area_size(52)
             .build_cartesian_2d(0.0..t_end, lo..hi)
             .map_err(de)?;
-        chart
-            .configure_mesh()
-            .x_desc("time [s]")
-            .y_desc("angle [deg]")
-            .label_style((FONT, 12))
-            .axis_desc_style((FONT, 13))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(de)?;
+        draw_axes(&mut chart, "time [s]", "angle [deg]", None)?;
         for j in 0..6 {
             let color = PALETTE[j];
             chart
@@ -86,15 +78,7 @@ pub fn episode_chart(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<
             .y_label_area_size(52)
             .build_cartesian_2d(0.0..t_end, lo - 5.0..hi + 8.0)
             .map_err(de)?;
-        chart
-            .configure_mesh()
-            .x_desc("time [s]")
-            .y_desc("[mm]")
-            .label_style((FONT, 12))
-            .axis_desc_style((FONT, 13))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(de)?;
+        draw_axes(&mut chart, "time [s]", "[mm]", None)?;
         for (points, color, label) in [
             (opening, TCP_COLOR, "opening between the pads"),
             (lift, CUBE_COLOR, "cube bottom above the table"),
@@ -141,17 +125,12 @@ pub fn episode_chart(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<
                 .y_label_area_size(56)
                 .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
                 .map_err(de)?;
-            chart
-                .configure_mesh()
-                .x_labels(5)
-                .y_labels(5)
-                .x_desc("x [m]")
-                .y_desc(if axis == 1 { "y [m]" } else { "z [m]" })
-                .label_style((FONT, 12))
-                .axis_desc_style((FONT, 13))
-                .light_line_style(WHITE.mix(0.0))
-                .draw()
-                .map_err(de)?;
+            draw_axes(
+                &mut chart,
+                "x [m]",
+                if axis == 1 { "y [m]" } else { "z [m]" },
+                Some(5),
+            )?;
             if axis == 2 {
                 chart
                     .draw_series([Rectangle::new(

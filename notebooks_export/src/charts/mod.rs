@@ -31,6 +31,27 @@ pub(crate) fn draw_legend<'a, 'b: 'a>(
         .map_err(de)
 }
 
+/// Draws axes, tick labels and the major grid in the house style (no minor grid); `labels` sets
+/// the number of ticks on both axes (plotters' default when `None`).
+pub(crate) fn draw_axes<'a, 'b: 'a>(
+    chart: &mut Chart<'a, 'b>,
+    x_desc: &str,
+    y_desc: &str,
+    labels: Option<usize>,
+) -> Result<(), String> {
+    let mut mesh = chart.configure_mesh();
+    if let Some(n) = labels {
+        mesh.x_labels(n).y_labels(n);
+    }
+    mesh.x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style((FONT, 12))
+        .axis_desc_style((FONT, 13))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(de)
+}
+
 /// A legend entry for a line series: a short thick stroke.
 pub(crate) fn line_mark(color: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
     move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::{equal_aspect, min_max, outcome_color, padded};
+use super::{draw_axes, equal_aspect, min_max, outcome_color, padded};
 use crate::compare::{Comparison, OUTCOMES};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
@@ -70,17 +70,7 @@ pub fn workspace_map(c: &Comparison, preset: &str, path: &Path) -> Result<(), Re
                 .y_label_area_size(48)
                 .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
                 .map_err(de)?;
-            chart
-                .configure_mesh()
-                .x_labels(5)
-                .y_labels(5)
-                .x_desc("x [m]")
-                .y_desc("y [m]")
-                .label_style((FONT, 12))
-                .axis_desc_style((FONT, 13))
-                .light_line_style(WHITE.mix(0.0))
-                .draw()
-                .map_err(de)?;
+            draw_axes(&mut chart, "x [m]", "y [m]", Some(5))?;
             let cross = BLACK.stroke_width(2);
             chart
                 .draw_series([
