@@ -123,7 +123,8 @@ pub struct SceneConfig {
     pub cube_mass: f64,
     /// Cube friction coefficient (the seed's 0.8).
     pub cube_friction: f64,
-    /// Cube position in the arm's base frame when not randomised: x, y [m] on the table.
+    /// Cube position when not randomised: x, y [m] on the table top in the table frame (origin
+    /// under the base origin, x along the base's heading; for a level base, base x, y).
     pub cube_xy: [f64; 2],
 }
 
@@ -157,6 +158,18 @@ pub struct TaskConfig {
     pub distance_reward: f64,
     /// Does a collision end the episode?
     pub terminate_on_collision: bool,
+    /// Which reward the task pays (the evaluation's success criterion is the same for all).
+    pub reward: RewardKind,
+}
+
+/// The task's reward function; each is a pure function in [`crate::task`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum RewardKind {
+    /// The seed recipe's: `success_reward` on success, `collision_reward` on a collision, else
+    /// `distance_reward · |TCP − object|`.
+    #[default]
+    Seed,
 }
 
 impl Default for TaskConfig {
@@ -168,6 +181,7 @@ impl Default for TaskConfig {
             collision_reward: -1.0,
             distance_reward: -0.005,
             terminate_on_collision: true,
+            reward: RewardKind::Seed,
         }
     }
 }
@@ -181,9 +195,10 @@ pub type Range = [f64; 2];
 pub struct RandomizationConfig {
     /// Sample the object position in a sector in front of the base.
     pub position: bool,
-    /// Sector radius from the joint-1 axis [m].
+    /// Sector radius on the table top, from the point under the base origin [m] (for a level
+    /// base, from the joint-1 axis).
     pub radius: Range,
-    /// Sector angle about base z, 0 = base +x [rad].
+    /// Sector angle about the world vertical, 0 = the base's heading (base +x) [rad].
     pub angle: Range,
     /// Sample the object yaw in [0, 2π).
     pub yaw: bool,

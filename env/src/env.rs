@@ -5,39 +5,36 @@
 //! (−1 open, +1 closed) with a limited force. `terminated` means success or failure, `truncated`
 //! the time limit or a physics fault; never both.
 
-use crate::arm::{ArmDrive, drive_fingers, finger_travel, tcp_in_world};
 use crate::config::EnvConfig;
-use crate::contacts::{CollisionFilter, ContactReport, analyze};
-use crate::convert::{from_rapier, to_rapier};
+use crate::contacts::ContactReport;
+use crate::mount::Mount;
 use crate::obs::Observation;
-use crate::randomize::{Scenario, object_pose_in_base};
-use crate::scene::{SceneHandles, build};
-use crate::snapshot::Snapshot;
+use crate::perception::observe_object;
+use crate::randomize::Scenario;
+use crate::robot::Robot;
+use crate::sim::Sim;
 pub use crate::step::{Action, EnvError, Info, Step};
-use crate::task::{Failure, TaskState, is_off_table, is_success, reward};
+use crate::task::{Failure, TaskState, judge};
 use fairgrasp_kinematics::{ArmKind, ArmModel, Pose};
 use nalgebra::Isometry3;
-use rapier3d::prelude::*;
+use rapier3d::prelude::PhysicsWorld;
+
+use crate::scene::SceneHandles;
 
 /// Physics substeps run at reset so the object settles on the table.
 const SETTLE_SUBSTEPS: usize = 24;
 
-/// The FR3 grasping environment.
+/// The FR3 grasping environment: the robot, the task and the episode's scenario, composed over
+/// the simulator facade.
 pub struct GraspEnv {
     config: EnvConfig,
-    model: ArmModel,
-    base: Pose,
-    world: PhysicsWorld,
-    handles: SceneHandles,
-    filter: CollisionFilter,
-    snapshot: Snapshot,
-    drive: ArmDrive,
-    gripper_command: f64,
+    mount: Mount,
+    sim: Sim,
+    robot: Robot,
     object_rest_z: f64,
     steps: usize,
     done: bool,
     scenario: Option<Scenario>,
-    last_obs_joints: [f64; 6],
 }
 
 impl GraspEnv {
@@ -45,20 +42,13 @@ impl GraspEnv {
     pub fn new(config: EnvConfig) -> Result<Self, EnvError> {
         config.validate()?;
         let model = ArmKind::Fr3.model();
-        let base = Pose::from_xyz_rpy(config.arm.base_xyz, config.arm.base_rpy);
-        let (world, handles, snapshot) = Self::build_world(&config, &model, &base);
-        let drive = ArmDrive::new(config.arm.model, config.arm.home_joints);
+        let mount = Mount::from_config(&config);
+        let sim = Self::build_sim(&config, &model, &mount);
         Ok(Self {
-            filter: CollisionFilter::new(&model),
-            last_obs_joints: config.arm.home_joints,
+            robot: Robot::new(&config, model, mount.base_in_world),
             config,
-            model,
-            base,
-            world,
-            handles,
-            snapshot,
-            drive,
-            gripper_command: -1.0,
+            mount,
+            sim,
             object_rest_z: 0.0,
             steps: 0,
             done: true,
@@ -66,16 +56,22 @@ impl GraspEnv {
         })
     }
 
-    fn build_world(
+    fn build_sim(config: &EnvConfig, model: &ArmModel, mount: &Mount) -> Sim {
+        let cube_world = Self::spawn_pose_in_world(config, mount, config.scene.cube_xy, 0.0);
+        let base = &mount.base_in_world;
+        Sim::build(config, model, base, &config.arm.home_joints, &cube_world)
+    }
+
+    /// Where a cube resting at `xy` [m], `yaw` [rad] (table frame) spawns in the world: 1 mm
+    /// above the table top, along the world vertical, so that it settles onto it.
+    fn spawn_pose_in_world(
         config: &EnvConfig,
-        model: &ArmModel,
-        base: &Pose,
-    ) -> (PhysicsWorld, SceneHandles, Snapshot) {
-        let cube = object_pose_in_base(config, base, config.scene.cube_xy, 0.0);
-        let cube_world = base.iso * cube.iso * Isometry3::translation(0.0, 0.0, 0.001);
-        let (world, handles) = build(config, model, base, &config.arm.home_joints, &cube_world);
-        let snapshot = Snapshot::take(&world);
-        (world, handles, snapshot)
+        mount: &Mount,
+        xy: [f64; 2],
+        yaw: f64,
+    ) -> Isometry3<f64> {
+        let resting = mount.resting_object_in_base(xy, yaw, config.scene.cube_size);
+        Isometry3::translation(0.0, 0.0, 0.001) * mount.base_in_world.iso * resting.iso
     }
 
     /// Replaces the randomisation (e.g. from a curriculum); takes effect at the next reset.
@@ -97,101 +93,69 @@ impl GraspEnv {
 
     /// The arm model.
     pub fn model(&self) -> &ArmModel {
-        &self.model
+        &self.robot.model
     }
 
     /// `base_link` in the world.
     pub fn base_in_world(&self) -> &Pose {
-        &self.base
+        &self.mount.base_in_world
+    }
+
+    /// The arm's mount: the base and the table frame in the world and in `base_link`.
+    pub fn mount(&self) -> &Mount {
+        &self.mount
+    }
+
+    /// The scenario of the current episode (`None` before the first reset).
+    pub fn scenario(&self) -> Option<&Scenario> {
+        self.scenario.as_ref()
     }
 
     /// Soft reset to the scenario drawn from `seed`.
     pub fn reset(&mut self, seed: u64) -> Result<(Observation, Info), EnvError> {
-        let scenario = Scenario::sample(&self.config, &self.model, &self.base, seed)?;
+        let scenario =
+            Scenario::sample(&self.config, &self.robot.model, self.base_in_world(), seed)?;
         Ok(self.reset_to(&scenario))
     }
 
     /// Hard reset: rebuilds the world from nothing, then resets to the scenario of `seed`.
     pub fn hard_reset(&mut self, seed: u64) -> Result<(Observation, Info), EnvError> {
-        let (world, handles, snapshot) = Self::build_world(&self.config, &self.model, &self.base);
-        (self.world, self.handles, self.snapshot) = (world, handles, snapshot);
+        self.sim = Self::build_sim(&self.config, &self.robot.model, &self.mount);
         self.reset(seed)
     }
 
     /// Soft reset to a given scenario: restores the built world, then places the arm, fingers
     /// and object and lets the object settle.
     pub fn reset_to(&mut self, scenario: &Scenario) -> (Observation, Info) {
-        self.snapshot.restore(&mut self.world);
-        let object = object_pose_in_base(
+        self.sim.restore();
+        let object = Self::spawn_pose_in_world(
             &self.config,
-            &self.base,
+            &self.mount,
             scenario.object_xy,
             scenario.object_yaw,
         );
-        let object_world = self.base.iso * object.iso * Isometry3::translation(0.0, 0.0, 0.001);
-        if let Some(body) = self.world.bodies.get_mut(self.handles.cube) {
-            body.set_position(to_rapier(&object_world), true);
-            body.set_linvel(Vector::ZERO, true);
-            body.set_angvel(Vector::ZERO, true);
-        }
-        if let Some(c) = self.world.colliders.get_mut(self.handles.cube_collider) {
-            c.set_friction(scenario.friction as f32);
-            c.set_mass(scenario.mass as f32);
-        }
-        self.drive = ArmDrive::new(self.config.arm.model, scenario.start_joints);
-        let q = scenario.start_joints;
-        self.drive
-            .teleport(&mut self.world, &self.handles, &self.model, &self.base, &q);
-        self.place_fingers_open(&q);
-        self.gripper_command = -1.0;
+        self.sim
+            .place_object(&object, scenario.friction, scenario.mass);
+        self.robot.teleport(&mut self.sim, &scenario.start_joints);
         for _ in 0..SETTLE_SUBSTEPS {
             self.physics_substep(&[0.0; 6]);
         }
-        self.object_rest_z = self.object_pose().translation.z;
+        self.object_rest_z = self.sim.object_pose().translation.z;
         self.steps = 0;
         self.done = false;
         self.scenario = Some(*scenario);
-        self.last_obs_joints = self.drive.q;
         let info = Info {
             scenario: Some(*scenario),
             ..Info::default()
         };
-        (self.observe([0.0; 6]), info)
-    }
-
-    fn place_fingers_open(&mut self, q: &[f64; 6]) {
-        let tool0 = self.base.iso * self.model.fk_flange(q).iso;
-        for f in 0..2 {
-            let (anchor, _) = crate::scene::finger_anchor(&self.model, f);
-            let pose = tool0 * Isometry3::translation(anchor[0], anchor[1], anchor[2]);
-            if let Some(body) = self.world.bodies.get_mut(self.handles.fingers[f]) {
-                body.set_position(to_rapier(&pose), true);
-                body.set_linvel(Vector::ZERO, true);
-                body.set_angvel(Vector::ZERO, true);
-            }
-        }
+        (self.observe([0.0; 6], &self.sim.contacts()), info)
     }
 
     fn physics_substep(&mut self, joint_command: &[f64; 6]) {
-        let dt = self.config.physics.dt;
-        self.drive.substep(
-            &mut self.world,
-            &self.handles,
-            &self.model,
-            &self.base,
-            joint_command,
-            dt,
-            self.config.arm.max_acceleration,
-        );
-        drive_fingers(
-            &mut self.world,
-            &self.handles,
-            &self.model,
-            self.gripper_command,
-            self.config.gripper.force,
-        );
-        self.world.step();
-        self.drive.sync(&self.world, &self.handles);
+        self.robot
+            .substep(&mut self.sim, joint_command, self.config.physics.dt);
+        self.sim.step();
+        self.robot.sync(&self.sim);
     }
 
     /// Applies one action for `physics.substeps` physics steps.
@@ -199,28 +163,23 @@ impl GraspEnv {
         if self.done {
             return Err(EnvError::EpisodeOver);
         }
-        if let Some((index, &value)) = action.0.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(EnvError::NonFiniteAction { index, value });
-        }
-        let clipped = action.0.map(|v| v.clamp(-1.0, 1.0));
-        let command: [f64; 6] = std::array::from_fn(|i| clipped[i] * self.config.arm.action_scale);
-        self.gripper_command = clipped[6];
-        let q_before = self.drive.q;
+        let command = self.apply_action(action)?;
+        let q_before = self.robot.q;
         for _ in 0..self.config.physics.substeps {
             self.physics_substep(&command);
         }
         self.steps += 1;
         let env_dt = self.config.physics.dt * self.config.physics.substeps as f64;
-        let velocities = std::array::from_fn(|i| (self.drive.q[i] - q_before[i]) / env_dt);
+        let velocities = std::array::from_fn(|i| (self.robot.q[i] - q_before[i]) / env_dt);
         let mut info = Info {
             step: self.steps,
             scenario: self.scenario,
             ..Info::default()
         };
-        if let Some(fault) = self.physics_fault() {
+        if let Some(fault) = self.sim.fault().or_else(|| self.robot.fault()) {
             self.done = true;
             info.physics_fault = Some(fault);
-            let obs = self.observe([0.0; 6]);
+            let obs = self.observe([0.0; 6], &self.sim.contacts());
             return Ok(Step {
                 obs,
                 reward: 0.0,
@@ -230,146 +189,105 @@ impl GraspEnv {
             });
         }
         // One contact scan serves the observation and the collision check.
-        let contacts = analyze(&self.world, &self.handles, &self.filter);
-        let obs = self.observe_with(velocities, &contacts);
-        let state = self.task_state(&obs);
-        let success = is_success(&state, &self.config.task);
+        let contacts = self.sim.contacts();
+        let obs = self.observe(velocities, &contacts);
         let collision = contacts.collision.map(|(a, b, depth)| {
             info.collision_depth_m = Some(depth);
-            Failure::Collision(
-                a.name(&self.model).to_string(),
-                b.name(&self.model).to_string(),
-            )
+            let model = &self.robot.model;
+            Failure::Collision(a.name(model).to_string(), b.name(model).to_string())
         });
-        info.success = success;
-        info.failure = if success {
-            None
-        } else {
-            collision
-                .clone()
-                .or_else(|| is_off_table(&state).then_some(Failure::ObjectOffTable))
-        };
-        let terminated = success
-            || (collision.is_some() && self.config.task.terminate_on_collision)
-            || info.failure == Some(Failure::ObjectOffTable);
-        let truncated = !terminated && self.steps >= self.config.task.max_steps;
-        let reward = reward(&state, success, collision.is_some(), &self.config.task);
-        self.done = terminated || truncated;
+        let judgement = judge(&self.task_state(&contacts), collision, &self.config.task);
+        info.success = judgement.success;
+        info.failure = judgement.failure;
+        let truncated = !judgement.terminated && self.steps >= self.config.task.max_steps;
+        self.done = judgement.terminated || truncated;
         Ok(Step {
             obs,
-            reward,
-            terminated,
+            reward: judgement.reward,
+            terminated: judgement.terminated,
             truncated,
             info,
         })
     }
 
-    /// The first non-finite body state, if any.
-    fn physics_fault(&self) -> Option<String> {
-        for (handle, body) in self.world.bodies.iter() {
-            let p = body.position();
-            let finite = p.translation.is_finite()
-                && p.rotation.is_finite()
-                && body.linvel().is_finite()
-                && body.angvel().is_finite();
-            if !finite {
-                return Some(format!(
-                    "rigid body {handle:?} has a non-finite position or velocity"
-                ));
-            }
+    /// Checks an action and hands it to the robot: returns the joint-velocity command [rad/s].
+    fn apply_action(&mut self, action: &Action) -> Result<[f64; 6], EnvError> {
+        if let Some((index, &value)) = action.0.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(EnvError::NonFiniteAction { index, value });
         }
-        (!self.drive.q.iter().all(|v| v.is_finite()))
-            .then(|| format!("joint angles are not finite: {:?}", self.drive.q))
+        let clipped = action.0.map(|v| v.clamp(-1.0, 1.0));
+        self.robot.gripper_command = clipped[6];
+        Ok(std::array::from_fn(|i| {
+            clipped[i] * self.config.arm.action_scale
+        }))
     }
 
-    fn object_pose(&self) -> Isometry3<f64> {
-        from_rapier(self.world.bodies[self.handles.cube].position())
-    }
-
-    fn task_state(&self, obs: &Observation) -> TaskState {
-        let object = self.object_pose().translation.vector;
-        let tcp = tcp_in_world(&self.model, &self.base, &obs.joints)
-            .translation
-            .vector;
-        let base_xy = self.base.xyz();
+    /// The facts the task judges, in `world` [m].
+    fn task_state(&self, contacts: &ContactReport) -> TaskState {
+        let object = self.sim.object_pose().translation.vector;
+        let tcp = self.robot.tcp_in_world().xyz();
+        let base_xy = self.mount.base_in_world.xyz();
         TaskState {
             object: [object.x, object.y, object.z],
             object_rest_z: self.object_rest_z,
-            tcp: [tcp.x, tcp.y, tcp.z],
-            pad_contact: obs.pad_contact,
+            tcp,
+            pad_contact: contacts.pad_contact,
             table_height: self.config.scene.table_height,
             object_xy_from_table_centre: [object.x - base_xy[0], object.y - base_xy[1]],
             table_half_size: self.config.scene.table_size.map(|s| s / 2.0),
         }
     }
 
-    fn observe(&self, joint_velocities: [f64; 6]) -> Observation {
-        let contacts = analyze(&self.world, &self.handles, &self.filter);
-        self.observe_with(joint_velocities, &contacts)
-    }
-
-    fn observe_with(&self, joint_velocities: [f64; 6], contacts: &ContactReport) -> Observation {
-        let q = self.drive.q;
-        let tcp = self.model.fk_tcp(&q);
-        let object_base = self.base.iso.inverse() * self.object_pose();
-        let (position_error, yaw_error) = self.scenario.map_or(([0.0; 3], 0.0), |s| {
-            (s.observed_position_error, s.observed_yaw_error)
-        });
-        let observed = object_base.translation.vector + nalgebra::Vector3::from(position_error);
-        let rel = observed - tcp.iso.translation.vector;
-        let travel = finger_travel(&self.world, &self.handles, &self.model);
-        let opening = self.model.gripper.opening(0.5 * (travel[0] + travel[1]));
+    /// The observation: the robot's state and the object as the perception model reports it,
+    /// in `base_link`.
+    fn observe(&self, joint_velocities: [f64; 6], contacts: &ContactReport) -> Observation {
+        let tcp = self.robot.tcp_in_base().xyz();
+        let seen = observe_object(&self.mount, &self.object_in_base(), self.scenario.as_ref());
         Observation {
-            joints: q,
+            joints: self.robot.q,
             joint_velocities,
-            object_rel_tcp: [rel.x, rel.y, rel.z],
-            gripper_opening: opening,
-            object_yaw: yaw_about_z(&object_base) + yaw_error,
-            tcp_position: tcp.xyz(),
+            object_rel_tcp: [0, 1, 2].map(|i| seen.position[i] - tcp[i]),
+            gripper_opening: self.robot.gripper_opening(&self.sim),
+            object_yaw: seen.yaw,
+            tcp_position: tcp,
             pad_contact: contacts.pad_contact,
         }
     }
 
-    /// The object pose in `base_link`.
+    /// The object pose in `base_link` (the truth, not what is observed).
     pub fn object_in_base(&self) -> Pose {
         Pose {
-            iso: self.base.iso.inverse() * self.object_pose(),
+            iso: self.mount.base_in_world.iso.inverse() * self.sim.object_pose(),
         }
     }
 
     /// The TCP pose in `base_link` at the current joints.
     pub fn tcp_in_base(&self) -> Pose {
-        self.model.fk_tcp(&self.drive.q)
+        self.robot.tcp_in_base()
     }
 
     /// Current finger travels [m] (0 open … 0.0425 closed).
     pub fn finger_travel(&self) -> [f64; 2] {
-        finger_travel(&self.world, &self.handles, &self.model)
+        self.sim.finger_travel(&self.robot.model)
     }
 
     /// What the narrow phase says now: collisions, pad contacts, pad penetration.
-    pub fn contacts(&self) -> crate::contacts::ContactReport {
-        analyze(&self.world, &self.handles, &self.filter)
+    pub fn contacts(&self) -> ContactReport {
+        self.sim.contacts()
     }
 
     /// Every touching pair of the narrow phase now, deepest first, with how it is judged.
     pub fn touching_pairs(&self) -> Vec<crate::contacts::TouchingPair> {
-        crate::contacts::touching_pairs(&self.world, &self.handles, &self.filter)
+        self.sim.touching_pairs()
     }
 
     /// Current joint angles [rad].
     pub fn joints(&self) -> [f64; 6] {
-        self.drive.q
+        self.robot.q
     }
 
     /// Test and debugging access to the physics world.
     pub fn world_mut(&mut self) -> (&mut PhysicsWorld, &SceneHandles) {
-        (&mut self.world, &self.handles)
+        self.sim.world_mut()
     }
-}
-
-/// Yaw of a pose about z, taken from where its x axis points in the xy plane [rad].
-fn yaw_about_z(iso: &Isometry3<f64>) -> f64 {
-    let x = iso.rotation * nalgebra::Vector3::x();
-    x.y.atan2(x.x)
 }

@@ -1,27 +1,33 @@
-//! fairgrasp-env: the FR3 grasping environment in rapier3d.
+//! fairgrasp-env: the FR3 grasping environment in rapier3d, composed of three pieces.
 //!
-//! - [`config`]: every setting, with defaults and presets; [`validate`]: TOML and checks.
-//! - [`scene`]: the world built once: table, cube, arm (servo or multibody), gripper.
-//! - [`arm`]: how joint-velocity commands move each arm model, and how joints are read back.
-//! - [`contacts`]: collisions (with the pair named) and finger–cube contacts.
-//! - [`obs`]: the observation layout, in the arm's base frame.
-//! - [`task`]: success, failure and reward as pure functions of the state.
-//! - [`env`]: `GraspEnv`: `reset(seed)`, `step(&Action)`; [`step`]: the values it exchanges.
-//! - [`randomize`], [`curriculum`]: scenarios per seed, graspability, stages.
-//! - [`vec_env`], [`trajectory`]: parallel stepping with auto-reset; episode export.
+//! - the **robot** ([`robot`]): the arm (servo or multibody) and its gripper; applies an action,
+//!   reports joint and gripper state;
+//! - the **task** ([`task`]): success, failure and reward as pure functions of the state;
+//! - the **scenario** ([`randomize`], [`perception`], [`curriculum`]): what is true this episode
+//!   (drawn from a seed) and what a policy observes of it.
+//!
+//! [`env`]'s `GraspEnv` composes them over [`sim`], the facade that alone touches rapier
+//! ([`scene`] builds its world, [`contacts`] reads its narrow phase). Frames: [`mount`] (the
+//! base and the table frame, for any mount). Interface: [`obs`], [`spaces`], [`step`];
+//! [`config`] and [`validate`] for settings; [`vec_env`], [`trajectory`], [`policy`] for
+//! parallel stepping, episode export and evaluation.
 
-pub mod arm;
 pub mod config;
 pub mod contacts;
 pub mod convert;
 pub mod curriculum;
 pub mod env;
+pub mod mount;
 pub mod obs;
+pub mod perception;
 pub mod policy;
 pub mod presets;
 pub mod randomize;
+pub mod robot;
 pub mod scene;
+pub mod sim;
 mod snapshot;
+pub mod spaces;
 pub mod step;
 pub mod task;
 pub mod trajectory;
@@ -30,6 +36,7 @@ pub mod vec_env;
 
 pub use config::{ArmModelKind, ConfigError, EnvConfig};
 pub use env::{Action, EnvError, GraspEnv, Info, Step};
+pub use mount::Mount;
 pub use obs::Observation;
 
 /// Home joints [rad]: the TCP 0.30 m in front of the base (+x), 0.25 m above it, pointing down.

@@ -45,7 +45,9 @@ pub struct Observation {
     pub object_rel_tcp: [f64; 3],
     /// Distance between the pads' inner faces [m] (0.085 fully open).
     pub gripper_opening: f64,
-    /// Object yaw about base z [rad] (the cube repeats every 90°: see `yaw_features`).
+    /// Object yaw about the world vertical, relative to the base's heading (the table frame,
+    /// see [`crate::Mount`]) [rad]; for a level base, yaw about base z. The cube repeats every
+    /// 90°: see `yaw_features`.
     pub object_yaw: f64,
     /// TCP position in `base_link` [m].
     pub tcp_position: [f64; 3],

@@ -11,20 +11,23 @@ use rand_distr::{Distribution, Normal};
 use serde::Serialize;
 
 use crate::config::EnvConfig;
+use crate::mount::Mount;
 
 /// Height of the pre-grasp pose above the grasp pose [m].
 pub const PRE_GRASP_HEIGHT: f64 = 0.10;
 /// Redraws allowed before a scenario is given up as ungraspable.
 const MAX_DRAWS: usize = 1000;
 
-/// One episode's starting conditions.
+/// One episode's starting conditions. Positions and yaws are in the table frame (see
+/// [`Mount`]: on the table top under the base, z up, x along the base's heading), which for a
+/// level base is `base_link`'s x, y.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Scenario {
     /// The seed it was drawn from.
     pub seed: u64,
-    /// Object centre x, y in `base_link` [m].
+    /// Object centre x, y in the table frame [m].
     pub object_xy: [f64; 2],
-    /// Object yaw about the table normal, relative to base x [rad].
+    /// Object yaw about the world vertical, relative to the base's heading [rad].
     pub object_yaw: f64,
     /// Object friction coefficient.
     pub friction: f64,
@@ -32,41 +35,51 @@ pub struct Scenario {
     pub mass: f64,
     /// Home joints plus noise [rad].
     pub start_joints: [f64; 6],
-    /// Error added to the observed object position, base frame [m] (perception noise).
+    /// Error added to the observed object position, in the table frame [m] (perception noise).
     pub observed_position_error: [f64; 3],
     /// Error added to the observed object yaw [rad] (perception noise).
     pub observed_yaw_error: f64,
 }
 
-/// The object pose in `base_link` for a scenario: resting on the table top.
+/// The object pose in `base_link` for a scenario: resting on the table top at `xy` in the table
+/// frame, turned by `yaw` about the world vertical (a config's mount, see [`Mount`]).
 pub fn object_pose_in_base(config: &EnvConfig, base: &Pose, xy: [f64; 2], yaw: f64) -> Pose {
-    // The table top is horizontal in the world; express its height in the base frame.
-    let top_world = config.scene.table_height + config.scene.cube_size / 2.0;
-    let base_origin_z = base.xyz()[2];
-    Pose::from_xyz_rpy([xy[0], xy[1], top_world - base_origin_z], [0.0, 0.0, yaw])
+    Mount::new(*base, config.scene.table_height).resting_object_in_base(
+        xy,
+        yaw,
+        config.scene.cube_size,
+    )
 }
 
-/// The in-limit top-down grasp (TCP at the object centre, fingers across a pair of faces) and
-/// its pre-grasp 10 cm above, as joint angles: among the yaws `yaw + k·90°` and the IK branches
-/// that admit both within the joint limits and without self-collision or table contact (the
-/// table top at `table_z` in `base_link`), the pair whose pre-grasp is nearest to `current`
-/// [rad]. `None` if none does.
+/// The TCP pose in `base_link` for a top-down grasp at `xyz` (table frame) [m]: tool z along
+/// world gravity (down), the fingers closing across the table-frame direction `yaw` + 90° [rad].
+pub fn top_down_in_base(mount: &Mount, xyz: [f64; 3], yaw: f64) -> Pose {
+    mount.table_to_base(&Pose::from_xyz_rpy(xyz, [PI, 0.0, yaw]))
+}
+
+/// The in-limit top-down grasp (TCP at the object centre, tool z along world gravity, fingers
+/// across a pair of faces) and its pre-grasp 10 cm above (along the world vertical), as joint
+/// angles: among the yaws `yaw + k·90°` and the IK branches that admit both within the joint
+/// limits and without self-collision or table contact, the pair whose pre-grasp is nearest to
+/// `current` [rad]. `None` if none does.
 pub fn top_down_grasp(
     model: &ArmModel,
+    mount: &Mount,
     object_in_base: &Pose,
-    table_z: f64,
     current: &[f64; 6],
 ) -> Option<([f64; 6], [f64; 6])> {
-    let xyz = object_in_base.xyz();
-    let yaw = object_in_base.rpy()[2];
+    let xyz = mount.base_to_table(object_in_base).xyz();
+    let yaw = mount.yaw_on_table(object_in_base);
+    let table = &mount.table_in_base;
     let options = AnalyticIkOptions::default();
     let mut best: Option<(f64, [f64; 6], [f64; 6])> = None;
     for k in 0..4 {
         let grasp_yaw = yaw + k as f64 * FRAC_PI_2;
-        let grasp = Pose::from_xyz_rpy(xyz, [PI, 0.0, grasp_yaw]);
-        let above = Pose::from_xyz_rpy(
+        let grasp = top_down_in_base(mount, xyz, grasp_yaw);
+        let above = top_down_in_base(
+            mount,
             [xyz[0], xyz[1], xyz[2] + PRE_GRASP_HEIGHT],
-            [PI, 0.0, grasp_yaw],
+            grasp_yaw,
         );
         let Ok(grasps) = model.ik_analytic(&grasp, EndFrame::Tcp, &options) else {
             continue;
@@ -75,11 +88,11 @@ pub fn top_down_grasp(
             continue;
         };
         for g in grasps.iter().filter(|s| s.in_limits) {
-            if !collision_free(model, &g.joints, table_z) {
+            if !collision_free(model, &g.joints, table) {
                 continue;
             }
             if let Some(a) = aboves.iter().find(|a| {
-                a.in_limits && a.branch == g.branch && collision_free(model, &a.joints, table_z)
+                a.in_limits && a.branch == g.branch && collision_free(model, &a.joints, table)
             }) {
                 let d = joint_distance(&a.joints, current);
                 if best.is_none_or(|(bd, _, _)| d < bd) {
@@ -91,9 +104,15 @@ pub fn top_down_grasp(
     best.map(|(_, g, a)| (g, a))
 }
 
-/// No self-collision (capsules), and nothing but the base below the table top plus 2 mm.
-pub fn collision_free(model: &ArmModel, q: &[f64; 6], table_z: f64) -> bool {
-    model.self_collisions(q, 0.0).is_empty() && model.lowest_point(q) > table_z + 0.002
+/// Clearance every part but the base keeps above the table top [m].
+pub const TABLE_CLEARANCE: f64 = 0.002;
+
+/// No self-collision (capsules), and nothing but the base lower than [`TABLE_CLEARANCE`] above
+/// the table top, measured along the world vertical (`table_in_base`: the table frame in
+/// `base_link`, [`Mount::table_in_base`]).
+pub fn collision_free(model: &ArmModel, q: &[f64; 6], table_in_base: &Pose) -> bool {
+    model.self_collisions(q, 0.0).is_empty()
+        && model.lowest_point_in(q, table_in_base) > TABLE_CLEARANCE
 }
 
 /// Why no scenario could be drawn.
@@ -105,11 +124,15 @@ pub struct UngraspableRegion {
     pub angle: [f64; 2],
     /// The fixed object position when `randomization.position` is off.
     pub fixed_xy: Option<[f64; 2]>,
+    /// Height of the base origin above the table top [m] (negative: below it).
+    pub base_height_above_table: f64,
+    /// Tilt of the base from upright [rad].
+    pub base_tilt: f64,
 }
 
 impl UngraspableRegion {
     fn describe(&self) -> String {
-        match self.fixed_xy {
+        let what = match self.fixed_xy {
             Some(xy) => format!(
                 "scene.cube_xy {xy:?} (randomization.position = false) has no collision-free \
                  top-down grasp within the FR3's joint limits, or the cube would spawn inside \
@@ -120,7 +143,23 @@ impl UngraspableRegion {
                  {:?} lies outside what the FR3 reaches top-down",
                 self.draws, self.radius, self.angle
             ),
+        };
+        let level = self.base_tilt < 1e-6 && self.base_height_above_table.abs() < 1e-6;
+        if level {
+            return what;
         }
+        format!(
+            "{what}. The mount may be the cause: the base stands {:.3} m {} the table top, \
+             tilted {:.1}° from upright (arm.base_xyz / arm.base_rpy); the shipped presets \
+             stand it level on the table top",
+            self.base_height_above_table.abs(),
+            if self.base_height_above_table < 0.0 {
+                "below"
+            } else {
+                "above"
+            },
+            self.base_tilt.to_degrees()
+        )
     }
 }
 
@@ -150,6 +189,7 @@ impl Scenario {
     ) -> Result<Scenario, UngraspableRegion> {
         let r = &config.randomization;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mount = Mount::new(*base, config.scene.table_height);
         for _ in 0..MAX_DRAWS {
             let object_xy = if r.position {
                 // Uniform over the sector's area: radius ~ sqrt(U(r0², r1²)).
@@ -189,9 +229,8 @@ impl Scenario {
             // Perception noise lies on the table plane: the cube's height is known.
             let observed_position_error = [gauss(&mut rng, p), gauss(&mut rng, p), 0.0];
             let observed_yaw_error = gauss(&mut rng, r.observed_yaw_noise);
-            let pose = object_pose_in_base(config, base, object_xy, object_yaw);
-            let table_z = config.scene.table_height - base.xyz()[2];
-            if top_down_grasp(model, &pose, table_z, &start_joints).is_some() {
+            let pose = mount.resting_object_in_base(object_xy, object_yaw, config.scene.cube_size);
+            if top_down_grasp(model, &mount, &pose, &start_joints).is_some() {
                 return Ok(Scenario {
                     seed,
                     object_xy,
@@ -212,6 +251,8 @@ impl Scenario {
             radius: r.radius,
             angle: r.angle,
             fixed_xy: (!r.position).then_some(config.scene.cube_xy),
+            base_height_above_table: mount.base_height_above_table(),
+            base_tilt: mount.tilt(),
         })
     }
 }

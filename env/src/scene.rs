@@ -217,7 +217,7 @@ pub fn build(
     insert_robot_collider(&mut world, &mut parts, palm_collider, palm, Part::Palm);
 
     // Multibody arm: revolute joints j1..j6 with velocity motors, palm fixed on wrist3.
-    let arm_joints = dynamic.then(|| insert_multibody_arm(&mut world, model, &links, palm, q));
+    let arm_joints = dynamic.then(|| insert_multibody_arm(&mut world, model, &links, palm));
 
     // Fingers: dynamic bodies on prismatic impulse joints to the palm, created at their pose.
     let mut fingers = Vec::new();
@@ -286,7 +286,6 @@ fn insert_multibody_arm(
     model: &ArmModel,
     links: &[RigidBodyHandle; 7],
     palm: RigidBodyHandle,
-    q: &[f64; 6],
 ) -> [MultibodyJointHandle; 6] {
     let origins = model.link_poses(&[0.0; 6]);
     let mut handles = Vec::with_capacity(6);
@@ -329,6 +328,5 @@ fn insert_multibody_arm(
     if let Some((mb, _)) = world.multibody_joints.get_mut(handles[0]) {
         mb.set_self_contacts_enabled(true);
     }
-    let _ = q;
     handles.try_into().expect("six joints")
 }

@@ -2,7 +2,7 @@
 
 use serde::Serialize;
 
-use crate::config::TaskConfig;
+use crate::config::{RewardKind, TaskConfig};
 
 /// The facts the task is judged on, all in the world frame [m].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,14 +51,54 @@ pub fn is_off_table(s: &TaskState) -> bool {
         || (0..2).any(|i| s.object_xy_from_table_centre[i].abs() > s.table_half_size[i])
 }
 
+/// The reward of the config's [`RewardKind`] for a step that ended in state `s`.
+pub fn reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
+    match cfg.reward {
+        RewardKind::Seed => seed_reward(s, success, collision, cfg),
+    }
+}
+
 /// The seed's rescaled reward: `success_reward` on success, `collision_reward` on a collision,
 /// else `distance_reward · |TCP − object|`.
-pub fn reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
+pub fn seed_reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
     if success {
         cfg.success_reward
     } else if collision {
         cfg.collision_reward
     } else {
         cfg.distance_reward * tcp_object_distance(s)
+    }
+}
+
+/// What the task makes of one step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Judgement {
+    /// Lifted and held ([`is_success`]).
+    pub success: bool,
+    /// Why the episode failed, if it did (never together with success).
+    pub failure: Option<Failure>,
+    /// The episode ends here (success, an ending collision, the object off the table).
+    pub terminated: bool,
+    pub reward: f64,
+}
+
+/// Judges a step: success, failure (a `collision` the contact scan found, or the object off
+/// the table), whether the episode ends, and the reward.
+pub fn judge(s: &TaskState, collision: Option<Failure>, cfg: &TaskConfig) -> Judgement {
+    let success = is_success(s, cfg);
+    let collided = collision.is_some();
+    let failure = if success {
+        None
+    } else {
+        collision.or_else(|| is_off_table(s).then_some(Failure::ObjectOffTable))
+    };
+    let terminated = success
+        || (collided && cfg.terminate_on_collision)
+        || failure == Some(Failure::ObjectOffTable);
+    Judgement {
+        success,
+        failure,
+        terminated,
+        reward: reward(s, success, collided, cfg),
     }
 }

@@ -17,6 +17,9 @@ pub enum ConfigError {
     File { path: String, message: String },
 }
 
+/// The largest tilt of the base from upright that the env accepts [rad] (15°).
+pub const MAX_BASE_TILT: f64 = 15.0 * std::f64::consts::PI / 180.0;
+
 fn check(
     ok: bool,
     field: &'static str,
@@ -130,6 +133,14 @@ impl EnvConfig {
             "arm.base_xyz/base_rpy",
             (a.base_xyz, a.base_rpy),
             "must be finite",
+        )?;
+        let tilt = crate::mount::Mount::from_config(self).tilt();
+        check(
+            tilt <= MAX_BASE_TILT + 1e-9,
+            "arm.base_rpy",
+            format_args!("{:?} (tilt {:.1}°)", a.base_rpy, tilt.to_degrees()),
+            "tilts the base more than 15° from upright: a wedge mount may tilt at most 15° \
+             (roll and pitch together), with any yaw",
         )?;
         let model = fairgrasp_kinematics::ArmKind::Fr3.model();
         check(

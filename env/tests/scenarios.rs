@@ -3,20 +3,23 @@
 use fairgrasp_env::config::RandomizationConfig;
 use fairgrasp_env::curriculum::{Curriculum, CurriculumConfig};
 use fairgrasp_env::randomize::{Scenario, object_pose_in_base, scenario_set, top_down_grasp};
-use fairgrasp_env::{EnvConfig, GraspEnv, HOME_JOINTS};
+use fairgrasp_env::{EnvConfig, GraspEnv, HOME_JOINTS, Mount};
 use fairgrasp_kinematics::{ArmKind, Pose};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn every_sample_is_graspable(randomization: RandomizationConfig, base_rpy: [f64; 3]) {
+/// The fraction of 10 000 uniform samples of the sector (no rejection) that admit a top-down
+/// grasp from the home joints, with the base at `base_rpy`.
+fn graspable_fraction(randomization: RandomizationConfig, base_rpy: [f64; 3]) -> f64 {
     let mut cfg = EnvConfig::default();
     cfg.arm.base_rpy = base_rpy;
     let model = ArmKind::Fr3.model();
-    let base = Pose::from_xyz_rpy(cfg.arm.base_xyz, cfg.arm.base_rpy);
+    let mount = Mount::from_config(&cfg);
     let mut rng = ChaCha8Rng::seed_from_u64(9);
     let r = &randomization;
-    for n in 0..10_000 {
-        // Uniform over the sector, no rejection: the whole preset must be graspable.
+    let n = 10_000;
+    let mut graspable = 0;
+    for _ in 0..n {
         let radius = rng
             .random_range(r.radius[0].powi(2)..=r.radius[1].powi(2))
             .sqrt();
@@ -24,36 +27,117 @@ fn every_sample_is_graspable(randomization: RandomizationConfig, base_rpy: [f64;
         let yaw = rng.random_range(0.0..std::f64::consts::TAU);
         let pose = object_pose_in_base(
             &cfg,
-            &base,
+            &mount.base_in_world,
             [radius * angle.cos(), radius * angle.sin()],
             yaw,
         );
-        assert!(
-            top_down_grasp(
-                &model,
-                &pose,
-                cfg.scene.table_height - cfg.arm.base_xyz[2],
-                &HOME_JOINTS
-            )
-            .is_some(),
-            "sample {n}: r {radius:.3} angle {angle:.3}"
-        );
+        if top_down_grasp(&model, &mount, &pose, &HOME_JOINTS).is_some() {
+            graspable += 1;
+        }
     }
+    graspable as f64 / n as f64
 }
 
 #[test]
 fn every_position_of_the_seed_sector_admits_a_top_down_grasp_within_limits() {
-    every_sample_is_graspable(RandomizationConfig::seed_sector(), [0.0; 3]);
+    assert_eq!(
+        graspable_fraction(RandomizationConfig::seed_sector(), [0.0; 3]),
+        1.0
+    );
 }
 
 #[test]
 fn every_position_of_the_wide_sector_admits_a_top_down_grasp_within_limits() {
-    every_sample_is_graspable(RandomizationConfig::wide_sector(), [0.0; 3]);
+    assert_eq!(
+        graspable_fraction(RandomizationConfig::wide_sector(), [0.0; 3]),
+        1.0
+    );
+}
+
+/// A base tilted 10° (a wedge mount) and yawed 90°: the table frame is not `base_link`.
+const TILTED_YAWED: [f64; 3] = [0.0, 0.1745, std::f64::consts::FRAC_PI_2];
+
+#[test]
+fn most_of_the_seed_sector_stays_graspable_from_a_tilted_yawed_base() {
+    let f = graspable_fraction(RandomizationConfig::seed_sector(), TILTED_YAWED);
+    eprintln!("graspable from the tilted base: {f}");
+    assert!(f >= 0.95, "{f}");
 }
 
 #[test]
-fn a_rotated_base_changes_nothing_in_the_base_frame() {
-    every_sample_is_graspable(RandomizationConfig::seed_sector(), [0.0, 0.0, 2.0]);
+fn scenarios_from_a_tilted_base_rest_flat_on_the_table_and_grasp_along_gravity() {
+    for rpy in [TILTED_YAWED, [-0.2, 0.15, -2.0], [0.25, 0.0, 0.0]] {
+        let mut cfg = EnvConfig {
+            randomization: RandomizationConfig::seed_sector(),
+            ..EnvConfig::default()
+        };
+        cfg.arm.base_rpy = rpy;
+        cfg.arm.base_xyz = [0.1, -0.2, cfg.scene.table_height + 0.05]; // on a 5 cm pedestal
+        let model = ArmKind::Fr3.model();
+        let mount = Mount::from_config(&cfg);
+        let base = mount.base_in_world;
+        for seed in 0..40 {
+            let s = Scenario::sample(&cfg, &model, &base, seed).unwrap();
+            let object = object_pose_in_base(&cfg, &base, s.object_xy, s.object_yaw);
+            let in_world = base.compose(&object);
+            // Resting on the table: centre half a cube above the top, faces level.
+            let z = in_world.xyz()[2];
+            let half = cfg.scene.cube_size / 2.0;
+            assert!(
+                (z - cfg.scene.table_height - half).abs() < 1e-9,
+                "{rpy:?}: z {z}"
+            );
+            let up = in_world.transform_vector([0.0, 0.0, 1.0]);
+            assert!(up[2] > 1.0 - 1e-9, "{rpy:?}: cube z axis {up:?}");
+            // Its horizontal distance from the base is the sampled radius.
+            let d = [0, 1].map(|i| in_world.xyz()[i] - base.xyz()[i]);
+            let r = s.object_xy[0].hypot(s.object_xy[1]);
+            assert!((d[0].hypot(d[1]) - r).abs() < 1e-9);
+            // The grasp: tool z along world gravity, TCP at the cube centre, nothing but the
+            // base within 2 mm of the table top (in the world).
+            let (grasp, above) = top_down_grasp(&model, &mount, &object, &s.start_joints).unwrap();
+            let tcp = base.compose(&model.fk_tcp(&grasp));
+            let tool_z = tcp.transform_vector([0.0, 0.0, 1.0]);
+            assert!(tool_z[2] < -1.0 + 1e-6, "{rpy:?}: tool z {tool_z:?}");
+            let (dp, _) = tcp.distance_to(&in_world);
+            assert!(dp < 1e-6, "{rpy:?}: TCP {dp} m from the cube centre");
+            let pre = base.compose(&model.fk_tcp(&above));
+            let rise = [0, 1, 2].map(|i| pre.xyz()[i] - tcp.xyz()[i]);
+            assert!(rise[0].hypot(rise[1]) < 1e-6 && (rise[2] - 0.10).abs() < 1e-6);
+            for q in [grasp, above] {
+                let world_frame = mount.table_in_base;
+                assert!(model.lowest_point_in(&q, &world_frame) > 0.002);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_base_tilted_past_15_degrees_is_refused_naming_the_field() {
+    let mut cfg = EnvConfig::default();
+    cfg.arm.base_rpy = [0.2, 0.2, 0.0]; // 16.2°
+    let err = GraspEnv::new(cfg.clone())
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(err.contains("arm.base_rpy") && err.contains("15°"), "{err}");
+    cfg.arm.base_rpy = [0.18, 0.18, 1.0]; // 14.6°
+    assert!(GraspEnv::new(cfg).is_ok());
+}
+
+#[test]
+fn a_mount_with_no_graspable_workspace_is_refused_with_a_message_that_says_so() {
+    let mut cfg = EnvConfig {
+        randomization: RandomizationConfig::seed_sector(),
+        ..EnvConfig::default()
+    };
+    cfg.arm.base_xyz[2] = cfg.scene.table_height + 1.2; // 1.2 m above the table top
+    let mut env = GraspEnv::new(cfg).unwrap();
+    let err = env.reset(0).expect_err("no workspace").to_string();
+    assert!(
+        err.contains("no graspable object position") && err.contains("1.200 m above the table"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -86,7 +170,7 @@ fn reset_to_a_scenario_puts_the_cube_where_it_says_resting_on_the_table() {
         randomization: RandomizationConfig::seed_sector(),
         ..EnvConfig::default()
     };
-    cfg.arm.base_rpy = [0.0, 0.0, 0.7]; // a rotated base: positions are in its frame
+    cfg.arm.base_rpy = [0.0, 0.0, 0.7]; // a yawed, level base: positions are in its frame
     let mut env = GraspEnv::new(cfg.clone()).unwrap();
     let scenario = Scenario::sample(&cfg, env.model(), env.base_in_world(), 4).unwrap();
     env.reset_to(&scenario);

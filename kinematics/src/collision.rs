@@ -6,6 +6,7 @@
 use nalgebra::{Point3, Vector3};
 
 use crate::model::ArmModel;
+use crate::pose::Pose;
 
 /// A capsule placed in `base_link`: the segment `a → b` swept by `radius`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -177,10 +178,19 @@ impl ArmModel {
 
     /// The lowest point of any capsule except the base's, as a height in `base_link` [m].
     pub fn lowest_point(&self, q: &[f64; 6]) -> f64 {
+        self.lowest_point_in(q, &Pose::identity())
+    }
+
+    /// The lowest point of any capsule except the base's, as a height along the z axis of
+    /// `frame` (a frame given in `base_link`, e.g. the table frame: z up, origin on the table
+    /// top) [m]. A capsule's lowest point along a direction is its lower end minus its radius.
+    pub fn lowest_point_in(&self, q: &[f64; 6], frame: &Pose) -> f64 {
+        let to_frame = frame.inverse();
+        let height = |p: [f64; 3]| to_frame.transform_point(p)[2];
         self.placed_capsules(q)
             .iter()
             .filter(|c| c.name != "base_link")
-            .map(|c| c.a[2].min(c.b[2]) - c.radius)
+            .map(|c| height(c.a).min(height(c.b)) - c.radius)
             .fold(f64::INFINITY, f64::min)
     }
 }

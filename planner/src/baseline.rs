@@ -5,7 +5,7 @@
 //! term, `q̇ = (q_ref(t+Δ) − q_ref(t))/Δ + K·(q_ref(t) − q)`, scaled into the action range.
 
 use fairgrasp_env::policy::{Outcome, Policy};
-use fairgrasp_env::{Action, EnvConfig, Observation};
+use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 use fairgrasp_kinematics::{ArmKind, ArmModel};
 use serde::Serialize;
 
@@ -71,8 +71,8 @@ pub struct ScriptedGrasp {
     /// Duration of one env step [s].
     step_dt: f64,
     limits: MotionLimits,
-    /// Table top height in `base_link` [m].
-    table_z: f64,
+    /// The arm's mount (base and table frame), known to the script like a real cell's layout.
+    mount: Mount,
     phase: Phase,
     steps_in_phase: usize,
     targets: Option<GraspJoints>,
@@ -93,7 +93,7 @@ impl ScriptedGrasp {
         Self {
             step_dt: env.physics.dt * env.physics.substeps as f64,
             action_scale: env.arm.action_scale,
-            table_z: env.scene.table_height - env.arm.base_xyz[2],
+            mount: Mount::from_config(env),
             config,
             model,
             limits,
@@ -195,7 +195,7 @@ impl Policy for ScriptedGrasp {
             let target = GraspTarget {
                 object: obs.object_position(),
                 object_yaw: obs.object_yaw,
-                table_z: self.table_z,
+                mount: self.mount,
             };
             match plan_grasp_joints(
                 &self.model,

@@ -1,12 +1,15 @@
 //! Grasp poses from the observed object, and their joint targets.
 //!
-//! A top-down grasp puts the TCP at the cube centre with the tool z axis pointing down and the
-//! fingers closing across a pair of faces. The cube repeats every 90°, so of the yaws
+//! A top-down grasp puts the TCP at the cube centre with the tool z axis pointing down along
+//! world gravity and the fingers closing across a pair of faces. Poses are built in the table
+//! frame (z up along the world vertical, see [`Mount`]) and expressed in `base_link` through
+//! the mount, so a tilted or raised base changes nothing about what "top-down" and "above" mean. The cube repeats every 90°, so of the yaws
 //! `yaw + k·90°` the one closest to the current TCP yaw is tried first (the wrist turns least).
 
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::FRAC_PI_2;
 
-use fairgrasp_env::randomize::collision_free;
+use fairgrasp_env::Mount;
+use fairgrasp_env::randomize::{collision_free, top_down_in_base};
 use fairgrasp_kinematics::analytic_ik::{joint_distance, wrap_pi};
 use fairgrasp_kinematics::{AnalyticIkOptions, ArmModel, EndFrame, Pose, QpIkOptions};
 use serde::Serialize;
@@ -34,15 +37,9 @@ pub struct GraspJoints {
     pub used_qp_fallback: bool,
 }
 
-/// The top-down TCP pose at `xyz` with yaw `yaw` (tool z down: roll π).
-pub fn top_down(xyz: [f64; 3], yaw: f64) -> Pose {
-    Pose::from_xyz_rpy(xyz, [PI, 0.0, yaw])
-}
-
-/// Yaw of the TCP's x axis about base z [rad].
-pub fn tcp_yaw(model: &ArmModel, q: &[f64; 6]) -> f64 {
-    let x = model.fk_tcp(q).transform_vector([1.0, 0.0, 0.0]);
-    x[1].atan2(x[0])
+/// Yaw of the TCP's x axis about the world vertical, relative to the base's heading [rad].
+pub fn tcp_yaw(model: &ArmModel, mount: &Mount, q: &[f64; 6]) -> f64 {
+    mount.yaw_on_table(&model.fk_tcp(q))
 }
 
 /// The candidate grasp yaws `object_yaw + k·90°`, closest to `current_yaw` first.
@@ -56,14 +53,16 @@ pub fn candidate_yaws(object_yaw: f64, current_yaw: f64) -> [f64; 4] {
     yaws
 }
 
-/// The grasp poses for an object centre and yaw (both in `base_link`).
+/// The grasp poses, TCP in `base_link`, for an object centre [m] and grasp yaw [rad] given in
+/// the table frame: pre-grasp and lift straight above along the world vertical.
 pub fn grasp_poses(
+    mount: &Mount,
     object: [f64; 3],
     yaw: f64,
     pre_grasp_height: f64,
     lift_height: f64,
 ) -> GraspPoses {
-    let above = |h: f64| top_down([object[0], object[1], object[2] + h], yaw);
+    let above = |h: f64| top_down_in_base(mount, [object[0], object[1], object[2] + h], yaw);
     GraspPoses {
         pre_grasp: above(pre_grasp_height),
         grasp: above(0.0),
@@ -72,9 +71,9 @@ pub fn grasp_poses(
 }
 
 /// IK for `pose` nearest to `near`: the closed-form branch within the limits and free of
-/// collisions (self and table, the table top at `table_z`), else the QP IK started from `near`.
-/// Returns the joints and whether the QP was used.
-fn solve(model: &ArmModel, pose: &Pose, near: &[f64; 6], table_z: f64) -> Option<([f64; 6], bool)> {
+/// collisions (self and table; `table`: the table frame in `base_link`), else the QP IK started
+/// from `near`. Returns the joints and whether the QP was used.
+fn solve(model: &ArmModel, pose: &Pose, near: &[f64; 6], table: &Pose) -> Option<([f64; 6], bool)> {
     let options = AnalyticIkOptions {
         wrist_singular_q6: near[5],
         ..AnalyticIkOptions::default()
@@ -82,7 +81,7 @@ fn solve(model: &ArmModel, pose: &Pose, near: &[f64; 6], table_z: f64) -> Option
     if let Ok(solutions) = model.ik_analytic(pose, EndFrame::Tcp, &options)
         && let Some(best) = solutions
             .iter()
-            .filter(|s| s.in_limits && collision_free(model, &s.joints, table_z))
+            .filter(|s| s.in_limits && collision_free(model, &s.joints, table))
             .min_by(|a, b| {
                 joint_distance(&a.joints, near).total_cmp(&joint_distance(&b.joints, near))
             })
@@ -96,18 +95,18 @@ fn solve(model: &ArmModel, pose: &Pose, near: &[f64; 6], table_z: f64) -> Option
         ..QpIkOptions::default()
     };
     let solution = model.ik_qp(pose, near, &qp).ok()?;
-    collision_free(model, &solution.joints, table_z).then_some((solution.joints, true))
+    collision_free(model, &solution.joints, table).then_some((solution.joints, true))
 }
 
-/// Where the grasp is: the object centre and yaw and the table top height, in `base_link`.
+/// Where the grasp is: the observed object and the arm's mount.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GraspTarget {
-    /// Object centre [m].
+    /// Object centre in `base_link` [m].
     pub object: [f64; 3],
-    /// Object yaw about base z [rad].
+    /// Object yaw about the world vertical, relative to the base's heading [rad] (as observed).
     pub object_yaw: f64,
-    /// Table top height [m].
-    pub table_z: f64,
+    /// The base and the table frame (what "down" and "the table top" are in `base_link`).
+    pub mount: Mount,
 }
 
 /// Joint targets for a top-down grasp of `target` starting from `current`; `None` if no yaw
@@ -119,16 +118,18 @@ pub fn plan_grasp_joints(
     pre_grasp_height: f64,
     lift_height: f64,
 ) -> Option<GraspJoints> {
-    let table_z = target.table_z;
-    for yaw in candidate_yaws(target.object_yaw, tcp_yaw(model, current)) {
-        let poses = grasp_poses(target.object, yaw, pre_grasp_height, lift_height);
-        let Some((pre_grasp, qp1)) = solve(model, &poses.pre_grasp, current, table_z) else {
+    let mount = &target.mount;
+    let table = &mount.table_in_base;
+    let object = mount.table_in_base.inverse().transform_point(target.object);
+    for yaw in candidate_yaws(target.object_yaw, tcp_yaw(model, mount, current)) {
+        let poses = grasp_poses(mount, object, yaw, pre_grasp_height, lift_height);
+        let Some((pre_grasp, qp1)) = solve(model, &poses.pre_grasp, current, table) else {
             continue;
         };
-        let Some((grasp, qp2)) = solve(model, &poses.grasp, &pre_grasp, table_z) else {
+        let Some((grasp, qp2)) = solve(model, &poses.grasp, &pre_grasp, table) else {
             continue;
         };
-        let Some((lift, qp3)) = solve(model, &poses.lift, &grasp, table_z) else {
+        let Some((lift, qp3)) = solve(model, &poses.lift, &grasp, table) else {
             continue;
         };
         // One branch for the whole grasp: the straight descent must not swing the elbow over.

@@ -105,12 +105,14 @@ fn planned_trajectories_stay_within_the_fr3_velocity_and_acceleration_limits() {
                 }
                 checked += 1;
             }
+            // The script never asks for the whole action range: the trajectories use
+            // `velocity_fraction` of it and the feedback term stays within the headroom, so no
+            // joint command is clipped (a clipped command would leave the plan behind).
+            for (i, a) in action.0[..6].iter().enumerate() {
+                assert!(a.abs() < 1.0, "joint {i} command saturated: {a}");
+            }
             let step = env.step(&action).unwrap();
             obs = step.obs;
-            // The commanded joint speed never exceeds the FR3 limit either.
-            for (i, v) in obs.joint_velocities.iter().enumerate() {
-                assert!(v.abs() <= model.joints[i].max_velocity + 1e-9);
-            }
             if step.terminated || step.truncated {
                 break;
             }

@@ -43,5 +43,11 @@ pub fn drive(env: &mut GraspEnv, target: [f64; 6], grip: f64, steps: usize) -> S
 
 /// Grasp and pre-grasp joints for the current object, nearest to the current joints.
 pub fn grasp_targets(env: &GraspEnv) -> ([f64; 6], [f64; 6]) {
-    top_down_grasp(env.model(), &env.object_in_base(), 0.0, &env.joints()).expect("graspable")
+    top_down_grasp(
+        env.model(),
+        env.mount(),
+        &env.object_in_base(),
+        &env.joints(),
+    )
+    .expect("graspable")
 }
