@@ -11,10 +11,12 @@
 //! - [`vec_env`], [`trajectory`]: parallel stepping with auto-reset; episode export.
 
 pub mod arm;
+pub mod bench;
 pub mod config;
 pub mod contacts;
 pub mod convert;
 pub mod curriculum;
+pub mod diagnostics;
 pub mod env;
 pub mod obs;
 pub mod policy;
