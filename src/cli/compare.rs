@@ -89,7 +89,8 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     if a.out.is_file() {
         bail!("--out {}: is a file, expected a folder", a.out.display());
     }
-    let learned = LearnedPolicy::load_all(&policy_paths)?;
+    let learned = LearnedPolicy::load_all(&policy_paths)
+        .context("loading the policy (pass --policy DIR to choose one)")?;
     let total = (spec.presets.len() * (1 + learned.len())) as u64 * u64::from(a.episodes);
     let bar = progress_bar(total, a.json, "compare");
     let output = run_comparison(&spec, &learned, &|event| match event {
