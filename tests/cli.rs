@@ -155,25 +155,55 @@ fn a_wrong_number_of_joints_is_a_usage_error() {
 }
 
 #[test]
-fn bench_env_json_reports_throughput_and_reset_times() {
-    let (v, code) = json(&["bench", "env", "--steps", "20", "--resets", "2", "--json"]);
-    assert_eq!(code, 0);
-    for key in [
-        "env_steps_per_s",
-        "env_steps_per_cpu_s",
-        "soft_reset_ms",
-        "hard_reset_ms",
-    ] {
-        let value = v[key]
+fn bench_env_json_follows_the_flags_and_the_preset_and_its_rates_agree_with_its_times() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-bench-env");
+    std::fs::create_dir_all(&dir).unwrap();
+    let preset = dir.join("ten_substeps.toml");
+    std::fs::write(&preset, "[physics]\nsubsteps = 10\n").unwrap();
+    let (v, code) = json(&[
+        "bench",
+        "env",
+        "--preset",
+        preset.to_str().unwrap(),
+        "--arm",
+        "multibody",
+        "--envs-per-thread",
+        "3",
+        "--steps",
+        "20",
+        "--resets",
+        "5",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{v}");
+    let f = |key: &str| {
+        v[key]
             .as_f64()
-            .unwrap_or_else(|| panic!("{key} missing: {v}"));
-        assert!(value.is_finite() && value > 0.0, "{key} = {value}");
-    }
+            .unwrap_or_else(|| panic!("{key} missing: {v}"))
+    };
+    assert_eq!(v["arm"], "multibody", "{v}");
+    assert_eq!((f("threads"), f("envs")), (1.0, 3.0), "{v}");
+    assert_eq!(f("env_steps"), 60.0, "1 thread × 3 envs × 20 steps");
     assert_eq!(
-        v["env_steps"].as_f64(),
-        Some(80.0),
-        "1 thread × 4 envs × 20 steps"
+        f("substeps"),
+        10.0,
+        "the preset's substeps, not the default 20"
     );
+    assert!(
+        (f("physics_steps_per_s") / f("env_steps_per_s") - 10.0).abs() < 1e-9,
+        "{v}"
+    );
+    assert!(
+        (f("env_steps_per_s") * f("wall_s") - 60.0).abs() < 1e-6,
+        "{v}"
+    );
+    assert!(
+        (f("env_steps_per_cpu_s") * f("cpu_s") - 60.0).abs() < 1e-6,
+        "{v}"
+    );
+    // A hard reset rebuilds the world, then does a soft reset: without the scheduler's
+    // interruptions (the fastest of each) it cannot be the faster one.
+    assert!(f("hard_reset_min_ms") > f("soft_reset_min_ms"), "{v}");
 }
 
 #[test]

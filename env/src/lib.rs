@@ -12,10 +12,12 @@
 //! [`config`] and [`validate`] for settings; [`vec_env`], [`trajectory`], [`policy`] for
 //! parallel stepping, episode export and evaluation.
 
+pub mod bench;
 pub mod config;
 pub mod contacts;
 pub mod convert;
 pub mod curriculum;
+pub mod diagnostics;
 pub mod env;
 pub mod mount;
 pub mod obs;

@@ -1,15 +1,24 @@
 //! The `Policy` trait shared by every controller (the scripted baseline, the PPO agent), and the
 //! evaluation loop that runs any policy on a list of scenarios the same way.
 
-use std::collections::BTreeMap;
-
-use serde::Serialize;
-
+use crate::config::ArmModelKind;
 use crate::env::{Action, EnvError, GraspEnv};
 use crate::obs::Observation;
 use crate::randomize::Scenario;
 use crate::task::Failure;
 use crate::trajectory::Trajectory;
+
+/// The result types, shared with the report crate through `fairgrasp-types` (one schema).
+pub use fairgrasp_types::{EpisodeResult, EvalReport, Outcome, wilson_interval};
+
+impl From<ArmModelKind> for fairgrasp_types::ArmSimulation {
+    fn from(kind: ArmModelKind) -> Self {
+        match kind {
+            ArmModelKind::Servo => Self::Servo,
+            ArmModelKind::Multibody => Self::Multibody,
+        }
+    }
+}
 
 /// A controller: observations in, actions out.
 pub trait Policy {
@@ -20,104 +29,6 @@ pub trait Policy {
     /// Set when the policy itself has given up (the baseline: no IK solution).
     fn gave_up(&self) -> Option<Outcome> {
         None
-    }
-}
-
-/// How an episode ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Outcome {
-    /// Lifted and held.
-    Success,
-    /// The gripper closed without both pads ever touching the object.
-    MissedGrasp,
-    /// The object was held and lifted, then slipped or dropped.
-    SlipOrDrop,
-    /// Arm or gripper hit the table or itself.
-    Collision,
-    /// No in-limit inverse-kinematics solution for a grasp pose.
-    IkFailure,
-    /// The object was pushed off the table.
-    ObjectOffTable,
-    /// The time limit passed without any of the above.
-    Timeout,
-    /// The physics state became non-finite.
-    PhysicsFault,
-}
-
-/// One evaluated episode.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct EpisodeResult {
-    pub seed: u64,
-    pub outcome: Outcome,
-    pub steps: usize,
-    pub episode_return: f64,
-    /// Object start position in `base_link` [m], for workspace maps.
-    pub object_xy: [f64; 2],
-}
-
-/// A 95 % Wilson score interval for `successes` out of `n`.
-pub fn wilson_interval(successes: usize, n: usize) -> (f64, f64) {
-    if n == 0 {
-        return (0.0, 1.0);
-    }
-    let (n, p, z) = (n as f64, successes as f64 / n as f64, 1.959_963_984_540_054);
-    let denominator = 1.0 + z * z / n;
-    let centre = (p + z * z / (2.0 * n)) / denominator;
-    let half = z * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt() / denominator;
-    ((centre - half).max(0.0), (centre + half).min(1.0))
-}
-
-/// Success rate, its interval, the failure breakdown and step counts over a scenario set.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct EvalReport {
-    pub episodes: usize,
-    pub successes: usize,
-    pub success_rate: f64,
-    pub ci_low: f64,
-    pub ci_high: f64,
-    pub collision_rate: f64,
-    /// Mean steps of the successful episodes (None without any).
-    pub mean_steps_to_success: Option<f64>,
-    pub mean_return: f64,
-    /// Episodes per outcome.
-    pub outcomes: BTreeMap<Outcome, usize>,
-    pub results: Vec<EpisodeResult>,
-}
-
-impl EvalReport {
-    /// Summarises episode results.
-    pub fn from_results(results: Vec<EpisodeResult>) -> Self {
-        let n = results.len();
-        let mut outcomes = BTreeMap::new();
-        for r in &results {
-            *outcomes.entry(r.outcome).or_insert(0) += 1;
-        }
-        let successes = outcomes.get(&Outcome::Success).copied().unwrap_or(0);
-        let (ci_low, ci_high) = wilson_interval(successes, n);
-        let success_steps: Vec<f64> = results
-            .iter()
-            .filter(|r| r.outcome == Outcome::Success)
-            .map(|r| r.steps as f64)
-            .collect();
-        let rate = |k: usize| if n == 0 { 0.0 } else { k as f64 / n as f64 };
-        Self {
-            episodes: n,
-            successes,
-            success_rate: rate(successes),
-            ci_low,
-            ci_high,
-            collision_rate: rate(outcomes.get(&Outcome::Collision).copied().unwrap_or(0)),
-            mean_steps_to_success: (!success_steps.is_empty())
-                .then(|| success_steps.iter().sum::<f64>() / success_steps.len() as f64),
-            mean_return: if n == 0 {
-                0.0
-            } else {
-                results.iter().map(|r| r.episode_return).sum::<f64>() / n as f64
-            },
-            outcomes,
-            results,
-        }
     }
 }
 
@@ -224,4 +135,21 @@ pub fn evaluate<P: Policy>(
         Ok(())
     })?;
     Ok(EvalReport::from_results(results))
+}
+
+/// Evaluates a fresh policy from `make` on the `n` scenarios that `seed` draws for `config` (the
+/// set every method meets for this seed), like [`evaluate`].
+pub fn evaluate_seeded<P: Policy>(
+    config: &crate::config::EnvConfig,
+    seed: u64,
+    n: usize,
+    threads: usize,
+    record: Option<&std::path::Path>,
+    make: &(dyn Fn() -> P + Sync),
+    progress: &(dyn Fn() + Sync),
+) -> Result<EvalReport, EnvError> {
+    let env = GraspEnv::new(config.clone())?;
+    let scenarios =
+        crate::randomize::scenario_set(config, env.model(), env.base_in_world(), seed, n)?;
+    evaluate(config, &scenarios, threads, record, make, progress)
 }

@@ -1,7 +1,6 @@
 //! Episode recording: per step joints, TCP pose, object pose, action and reward, exported as
 //! CSV and JSON (written atomically: a temporary file, then a rename).
 
-use std::io::Write;
 use std::path::Path;
 
 use serde::Serialize;
@@ -172,18 +171,5 @@ fn scene_of(env: &GraspEnv, capsule_names: Vec<String>) -> TrajectoryScene {
     }
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
-/// crash never leaves a half-written file.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let tmp = path.with_extension(format!(
-        "{}.tmp{}",
-        path.extension().and_then(|e| e.to_str()).unwrap_or(""),
-        std::process::id()
-    ));
-    {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-    }
-    std::fs::rename(&tmp, path)
-}
+/// The one atomic file write, kept at this path for the crates that import it from here.
+pub use fairgrasp_types::write_atomic;

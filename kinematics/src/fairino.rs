@@ -1,7 +1,7 @@
 //! FAIRINO's published numbers for the FR3 and FR5, in one place.
 //!
-//! Source: `shared/reference/FR3.md` (FAIRINO's manuals, DH spreadsheet and ROS description,
-//! checked numerically). `assets/fr3.urdf` is written from the same numbers and a test checks
+//! Source: `docs/FR3.md` (FAIRINO's manual, DH sheet and ROS description, checked numerically;
+//! the page says which numbers fairgrasp added itself). `assets/fr3.urdf` is written from the same numbers and a test checks
 //! that the two agree.
 
 use std::f64::consts::FRAC_PI_2;
@@ -22,7 +22,7 @@ pub const LINK_NAMES: [&str; 7] = [
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 
-/// Manual soft limits and velocity limits (FR3.md "The same chain as URDF joints").
+/// Manual soft limits and velocity limits (docs/FR3.md, "Joint limits").
 fn fr3_joints() -> [JointSpec; 6] {
     let joint = |name, lower_deg: f64, upper_deg: f64, max_velocity| JointSpec {
         name,
@@ -212,8 +212,10 @@ pub fn fr3() -> ArmModel {
 
 /// The FAIRINO FR5: the FR3's structure with longer links.
 ///
-/// FR3.md publishes only its DH lengths, so the FR3's joint and velocity limits are used, and no
-/// mass properties or capsules are given.
+/// Only its DH lengths are published (docs/FR3.md), so the FR3's joint and velocity limits are
+/// used, and it has no mass properties or collision capsules: fitting capsules or inertias would
+/// need the FR5's meshes, which the sources do not include. It serves kinematics; a physics
+/// scene must refuse it ([`ArmModel::check_simulatable`] says what is missing).
 pub fn fr5() -> ArmModel {
     let gripper = parallel_gripper();
     ArmModel {

@@ -41,6 +41,31 @@ impl ArmKind {
     }
 }
 
+/// Data a physics simulation of the arm needs that the model lacks (the FR5: FAIRINO publishes
+/// only its DH lengths, see `docs/FR3.md`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MissingModelData {
+    /// The arm.
+    pub arm: ArmKind,
+    /// What is missing, e.g. `["collision capsules", "mass properties"]`.
+    pub missing: Vec<&'static str>,
+}
+
+impl std::fmt::Display for MissingModelData {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the {} model has no {} (the maker publishes none; see docs/FR3.md): it serves \
+             kinematics (fk, ik, frames) but cannot be simulated in the grasping environment; \
+             use the fr3",
+            self.arm.name().to_uppercase(),
+            self.missing.join(" and no ")
+        )
+    }
+}
+
+impl std::error::Error for MissingModelData {}
+
 /// One row of a standard (distal) DH table: `T_i = Rz(θ_i)·Tz(d)·Tx(a)·Rx(α)`, θ offset 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DhRow {
@@ -192,5 +217,82 @@ impl ArmModel {
     /// Height of the shoulder point (joint 2 axis) above `base_link` [m].
     pub fn shoulder_height(&self) -> f64 {
         self.dh[0].d
+    }
+
+    /// Does every link have its collision capsule, in link order (`capsules[i]` belongs to
+    /// `links[i]`, as a scene built from the model indexes them)?
+    pub fn has_collision_model(&self) -> bool {
+        self.capsules.len() == self.links.len()
+            && self
+                .capsules
+                .iter()
+                .zip(&self.links)
+                .all(|(c, l)| c.link == *l)
+    }
+
+    /// Does every link have its mass properties, in link order, with a positive mass?
+    pub fn has_mass_model(&self) -> bool {
+        self.inertials.len() == self.links.len()
+            && self
+                .inertials
+                .iter()
+                .zip(&self.links)
+                .all(|(m, l)| m.link == *l && m.mass > 0.0)
+    }
+
+    /// `Ok` when the model has everything a physics scene needs (capsules and masses for every
+    /// link); otherwise what is missing. An environment calls this before building a scene.
+    pub fn check_simulatable(&self) -> Result<(), MissingModelData> {
+        let mut missing = Vec::new();
+        if !self.has_collision_model() {
+            missing.push("collision capsules");
+        }
+        if !self.has_mass_model() {
+            missing.push("mass properties");
+        }
+        if missing.is_empty() {
+            Ok(())
+        } else {
+            Err(MissingModelData {
+                arm: self.kind,
+                missing,
+            })
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fr3_is_simulatable_and_the_fr5_is_refused_with_what_it_lacks() {
+        assert_eq!(ArmKind::Fr3.model().check_simulatable(), Ok(()));
+        let e = ArmKind::Fr5.model().check_simulatable().unwrap_err();
+        assert_eq!(e.missing, vec!["collision capsules", "mass properties"]);
+        let text = e.to_string();
+        assert!(
+            text.starts_with("the FR5 model has no collision capsules and no mass properties"),
+            "{text}"
+        );
+        assert!(
+            text.contains("docs/FR3.md") && text.contains("use the fr3"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn capsules_or_masses_out_of_link_order_do_not_count_as_a_model() {
+        let mut m = ArmKind::Fr3.model();
+        m.capsules.swap(1, 2);
+        assert!(!m.has_collision_model());
+        assert!(m.has_mass_model());
+        let mut m = ArmKind::Fr3.model();
+        m.inertials[3].mass = 0.0;
+        assert!(!m.has_mass_model());
+        assert_eq!(
+            m.check_simulatable().unwrap_err().missing,
+            vec!["mass properties"]
+        );
     }
 }

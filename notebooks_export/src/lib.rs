@@ -1,8 +1,9 @@
 //! fairgrasp-report: turns run folders (`fairgrasp train`) and comparison folders
 //! (`fairgrasp compare`) into PNG charts, GIF replays, `report.md` and a Jupyter notebook.
 //!
-//! It reads files only (CSV, JSON, TOML text) and depends on no other fairgrasp crate, so the
-//! charts can be redrawn from a colleague's folders without the simulator.
+//! It reads files only (CSV, JSON, TOML text) and of the fairgrasp crates depends only on the
+//! result schema (`fairgrasp-types`), so the charts can be redrawn from a colleague's folders
+//! without the simulator.
 //!
 //! - [`compare`]: the comparison's data (`compare.json`), `compare.csv`, text and Markdown tables.
 //! - [`runs`]: a training run folder and its `metrics.csv`.
@@ -24,7 +25,7 @@ pub mod report;
 pub mod runs;
 pub mod trajectory;
 
-pub use compare::{Comparison, EpisodeRecord, MethodResult, OUTCOMES, RecordedEpisode};
-pub use error::{ReportError, write_atomic};
+pub use compare::{Comparison, EpisodeResult, MethodResult, Outcome, RecordedEpisode};
+pub use error::ReportError;
 pub use report::{Input, build_report};
 pub use runs::RunFolder;

@@ -7,7 +7,7 @@ use std::sync::Once;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
-use crate::error::{ReportError, write_atomic};
+use crate::error::{ReportError, write_file};
 
 /// The font family every chart uses (DejaVu Sans, embedded).
 pub const FONT: &str = "sans-serif";
@@ -39,7 +39,7 @@ pub fn render_png(
         draw(&root).map_err(|e| ReportError::chart(path, e))?;
         root.present().map_err(|e| ReportError::chart(path, e))?;
     }
-    write_atomic(
+    write_file(
         path,
         &encode_png(&rgb, width, height).map_err(|e| ReportError::chart(path, e))?,
     )
@@ -157,7 +157,7 @@ pub fn render_gif(
             encoder.write_frame(&frame).map_err(|e| err(&e))?;
         }
     }
-    write_atomic(path, &bytes)
+    write_file(path, &bytes)
 }
 
 /// Turns any displayable drawing error into the `String` the render closures return.

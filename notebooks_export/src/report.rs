@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use crate::charts::{curves, episode, replay, success, workspace};
 use crate::compare::{Comparison, markdown_table};
 use crate::document::{Document, toml_block};
-use crate::error::{ReportError, write_atomic};
+use crate::error::{ReportError, write_file};
 use crate::notebook::to_notebook;
 use crate::runs::RunFolder;
 use crate::trajectory::EpisodeTrajectory;
@@ -34,7 +34,7 @@ impl Input {
             });
         }
         if path.join("compare.json").is_file() {
-            let comparison = Comparison::load(&path.join("compare.json"))?;
+            let comparison = crate::compare::load(&path.join("compare.json"))?;
             let trajectories = comparison
                 .recorded
                 .iter()
@@ -58,18 +58,8 @@ impl Input {
     }
 }
 
-/// A file name fragment: lowercase letters, digits and `_`.
-pub fn slug(s: &str) -> String {
-    let mut out = String::new();
-    for c in s.chars() {
-        if c.is_ascii_alphanumeric() {
-            out.push(c.to_ascii_lowercase());
-        } else if !out.ends_with('_') {
-            out.push('_');
-        }
-    }
-    out.trim_matches('_').to_string()
-}
+/// File name fragments of methods and presets, the same as the comparison's recorded episodes.
+pub use fairgrasp_types::fs::slug;
 
 /// Writes charts, `report.md` and `report.ipynb` for `inputs` into `out`; returns every file
 /// written. All inputs are loaded (and refused if broken) before anything is written.
@@ -142,11 +132,11 @@ pub fn build_report(inputs: &[PathBuf], out: &Path) -> Result<Vec<PathBuf>, Repo
         ));
     }
     let md = out.join("report.md");
-    write_atomic(&md, doc.to_markdown().as_bytes())?;
+    write_file(&md, doc.to_markdown().as_bytes())?;
     written.push(md);
     let nb = out.join("report.ipynb");
     let json = serde_json::to_string_pretty(&to_notebook(&doc, out)?).expect("JSON serialises");
-    write_atomic(&nb, json.as_bytes())?;
+    write_file(&nb, json.as_bytes())?;
     written.push(nb);
     Ok(written)
 }
@@ -159,7 +149,7 @@ fn comparison_section(
     prefix: &str,
     written: &mut Vec<PathBuf>,
 ) -> Result<(), ReportError> {
-    let episodes = c.results.first().map_or(0, |r| r.episodes);
+    let episodes = c.results.first().map_or(0, |r| r.report.episodes);
     doc.markdown(format!(
         "## Comparison: {} on {}\n\nEach method ran on the *same* {episodes} seeded scenarios \
          per preset (cube position, yaw, friction, mass, joint noise drawn from the scenario \

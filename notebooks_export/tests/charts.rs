@@ -5,7 +5,7 @@ mod common;
 use common::{Image, temp_dir, trajectory_json, write_comparison, write_run};
 use fairgrasp_report::charts::{curves, episode, replay, success, workspace};
 use fairgrasp_report::trajectory::EpisodeTrajectory;
-use fairgrasp_report::{Comparison, RunFolder};
+use fairgrasp_report::{Comparison, Outcome, RunFolder};
 
 /// The PNG has `size`, real contrast, and dark (text) pixels in its title band `0..title_rows`.
 fn assert_chart(path: &std::path::Path, size: (u32, u32), title_rows: u32) {
@@ -47,8 +47,8 @@ fn workspace_map_colours_failures_where_they_started() {
     // success green.
     c.results
         .retain(|r| r.preset == "hard" && r.method == "scripted baseline");
-    for e in &mut c.results[0].results {
-        e.outcome = "collision".into();
+    for e in &mut c.results[0].report.results {
+        e.outcome = Outcome::Collision;
     }
     workspace::workspace_map(&c, "hard", &dir.join("ws.png")).unwrap();
     let img = Image::read_png(&dir.join("ws.png"));

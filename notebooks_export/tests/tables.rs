@@ -3,7 +3,7 @@
 mod common;
 
 use common::{method_result, temp_dir, write_comparison, write_run};
-use fairgrasp_report::compare::{self, Comparison, OUTCOMES};
+use fairgrasp_report::compare::{self, Comparison, Outcome};
 use fairgrasp_report::{Input, ReportError, RunFolder};
 
 /// Splits a CSV line (fields here hold no quotes except around commas).
@@ -34,7 +34,7 @@ fn csv_json_and_text_table_agree() {
     );
     let lines: Vec<&str> = csv.lines().collect();
     let header = fields(lines[0]);
-    assert_eq!(header.len(), 12 + OUTCOMES.len());
+    assert_eq!(header.len(), 12 + Outcome::ALL.len());
     assert_eq!(lines.len(), 1 + c.results.len());
     let table = compare::text_table(&c);
     for (line, r) in lines[1..].iter().zip(&c.results) {
@@ -43,12 +43,15 @@ fn csv_json_and_text_table_agree() {
         let col = |name: &str| &row[header.iter().position(|h| h == name).unwrap()];
         assert_eq!(col("method"), &r.method);
         assert_eq!(col("preset"), &r.preset);
-        assert_eq!(col("success_rate").parse::<f64>().unwrap(), r.success_rate);
-        assert_eq!(col("ci_low").parse::<f64>().unwrap(), r.ci_low);
-        for o in OUTCOMES {
+        assert_eq!(
+            col("success_rate").parse::<f64>().unwrap(),
+            r.report.success_rate
+        );
+        assert_eq!(col("ci_low").parse::<f64>().unwrap(), r.report.ci_low);
+        for &o in Outcome::ALL {
             assert_eq!(
-                col(o).parse::<usize>().unwrap(),
-                r.outcomes.get(o).copied().unwrap_or(0)
+                col(o.as_str()).parse::<usize>().unwrap(),
+                r.report.outcomes.get(&o).copied().unwrap_or(0)
             );
         }
         // The printed line for this method and preset carries the same rounded numbers.
@@ -77,8 +80,7 @@ fn csv_json_and_text_table_agree() {
 
 #[test]
 fn inconsistent_comparisons_are_refused() {
-    let mut r = method_result("baseline", "seed", 10, 7, 0);
-    r.outcomes.insert("teleported".into(), 0);
+    let r = method_result("baseline", "seed", 10, 7, 0);
     let c = Comparison {
         command: String::new(),
         presets: vec!["seed".into()],
@@ -88,23 +90,26 @@ fn inconsistent_comparisons_are_refused() {
         recorded: vec![],
         results: vec![r.clone()],
     };
+    assert_eq!(c.check(), Ok(()));
+    let dir = temp_dir("tables-bad-json");
+    let teleported = c.to_json().replace("\"collision\"", "\"teleported\"");
+    std::fs::write(dir.join("compare.json"), teleported).unwrap();
+    let e = compare::load(&dir.join("compare.json"))
+        .unwrap_err()
+        .to_string();
     assert!(
-        c.check()
-            .unwrap_err()
-            .contains("unknown outcome `teleported`")
+        e.contains("compare.json") && e.contains("unknown variant `teleported`"),
+        "{e}"
     );
     let mut wrong = c.clone();
-    wrong.results[0] = method_result("baseline", "seed", 10, 7, 0);
-    wrong.results[0].successes = 8;
-    assert!(wrong.check().unwrap_err().contains("success_rate"));
+    wrong.results[0].report.successes = 8;
+    assert!(wrong.check().unwrap_err().0.contains("success_rate"));
     let mut short = c.clone();
-    short.results[0] = method_result("baseline", "seed", 10, 7, 0);
-    short.results[0].results.pop();
-    assert!(short.check().unwrap_err().contains("9 episode records"));
+    short.results[0].report.results.pop();
+    assert!(short.check().unwrap_err().0.contains("9 episode records"));
 
-    let dir = temp_dir("tables-bad-json");
     std::fs::write(dir.join("compare.json"), "{\"presets\": 3}").unwrap();
-    let e = Comparison::load(&dir.join("compare.json"))
+    let e = compare::load(&dir.join("compare.json"))
         .unwrap_err()
         .to_string();
     assert!(

@@ -1,16 +1,18 @@
 //! A model as a deterministic policy, and its evaluation on a fixed scenario set.
 
 use burn::tensor::Device;
-use fairgrasp_env::policy::{EvalReport, evaluate};
-use fairgrasp_env::randomize::scenario_set;
-use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_env::EnvConfig;
+use fairgrasp_env::policy::{EvalReport, evaluate_seeded};
 
 use crate::agent::GraspAgent;
 use crate::checkpoint::CheckpointMeta;
 use crate::model::ActorCritic;
 use crate::train::{TrainConfig, TrainError};
 
-/// Evaluates a model deterministically on `n` scenarios of the run's preset (seed 1 000 000).
+/// Seed of the scenario set a training run is evaluated on; training scenarios never use it.
+pub const EVAL_SEED: u64 = 1_000_000;
+
+/// Evaluates a model deterministically on `n` scenarios of the run's preset (seed [`EVAL_SEED`]).
 pub fn evaluate_model(
     config: &TrainConfig,
     meta: &CheckpointMeta,
@@ -20,13 +22,11 @@ pub fn evaluate_model(
     let env_config = config
         .env_config()
         .map_err(|e| TrainError::Config(e.to_string()))?;
-    let env = GraspEnv::new(env_config.clone())?;
-    let scenarios = scenario_set(&env_config, env.model(), env.base_in_world(), 1_000_000, n)
-        .map_err(|e| TrainError::Config(e.to_string()))?;
     let make = || agent_policy(meta, model, &env_config);
-    Ok(evaluate(
+    Ok(evaluate_seeded(
         &env_config,
-        &scenarios,
+        EVAL_SEED,
+        n,
         config.threads,
         None,
         &make,

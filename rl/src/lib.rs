@@ -8,6 +8,7 @@
 
 pub mod agent;
 pub mod checkpoint;
+pub mod compare;
 pub mod evaluate;
 pub mod gae;
 pub mod grasp_env;
@@ -16,5 +17,6 @@ pub mod normalizer;
 pub mod point_mass;
 pub mod ppo;
 pub mod ppo_config;
+pub mod shipped;
 pub mod train;
 pub mod vec_api;

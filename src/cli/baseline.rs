@@ -5,13 +5,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
-use fairgrasp_env::policy::{EvalReport, Policy, evaluate};
+use fairgrasp_env::policy::{EvalReport, Policy, evaluate_seeded};
 use fairgrasp_env::presets::{self, PRESETS};
-use fairgrasp_env::randomize::scenario_set;
-use fairgrasp_env::{ArmModelKind, EnvConfig, GraspEnv};
+use fairgrasp_env::{ArmModelKind, EnvConfig};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
-use serde_json::json;
 
 /// Arm simulation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -28,6 +27,12 @@ impl From<ArmArg> for ArmModelKind {
             ArmArg::Servo => ArmModelKind::Servo,
             ArmArg::Multibody => ArmModelKind::Multibody,
         }
+    }
+}
+
+impl From<ArmArg> for ArmSimulation {
+    fn from(a: ArmArg) -> Self {
+        ArmModelKind::from(a).into()
     }
 }
 
@@ -79,21 +84,14 @@ pub fn evaluate_and_print<P: Policy>(
     extra: serde_json::Value,
 ) -> anyhow::Result<ExitCode> {
     let config = preset_config(&a.preset, a.arm)?;
-    let env = GraspEnv::new(config.clone())?;
-    let scenarios = scenario_set(
-        &config,
-        env.model(),
-        env.base_in_world(),
-        a.seed,
-        a.episodes as usize,
-    )?;
     let threads = a
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let bar = progress_bar(scenarios.len() as u64, a.json, method);
-    let report = evaluate(
+    let bar = progress_bar(u64::from(a.episodes), a.json, method);
+    let report = evaluate_seeded(
         &config,
-        &scenarios,
+        a.seed,
+        a.episodes as usize,
         threads,
         a.record.as_deref(),
         &|| make(&config),
@@ -101,7 +99,7 @@ pub fn evaluate_and_print<P: Policy>(
     )?;
     bar.finish_and_clear();
     if a.json {
-        let mut v = report_json(method, &a.preset, a.arm, a.seed, &report);
+        let mut v = report_json(method, &a.preset, a.arm, a.seed, &report)?;
         if let (Some(v), serde_json::Value::Object(extra)) = (v.as_object_mut(), extra) {
             v.extend(extra);
         }
@@ -140,26 +138,29 @@ pub fn progress_bar(len: u64, json: bool, label: &str) -> ProgressBar {
     bar
 }
 
-/// The report as the one JSON object the CLI prints.
+/// The report as the one JSON object the CLI prints: a [`MethodResult`], as in compare.json.
 pub fn report_json(
     method: &str,
     preset: &str,
     arm: ArmArg,
     seed: u64,
     r: &EvalReport,
-) -> serde_json::Value {
-    json!({
-        "method": method, "preset": preset, "arm": format!("{arm:?}").to_lowercase(), "seed": seed,
-        "episodes": r.episodes, "success_rate": r.success_rate, "ci_low": r.ci_low, "ci_high": r.ci_high,
-        "collision_rate": r.collision_rate, "mean_steps_to_success": r.mean_steps_to_success,
-        "mean_return": r.mean_return, "outcomes": r.outcomes, "results": r.results,
-    })
+) -> anyhow::Result<serde_json::Value> {
+    Ok(serde_json::to_value(MethodResult {
+        method: method.to_string(),
+        preset: preset.to_string(),
+        arm: arm.into(),
+        seed,
+        policy: None,
+        report: r.clone(),
+    })?)
 }
 
 /// The report as text.
 pub fn print_report(method: &str, preset: &str, arm: ArmArg, seed: u64, r: &EvalReport) {
     println!(
-        "{method} on preset `{preset}` ({arm:?} arm), {} episodes from seed {seed}",
+        "{method} on preset `{preset}` ({} arm), {} episodes from seed {seed}",
+        ArmSimulation::from(arm),
         r.episodes
     );
     println!(
@@ -174,19 +175,7 @@ pub fn print_report(method: &str, preset: &str, arm: ArmArg, seed: u64, r: &Eval
     }
     println!("  collision rate        {:5.1} %", 100.0 * r.collision_rate);
     println!("  mean return           {:7.3}", r.mean_return);
-    let breakdown: Vec<String> = r
-        .outcomes
-        .iter()
-        .map(|(o, n)| {
-            format!(
-                "{} {n}",
-                serde_json::to_value(o)
-                    .ok()
-                    .and_then(|v| v.as_str().map(String::from))
-                    .unwrap_or_default()
-            )
-        })
-        .collect();
+    let breakdown: Vec<String> = r.outcomes.iter().map(|(o, n)| format!("{o} {n}")).collect();
     println!("  outcomes              {}", breakdown.join(", "));
 }
 

@@ -1,14 +1,13 @@
-//! `fairgrasp bench env`: environment throughput and reset times.
+//! `fairgrasp bench env` (the measurement is `fairgrasp_env::bench`) and `fairgrasp bench ppo`.
 
 use std::process::ExitCode;
-use std::time::Instant;
 
-use clap::{Args, Subcommand, ValueEnum};
-use fairgrasp_env::vec_env::VecEnv;
-use fairgrasp_env::{Action, ArmModelKind, EnvConfig, GraspEnv};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use serde_json::json;
+use clap::{Args, Subcommand};
+use fairgrasp_env::EnvConfig;
+use fairgrasp_env::bench::{EnvBenchSpec, bench_env};
+use fairgrasp_types::ArmSimulation;
+
+use super::baseline::ArmArg;
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
@@ -32,14 +31,6 @@ pub struct PpoBenchArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum ArmArg {
-    /// Kinematic links placed by FK (the default).
-    Servo,
-    /// rapier multibody with joint motors.
-    Multibody,
 }
 
 #[derive(Args, Debug)]
@@ -68,18 +59,6 @@ pub struct EnvBenchArgs {
     json: bool,
 }
 
-/// CPU time used by this process so far [s] (user + system, all threads).
-fn cpu_seconds() -> f64 {
-    let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
-    // SAFETY: getrusage writes a complete rusage into the pointer it is given.
-    let usage = unsafe {
-        libc::getrusage(libc::RUSAGE_SELF, usage.as_mut_ptr());
-        usage.assume_init()
-    };
-    let tv = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
-    tv(usage.ru_utime) + tv(usage.ru_stime)
-}
-
 pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
     match &a.what {
         BenchWhat::Env(a) => run_env(a),
@@ -97,79 +76,44 @@ fn run_env(a: &EnvBenchArgs) -> anyhow::Result<ExitCode> {
             c
         }
     };
-    config.arm.model = match a.arm {
-        ArmArg::Servo => ArmModelKind::Servo,
-        ArmArg::Multibody => ArmModelKind::Multibody,
+    config.arm.model = a.arm.into();
+    let spec = EnvBenchSpec {
+        config,
+        threads: usize::from(a.threads),
+        envs_per_thread: usize::from(a.envs_per_thread),
+        steps: a.steps as usize,
+        resets: a.resets as usize,
     };
-
-    // Resets, on one env.
-    let mut env = GraspEnv::new(config.clone())?;
-    let t = Instant::now();
-    for seed in 0..a.resets as u64 {
-        env.reset(seed)?;
-    }
-    let soft_reset_ms = t.elapsed().as_secs_f64() * 1e3 / a.resets as f64;
-    let t = Instant::now();
-    for seed in 0..a.resets as u64 {
-        env.hard_reset(seed)?;
-    }
-    let hard_reset_ms = t.elapsed().as_secs_f64() * 1e3 / a.resets as f64;
-
-    // Throughput: random actions, auto-reset, one env per thread.
-    let n = a.threads as usize;
-    let per = a.envs_per_thread as usize;
-    let mut vec_env = VecEnv::new(&config, n * per, n, 0)?;
-    vec_env.reset()?;
-    let mut rng = ChaCha8Rng::seed_from_u64(0);
-    let actions: Vec<Vec<Action>> = (0..256)
-        .map(|_| {
-            (0..n * per)
-                .map(|_| Action(std::array::from_fn(|_| rng.random_range(-1.0..1.0))))
-                .collect()
-        })
-        .collect();
-    if !a.json {
-        eprintln!(
-            "stepping {} env(s) on {n} thread(s), {} steps each ({:?} arm) …",
-            n * per,
-            a.steps,
-            a.arm
-        );
-    }
-    let (cpu0, t) = (cpu_seconds(), Instant::now());
-    for k in 0..a.steps as usize {
-        vec_env.step(&actions[k % actions.len()])?;
-    }
-    let wall = t.elapsed().as_secs_f64();
-    let cpu = cpu_seconds() - cpu0;
-    let total = a.steps as f64 * (n * per) as f64;
-    let physics_per_step = config.physics.substeps as f64;
-    let out = json!({
-        "arm": format!("{:?}", a.arm).to_lowercase(),
-        "threads": n,
-        "envs": n * per,
-        "env_steps": total,
-        "env_steps_per_s": total / wall,
-        "env_steps_per_cpu_s": total / cpu.max(1e-9),
-        "physics_steps_per_s": total * physics_per_step / wall,
-        "soft_reset_ms": soft_reset_ms,
-        "hard_reset_ms": hard_reset_ms,
-    });
+    let arm = ArmSimulation::from(a.arm);
+    let announce = || {
+        if !a.json {
+            eprintln!(
+                "stepping {} env(s) on {} thread(s), {} steps each ({arm} arm) …",
+                spec.threads * spec.envs_per_thread,
+                spec.threads,
+                spec.steps
+            );
+        }
+    };
+    let r = bench_env(&spec, &announce)?;
     if a.json {
-        println!("{out}");
+        println!("{}", serde_json::to_value(&r)?);
     } else {
         println!(
-            "arm {:?}, {n} thread(s) × {per} env(s), {total} env steps of {} × {:.5} s",
-            a.arm, physics_per_step, config.physics.dt
+            "arm {}, {} thread(s) × {} env(s), {} env steps of {} × {:.5} s",
+            r.arm, r.threads, spec.envs_per_thread, r.env_steps, r.substeps, r.dt
         );
-        println!("  env steps per second     {:>10.0}", total / wall);
-        println!("  env steps per CPU-second {:>10.0}", total / cpu.max(1e-9));
+        println!("  env steps per second     {:>10.0}", r.env_steps_per_s);
+        println!("  env steps per CPU-second {:>10.0}", r.env_steps_per_cpu_s);
+        println!("  physics steps per second {:>10.0}", r.physics_steps_per_s);
         println!(
-            "  physics steps per second {:>10.0}",
-            total * physics_per_step / wall
+            "  soft reset               {:>10.3} ms (fastest {:.3} ms)",
+            r.soft_reset_ms, r.soft_reset_min_ms
         );
-        println!("  soft reset               {soft_reset_ms:>10.3} ms");
-        println!("  hard reset               {hard_reset_ms:>10.3} ms");
+        println!(
+            "  hard reset               {:>10.3} ms (fastest {:.3} ms)",
+            r.hard_reset_ms, r.hard_reset_min_ms
+        );
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -4,10 +4,8 @@
 use std::process::ExitCode;
 
 use clap::Args;
-use fairgrasp_env::contacts::{PairKind, TouchingPair};
-use fairgrasp_env::randomize::Scenario;
-use fairgrasp_env::{Action, GraspEnv};
-use serde_json::json;
+use fairgrasp_env::diagnostics::diagnose_scene;
+use fairgrasp_types::ArmSimulation;
 
 use super::baseline::{ArmArg, preset_config};
 
@@ -30,93 +28,24 @@ pub struct SceneArgs {
     json: bool,
 }
 
-/// The contacts after resetting to `scenario` and one step that holds the arm still.
-/// Also returns how far the object is from where it was spawned, on the table plane [m] (a spawn
-/// overlap pushes it away).
-fn contacts_at_start(
-    env: &mut GraspEnv,
-    scenario: &Scenario,
-) -> anyhow::Result<(Vec<TouchingPair>, f64)> {
-    env.reset_to(scenario);
-    env.step(&Action::hold_open())?;
-    let after = env.object_in_base().xyz();
-    let [x, y] = scenario.object_xy;
-    let moved = (after[0] - x).hypot(after[1] - y);
-    Ok((env.touching_pairs(), moved))
-}
-
-/// The scenario of `seed`, or the config's unchecked one and the reason it was refused.
-fn scenario_or_refusal(env: &GraspEnv, seed: u64) -> (Scenario, Option<String>) {
-    match Scenario::sample(env.config(), env.model(), env.base_in_world(), seed) {
-        Ok(s) => (s, None),
-        Err(e) => (Scenario::unchecked(env.config(), seed), Some(e.to_string())),
-    }
-}
-
-fn kind_text(p: &TouchingPair) -> &'static str {
-    match p.kind {
-        PairKind::Collision => "COLLISION (counted)",
-        PairKind::Object if p.a.is_robot() || p.b.is_robot() => "object touches the robot at spawn",
-        PairKind::Object => "resting contact (not a collision)",
-        PairKind::Ignored => "ignored pair",
-        PairKind::Scene => "scene contact",
-    }
-}
-
-/// A start is bad when something counts as a collision or the object spawned touching the robot.
-fn is_bad(p: &TouchingPair) -> bool {
-    p.kind == PairKind::Collision
-        || (p.kind == PairKind::Object && (p.a.is_robot() || p.b.is_robot()))
-}
-
 pub fn run(a: &SceneArgs) -> anyhow::Result<ExitCode> {
     let config = preset_config(&a.preset, a.arm)?;
-    let mut env = GraspEnv::new(config.clone())?;
-    let model = env.model().clone();
-    let (scenario, refusal) = scenario_or_refusal(&env, a.seed);
-    let (pairs, moved) = contacts_at_start(&mut env, &scenario)?;
-    let object = env.object_in_base().xyz();
-    // Capsule pairs of the kinematic model that overlap at the home pose.
-    let capsules = model.placed_capsules(&config.arm.home_joints);
-    let mut overlaps = Vec::new();
-    for (i, c) in capsules.iter().enumerate() {
-        for d in &capsules[i + 1..] {
-            let gap = fairgrasp_kinematics::collision::segment_distance(c.a, c.b, d.a, d.b)
-                - c.radius
-                - d.radius;
-            if gap < 0.0 {
-                overlaps.push((c.name, d.name, gap, model.collision_ignored(c.name, d.name)));
-            }
-        }
-    }
-    let mut bad_starts = Vec::new();
-    for seed in 0..a.seeds {
-        let (scenario, refused) = scenario_or_refusal(&env, seed);
-        if refused.is_some() || contacts_at_start(&mut env, &scenario)?.0.iter().any(is_bad) {
-            bad_starts.push(seed);
-        }
-    }
-    let name = |p: &TouchingPair| (p.a.name(&model), p.b.name(&model));
-    let bad_now = refusal.is_some() || pairs.iter().any(is_bad);
+    let d = diagnose_scene(&config, a.seed, a.seeds)?;
+    let bad_now = d.start_is_bad();
     if a.json {
-        let v = json!({
-            "preset": a.preset, "seed": a.seed, "refused": refusal,
-            "object_xyz_base": object, "object_pushed_m": moved,
-            "contacts": pairs.iter().map(|p| json!({
-                "a": name(p).0, "b": name(p).1, "distance_m": p.distance, "verdict": kind_text(p),
-            })).collect::<Vec<_>>(),
-            "capsule_overlaps_at_home": overlaps.iter().map(|(x, y, g, ignored)| json!({
-                "a": x, "b": y, "overlap_m": -g, "ignored": ignored,
-            })).collect::<Vec<_>>(),
-            "seeds_checked": a.seeds, "bad_starts": bad_starts,
-        });
+        let mut v = serde_json::to_value(&d)?;
+        if let Some(v) = v.as_object_mut() {
+            v.insert("preset".into(), a.preset.clone().into());
+        }
         println!("{v}");
     } else {
         let s = &config.scene;
         let p = &config.physics;
         println!(
-            "Scene of `{}` ({:?} arm), reset seed {}",
-            a.preset, a.arm, a.seed
+            "Scene of `{}` ({} arm), reset seed {}",
+            a.preset,
+            ArmSimulation::from(a.arm),
+            a.seed
         );
         println!(
             "  table    top {:.3} m above the floor, {:.2} × {:.2} m, friction {}",
@@ -124,13 +53,18 @@ pub fn run(a: &SceneArgs) -> anyhow::Result<ExitCode> {
         );
         println!(
             "  cube     {:.3} m, {:.3} kg, friction {} (before randomisation), at ({:.3}, {:.3}, {:.3}) m in base_link",
-            s.cube_size, s.cube_mass, s.cube_friction, object[0], object[1], object[2]
+            s.cube_size,
+            s.cube_mass,
+            s.cube_friction,
+            d.object_xyz_base[0],
+            d.object_xyz_base[1],
+            d.object_xyz_base[2]
         );
         println!(
             "  gripper  {} N squeeze per finger, pad friction {}, opening 0–{:.0} mm",
             config.gripper.force,
             config.gripper.pad_friction,
-            1e3 * model.gripper.opening(0.0)
+            1e3 * d.max_opening_m
         );
         println!(
             "  physics  dt {:.5} s × {} substeps = {:.4} s per env step, {} solver iterations",
@@ -139,49 +73,55 @@ pub fn run(a: &SceneArgs) -> anyhow::Result<ExitCode> {
             p.dt * p.substeps as f64,
             p.solver_iterations
         );
-        if let Some(why) = &refusal {
+        if let Some(why) = &d.refused {
             println!("\nfairgrasp refuses this start at reset: {why}");
             println!("Shown anyway, forced to the config's own cube position:");
         }
         println!("\nContacts after the reset and one step holding still (rapier narrow phase):");
-        if pairs.is_empty() {
+        if d.contacts.is_empty() {
             println!("  none");
         }
-        for p in &pairs {
-            let (x, y) = name(p);
+        for c in &d.contacts {
             println!(
-                "  {x:>16} – {y:<16} {:7.2} mm  {}",
-                1e3 * p.distance,
-                kind_text(p)
+                "  {:>16} – {:<16} {:7.2} mm  {}",
+                c.a,
+                c.b,
+                1e3 * c.distance_m,
+                c.verdict
             );
         }
         println!(
             "  The cube is {:.2} mm from where it was spawned (resting: ~0; spawned overlapping: pushed out).",
-            1e3 * moved
+            1e3 * d.object_pushed_m
         );
         println!(
             "  Never computed (collision groups): the base on its table, adjacent links, the \
              gripper's own parts."
         );
         println!("\nCapsules of the kinematic model overlapping at the home pose:");
-        for (x, y, gap, ignored) in &overlaps {
-            let verdict = if *ignored {
-                "ignored: adjacent or listed in FR3.md"
+        for o in &d.capsule_overlaps_at_home {
+            let verdict = if o.ignored {
+                "ignored: adjacent, or a pair the arm model ignores (docs/FR3.md)"
             } else {
                 "COUNTED"
             };
-            println!("  {x:>16} – {y:<16} {:7.1} mm  {verdict}", 1e3 * gap);
+            println!(
+                "  {:>16} – {:<16} {:5.1} mm overlap  {verdict}",
+                o.a,
+                o.b,
+                1e3 * o.overlap_m
+            );
         }
         if a.seeds > 0 {
             println!(
                 "\n{} of {} resets (seeds 0–{}) start in a collision or with the cube touching the robot{}",
-                bad_starts.len(),
+                d.bad_starts.len(),
                 a.seeds,
                 a.seeds - 1,
-                if bad_starts.is_empty() {
+                if d.bad_starts.is_empty() {
                     String::new()
                 } else {
-                    format!(": seeds {:?}", &bad_starts[..bad_starts.len().min(10)])
+                    format!(": seeds {:?}", &d.bad_starts[..d.bad_starts.len().min(10)])
                 }
             );
         }
@@ -192,7 +132,7 @@ pub fn run(a: &SceneArgs) -> anyhow::Result<ExitCode> {
             );
         }
     }
-    Ok(if bad_now || !bad_starts.is_empty() {
+    Ok(if bad_now || !d.bad_starts.is_empty() {
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS

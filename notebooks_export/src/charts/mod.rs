@@ -10,6 +10,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use crate::raster::{FONT, de};
+use fairgrasp_types::Outcome;
 
 /// Every chart here: f64 × f64 Cartesian axes on the bitmap backend.
 pub(crate) type Chart<'a, 'b> =
@@ -75,16 +76,16 @@ pub fn series_color(i: usize) -> RGBColor {
 }
 
 /// The colour of an episode outcome in workspace maps.
-pub fn outcome_color(outcome: &str) -> RGBColor {
+pub fn outcome_color(outcome: Outcome) -> RGBColor {
     match outcome {
-        "success" => RGBColor(89, 161, 79),
-        "missed_grasp" => RGBColor(242, 142, 43),
-        "slip_or_drop" => RGBColor(176, 122, 161),
-        "collision" => RGBColor(225, 87, 89),
-        "ik_failure" => RGBColor(156, 117, 95),
-        "object_off_table" => RGBColor(118, 183, 178),
-        "timeout" => RGBColor(120, 120, 120),
-        _ => RGBColor(0, 0, 0),
+        Outcome::Success => RGBColor(89, 161, 79),
+        Outcome::MissedGrasp => RGBColor(242, 142, 43),
+        Outcome::SlipOrDrop => RGBColor(176, 122, 161),
+        Outcome::Collision => RGBColor(225, 87, 89),
+        Outcome::IkFailure => RGBColor(156, 117, 95),
+        Outcome::ObjectOffTable => RGBColor(118, 183, 178),
+        Outcome::Timeout => RGBColor(120, 120, 120),
+        Outcome::PhysicsFault => RGBColor(0, 0, 0),
     }
 }
 

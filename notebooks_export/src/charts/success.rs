@@ -19,7 +19,7 @@ pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
     let methods = &c.methods;
     let n = presets.len().max(1) as f64;
     let bar_width = 0.8 / methods.len().max(1) as f64;
-    let episodes = c.results.first().map_or(0, |r| r.episodes);
+    let episodes = c.results.first().map_or(0, |r| r.report.episodes);
     render_png(path, SIZE, |root| {
         let (head, body) = root.split_vertically(80);
         head.draw(&Text::new(
@@ -89,7 +89,7 @@ pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
                     Rectangle::new(
                         [
                             (left(*p) + 0.1 * bar_width, 0.0),
-                            (left(*p) + 0.9 * bar_width, 100.0 * r.success_rate),
+                            (left(*p) + 0.9 * bar_width, 100.0 * r.report.success_rate),
                         ],
                         color.filled(),
                     )
@@ -98,7 +98,7 @@ pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
             for (p, r) in &bars {
                 let x = left(*p) + 0.5 * bar_width;
                 let cap = 0.15 * bar_width;
-                let (lo, hi) = (100.0 * r.ci_low, 100.0 * r.ci_high);
+                let (lo, hi) = (100.0 * r.report.ci_low, 100.0 * r.report.ci_high);
                 let whisker = BLACK.stroke_width(2);
                 chart
                     .draw_series([
@@ -109,7 +109,7 @@ pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
                     .map_err(de)?;
                 chart
                     .draw_series([Text::new(
-                        format!("{:.1}", 100.0 * r.success_rate),
+                        format!("{:.1}", 100.0 * r.report.success_rate),
                         (x, hi + 1.5),
                         TextStyle::from((FONT, 14).into_font())
                             .pos(Pos::new(HPos::Center, VPos::Bottom)),

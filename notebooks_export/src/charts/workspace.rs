@@ -6,7 +6,7 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use super::{draw_axes, equal_aspect, min_max, outcome_color, padded};
-use crate::compare::{Comparison, OUTCOMES};
+use crate::compare::{Comparison, Outcome};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 
@@ -20,18 +20,18 @@ pub fn workspace_map(c: &Comparison, preset: &str, path: &Path) -> Result<(), Re
     let results: Vec<_> = c.results.iter().filter(|r| r.preset == preset).collect();
     let points = results
         .iter()
-        .flat_map(|r| r.results.iter().map(|e| e.object_xy));
+        .flat_map(|r| r.report.results.iter().map(|e| e.object_xy));
     let (x_lo, x_hi) = min_max(points.clone().map(|p| p[0]).chain([0.0]));
     let (y_lo, y_hi) = min_max(points.map(|p| p[1]).chain([0.0]));
     let (xr, yr) = (padded(x_lo, x_hi, 0.08, 0.1), padded(y_lo, y_hi, 0.08, 0.1));
     let width = PANEL_WIDTH * results.len().max(1) as u32;
-    let used: Vec<&str> = OUTCOMES
+    let used: Vec<Outcome> = Outcome::ALL
         .iter()
         .copied()
-        .filter(|o| {
+        .filter(|&o| {
             results
                 .iter()
-                .any(|r| r.results.iter().any(|e| e.outcome == *o))
+                .any(|r| r.report.results.iter().any(|e| e.outcome == o))
         })
         .collect();
     render_png(path, (width, HEIGHT), |root| {
@@ -45,7 +45,7 @@ pub fn workspace_map(c: &Comparison, preset: &str, path: &Path) -> Result<(), Re
             .map_err(de)?;
         // One legend for all panels, in the header.
         let mut x = 20;
-        for outcome in &used {
+        for &outcome in &used {
             let color = outcome_color(outcome);
             title
                 .draw(&Circle::new((x + 6, 54), 6, color.filled()))
@@ -54,7 +54,12 @@ pub fn workspace_map(c: &Comparison, preset: &str, path: &Path) -> Result<(), Re
                 .draw(&Text::new(outcome.to_string(), (x + 16, 46), (FONT, 14)))
                 .map_err(de)?;
             let style = TextStyle::from((FONT, 14).into_font());
-            x += 16 + title.estimate_text_size(outcome, &style).map_err(de)?.0 as i32 + 28;
+            x += 16
+                + title
+                    .estimate_text_size(outcome.as_str(), &style)
+                    .map_err(de)?
+                    .0 as i32
+                + 28;
         }
         let panels = body.split_evenly((1, results.len().max(1)));
         for (r, area) in results.iter().zip(&panels) {
@@ -62,7 +67,11 @@ pub fn workspace_map(c: &Comparison, preset: &str, path: &Path) -> Result<(), Re
             let (xr, yr) = equal_aspect(xr, yr, ((w - 70) as f64, (h - 90) as f64));
             let mut chart = ChartBuilder::on(area)
                 .caption(
-                    format!("{} — {:.1} % success", r.method, 100.0 * r.success_rate),
+                    format!(
+                        "{} — {:.1} % success",
+                        r.method,
+                        100.0 * r.report.success_rate
+                    ),
                     (FONT, 16),
                 )
                 .margin(8)
@@ -79,13 +88,19 @@ pub fn workspace_map(c: &Comparison, preset: &str, path: &Path) -> Result<(), Re
                 ])
                 .map_err(de)?;
             // Successes first, so failures are drawn on top and stay visible.
-            for outcome in &used {
+            for &outcome in &used {
                 let color = outcome_color(outcome);
                 chart
-                    .draw_series(r.results.iter().filter(|e| e.outcome == *outcome).map(|e| {
-                        let size = if *outcome == "success" { 3 } else { 5 };
-                        Circle::new((e.object_xy[0], e.object_xy[1]), size, color.filled())
-                    }))
+                    .draw_series(
+                        r.report
+                            .results
+                            .iter()
+                            .filter(|e| e.outcome == outcome)
+                            .map(|e| {
+                                let size = if outcome == Outcome::Success { 3 } else { 5 };
+                                Circle::new((e.object_xy[0], e.object_xy[1]), size, color.filled())
+                            }),
+                    )
                     .map_err(de)?;
             }
         }

@@ -4,7 +4,10 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use fairgrasp_report::compare::{Comparison, EpisodeRecord, MethodResult, RecordedEpisode, to_csv};
+use fairgrasp_report::compare::{
+    Comparison, EpisodeResult, MethodResult, Outcome, RecordedEpisode, to_csv,
+};
+use fairgrasp_types::{ArmSimulation, EvalReport};
 
 /// A fresh, empty folder under cargo's test temp dir.
 pub fn temp_dir(name: &str) -> PathBuf {
@@ -39,20 +42,20 @@ pub fn method_result(
     seed: u64,
 ) -> MethodResult {
     let mut rng = Rng::new(seed);
-    let results: Vec<EpisodeRecord> = (0..n)
+    let results: Vec<EpisodeResult> = (0..n)
         .map(|i| {
             let angle = (rng.next_f64() - 0.5) * std::f64::consts::PI;
             let r = 0.25 + 0.1 * rng.next_f64();
             let outcome = if i < successes {
-                "success"
+                Outcome::Success
             } else if i % 2 == 0 {
-                "missed_grasp"
+                Outcome::MissedGrasp
             } else {
-                "collision"
+                Outcome::Collision
             };
-            EpisodeRecord {
+            EpisodeResult {
                 seed: i as u64,
-                outcome: outcome.into(),
+                outcome,
                 steps: 60 + i % 20,
                 episode_return: if i < successes { 10.0 } else { -1.0 },
                 object_xy: [r * angle.cos(), r * angle.sin()],
@@ -61,25 +64,28 @@ pub fn method_result(
         .collect();
     let mut outcomes = BTreeMap::new();
     for r in &results {
-        *outcomes.entry(r.outcome.clone()).or_insert(0) += 1;
+        *outcomes.entry(r.outcome).or_insert(0) += 1;
     }
     let rate = successes as f64 / n as f64;
     MethodResult {
         method: method.into(),
         preset: preset.into(),
-        arm: "servo".into(),
+        arm: ArmSimulation::Servo,
         seed: 0,
-        episodes: n,
-        successes,
-        success_rate: rate,
-        ci_low: (rate - 0.08).max(0.0),
-        ci_high: (rate + 0.05).min(1.0),
-        collision_rate: outcomes.get("collision").copied().unwrap_or(0) as f64 / n as f64,
-        mean_steps_to_success: (successes > 0).then_some(69.5),
-        mean_return: results.iter().map(|r| r.episode_return).sum::<f64>() / n as f64,
-        outcomes,
         policy: None,
-        results,
+        report: EvalReport {
+            episodes: n,
+            successes,
+            success_rate: rate,
+            ci_low: (rate - 0.08).max(0.0),
+            ci_high: (rate + 0.05).min(1.0),
+            collision_rate: outcomes.get(&Outcome::Collision).copied().unwrap_or(0) as f64
+                / n as f64,
+            mean_steps_to_success: (successes > 0).then_some(69.5),
+            mean_return: results.iter().map(|r| r.episode_return).sum::<f64>() / n as f64,
+            outcomes,
+            results,
+        },
     }
 }
 
@@ -182,7 +188,7 @@ pub fn write_comparison(dir: &Path, run_folders: Vec<String>) -> Comparison {
             method: "scripted baseline".into(),
             preset: "hard".into(),
             episode: 0,
-            outcome: "success".into(),
+            outcome: Outcome::Success,
             trajectory: "episodes/baseline_hard_ep0.json".into(),
         }],
         results,

@@ -1,0 +1,124 @@
+//! The environment's experiments as library calls: scene diagnostics and the env benchmark.
+
+use fairgrasp_env::EnvConfig;
+use fairgrasp_env::bench::{EnvBenchError, EnvBenchSpec, bench_env};
+use fairgrasp_env::diagnostics::{ContactVerdict, capsule_overlaps, diagnose_scene};
+use fairgrasp_env::presets;
+use fairgrasp_kinematics::ArmKind;
+
+#[test]
+fn the_seed_preset_starts_clean_with_the_cube_resting_on_the_table() {
+    let config = presets::load("seed").unwrap();
+    let d = diagnose_scene(&config, 3, 8).unwrap();
+    assert!(!d.start_is_bad(), "{d:?}");
+    assert!(d.refused.is_none() && d.bad_starts.is_empty(), "{d:?}");
+    assert_eq!(d.seeds_checked, 8);
+    assert!(d.object_pushed_m < 1e-3, "{d:?}");
+    assert!(
+        d.contacts
+            .iter()
+            .any(|c| c.verdict == ContactVerdict::RestingContact
+                && [c.a.as_str(), c.b.as_str()].contains(&"cube")),
+        "{d:?}"
+    );
+    assert!(d.contacts.iter().all(|c| !c.verdict.is_bad()), "{d:?}");
+    // Neighbouring capsules overlap at home, and every such pair is one the model ignores.
+    assert!(!d.capsule_overlaps_at_home.is_empty());
+    assert!(
+        d.capsule_overlaps_at_home
+            .iter()
+            .all(|o| o.ignored && o.overlap_m > 0.0)
+    );
+}
+
+#[test]
+fn a_cube_spawned_inside_the_base_is_refused_and_every_seed_starts_broken() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/configs/pitfall1_spawn_touching.toml"
+    );
+    let config = EnvConfig::from_toml_file(path).unwrap();
+    let d = diagnose_scene(&config, 0, 3).unwrap();
+    assert!(d.start_is_bad());
+    assert!(
+        d.refused.as_deref().unwrap_or("").contains("cube_xy"),
+        "{d:?}"
+    );
+    assert!(d.object_pushed_m > 0.01, "{d:?}");
+    assert!(
+        d.contacts
+            .iter()
+            .any(|c| c.verdict == ContactVerdict::ObjectTouchesRobot),
+        "{d:?}"
+    );
+    assert_eq!(d.bad_starts, vec![0, 1, 2], "the cube is not randomised");
+}
+
+#[test]
+fn counted_capsule_overlaps_are_the_kinematics_self_collisions() {
+    let model = ArmKind::Fr3.model();
+    // A deterministic sweep over the joint ranges, some configurations self-colliding.
+    let mut found = 0;
+    for k in 0..400 {
+        let t = k as f64 * 0.61803;
+        let q = std::array::from_fn(|i| ((t * (i as f64 + 1.3)).sin()) * 2.6);
+        let hits = model.self_collisions(&q, 0.0);
+        let overlaps = capsule_overlaps(&model, &q);
+        let counted: Vec<_> = overlaps.iter().filter(|o| !o.ignored).collect();
+        assert_eq!(counted.len(), hits.len(), "q {q:?}");
+        for (o, (a, b, clearance)) in counted.iter().zip(&hits) {
+            assert_eq!((o.a, o.b, o.overlap_m), (*a, *b, -clearance));
+        }
+        assert!(
+            overlaps
+                .iter()
+                .filter(|o| o.ignored)
+                .all(|o| model.collision_ignored(o.a, o.b))
+        );
+        found += usize::from(!hits.is_empty());
+    }
+    assert!(
+        found > 0,
+        "no self-colliding configuration among the 400 tried"
+    );
+}
+
+fn small_spec(config: EnvConfig) -> EnvBenchSpec {
+    EnvBenchSpec {
+        config,
+        threads: 1,
+        envs_per_thread: 2,
+        steps: 15,
+        resets: 4,
+    }
+}
+
+#[test]
+fn bench_env_steps_what_it_was_asked_and_its_rates_agree_with_its_times() {
+    let mut config = presets::load("seed").unwrap();
+    config.physics.substeps = 10;
+    let called = std::cell::Cell::new(0);
+    let r = bench_env(&small_spec(config), &|| called.set(called.get() + 1)).unwrap();
+    assert_eq!(called.get(), 1);
+    assert_eq!((r.threads, r.envs, r.env_steps), (1, 2, 30.0));
+    assert_eq!(r.substeps, 10, "the config's substeps, not the default 20");
+    assert!((r.physics_steps_per_s / r.env_steps_per_s - 10.0).abs() < 1e-9);
+    assert!((r.env_steps_per_s * r.wall_s - r.env_steps).abs() < 1e-6 * r.env_steps);
+    assert!(
+        r.cpu_s > 0.0 && (r.env_steps_per_cpu_s * r.cpu_s - r.env_steps).abs() < 1e-6 * r.env_steps
+    );
+    // A hard reset rebuilds the world and then does a soft reset: without the scheduler's
+    // interruptions (the fastest of each) it cannot be the faster one.
+    assert!(r.hard_reset_min_ms > r.soft_reset_min_ms, "{r:?}");
+    assert!(r.soft_reset_min_ms <= r.soft_reset_ms && r.hard_reset_min_ms <= r.hard_reset_ms);
+    assert!(r.episodes_ended <= 30);
+}
+
+#[test]
+fn bench_env_refuses_zero_steps_with_a_message() {
+    let mut spec = small_spec(presets::load("fixed").unwrap());
+    spec.steps = 0;
+    let e = bench_env(&spec, &|| panic!("must not start stepping")).unwrap_err();
+    assert!(matches!(e, EnvBenchError::Empty { steps: 0, .. }));
+    assert!(e.to_string().contains("steps (0)"), "{e}");
+}

@@ -1,0 +1,349 @@
+//! The comparison experiment: the scripted baseline and learned policies on identical seeded
+//! scenario sets, one scenario recorded for every method, and the typed result that
+//! `compare.json` holds ([`fairgrasp_types::Comparison`]).
+//!
+//! The CLI (`fairgrasp compare`) parses arguments, calls [`run_comparison`], writes the files and
+//! prints; tests call [`run_comparison`] directly.
+
+use std::path::{Path, PathBuf};
+
+use burn::tensor::Device;
+use fairgrasp_env::policy::{EvalReport, Policy, evaluate, run_episode};
+use fairgrasp_env::randomize::{Scenario, scenario_set};
+use fairgrasp_env::trajectory::Trajectory;
+use fairgrasp_env::{EnvConfig, EnvError, GraspEnv};
+use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+use fairgrasp_types::fs::slug;
+use fairgrasp_types::{ArmSimulation, Comparison, MethodResult, RecordedEpisode};
+
+use crate::checkpoint::{self, CheckpointError, CheckpointMeta};
+use crate::evaluate::agent_policy;
+use crate::model::ActorCritic;
+
+/// The name of the scripted baseline in every comparison.
+pub const BASELINE: &str = "scripted baseline";
+
+/// Why a comparison could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum CompareError {
+    /// The request itself is wrong (a repeated preset, an episode index out of range, …).
+    #[error("{0}")]
+    Request(String),
+    #[error(transparent)]
+    Checkpoint(#[from] CheckpointError),
+    #[error("preset `{preset}`: {message}")]
+    Preset { preset: String, message: String },
+    #[error(transparent)]
+    Env(#[from] EnvError),
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+}
+
+/// A learned policy loaded from its checkpoint folder, with its name in the comparison.
+pub struct LearnedPolicy {
+    /// `"<mode> PPO: <run folder name>"`, made unique with a ` (n)` suffix.
+    pub name: String,
+    /// The checkpoint folder.
+    pub dir: PathBuf,
+    pub meta: CheckpointMeta,
+    pub model: ActorCritic,
+}
+
+impl LearnedPolicy {
+    /// Loads every checkpoint folder in `dirs`, naming each after its mode and run folder.
+    pub fn load_all(dirs: &[PathBuf]) -> Result<Vec<Self>, CompareError> {
+        let device = Device::flex();
+        let mut out: Vec<Self> = Vec::new();
+        for dir in dirs {
+            let (meta, model) = checkpoint::load_model(dir, &device)?;
+            let folder = run_folder_of(dir).unwrap_or_else(|| dir.clone());
+            let label = folder
+                .file_name()
+                .map_or("policy".into(), |n| n.to_string_lossy().into_owned());
+            let mode = serde_name(&meta.agent.mode);
+            let mut name = format!("{mode} PPO: {label}");
+            if out.iter().any(|l| l.name == name) {
+                name = format!("{name} ({})", out.len() + 1);
+            }
+            out.push(Self {
+                name,
+                dir: dir.clone(),
+                meta,
+                model,
+            });
+        }
+        Ok(out)
+    }
+}
+
+/// A unit enum's serde name (`Mode::Residual` → `residual`).
+fn serde_name<T: serde::Serialize>(value: &T) -> String {
+    serde_json::to_value(value)
+        .ok()
+        .and_then(|v| v.as_str().map(String::from))
+        .unwrap_or_else(|| "unnamed".into())
+}
+
+/// The run folder a checkpoint folder belongs to: the nearest of its two ancestors that holds
+/// `metrics.csv` (`run/checkpoints/best` → `run`, `policy/checkpoint` → `policy`).
+pub fn run_folder_of(checkpoint: &Path) -> Option<PathBuf> {
+    checkpoint
+        .ancestors()
+        .skip(1)
+        .take(2)
+        .find(|d| d.join("metrics.csv").is_file())
+        .map(Path::to_path_buf)
+}
+
+/// One preset of a comparison: its name (as given) and its environment config.
+#[derive(Clone, Debug)]
+pub struct ComparePreset {
+    pub name: String,
+    pub config: EnvConfig,
+}
+
+/// What to compare and how.
+#[derive(Clone, Debug)]
+pub struct CompareSpec {
+    /// Presets in run order; the recorded episode is taken on the last one.
+    pub presets: Vec<ComparePreset>,
+    /// Scenarios per preset; every method meets the same ones.
+    pub episodes: usize,
+    /// Seed of the scenario sets.
+    pub seed: u64,
+    /// Worker threads of each evaluation.
+    pub threads: usize,
+    /// Scenario index recorded on the last preset. `None`: the first where the first two methods
+    /// end differently, else 0.
+    pub episode: Option<usize>,
+    /// The command line kept in the result.
+    pub command: String,
+}
+
+impl CompareSpec {
+    /// Refuses an empty or repeated preset list, zero episodes and an out-of-range episode.
+    pub fn check(&self) -> Result<(), CompareError> {
+        let request = |m: String| Err(CompareError::Request(m));
+        if self.presets.is_empty() {
+            return request("no preset to compare on".into());
+        }
+        if let Some(dup) = self.presets.iter().enumerate().find_map(|(i, p)| {
+            self.presets[..i]
+                .iter()
+                .any(|q| q.name == p.name)
+                .then_some(p)
+        }) {
+            return request(format!("--preset {} is given twice", dup.name));
+        }
+        if self.episodes == 0 {
+            return request("at least one episode per preset is needed".into());
+        }
+        if let Some(k) = self.episode.filter(|&k| k >= self.episodes) {
+            return request(format!(
+                "--episode {k}: the scenario sets have {} episodes (0–{})",
+                self.episodes,
+                self.episodes - 1
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Progress of a running comparison, for progress bars.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CompareEvent<'a> {
+    /// A method starts on a preset's scenario set.
+    Method { preset: &'a str, method: &'a str },
+    /// One more episode is done.
+    Episode,
+}
+
+/// A recorded episode's trajectory and the file stem it is saved under in `episodes/`.
+#[derive(Clone, Debug)]
+pub struct RecordedTrajectory {
+    pub stem: String,
+    pub trajectory: Trajectory,
+}
+
+/// The comparison and the recorded trajectories it refers to.
+#[derive(Clone, Debug)]
+pub struct CompareOutput {
+    pub comparison: Comparison,
+    /// One per method, in method order; `comparison.recorded[i].trajectory` is
+    /// `episodes/<stem>.json` of `episodes[i]`.
+    pub episodes: Vec<RecordedTrajectory>,
+}
+
+impl CompareOutput {
+    /// Writes each recorded trajectory as `<out>/episodes/<stem>.csv` and `.json`.
+    pub fn save_episodes(&self, out: &Path) -> Result<(), CompareError> {
+        let dir = out.join("episodes");
+        for e in &self.episodes {
+            e.trajectory
+                .save(&dir, &e.stem)
+                .map_err(|source| CompareError::Io {
+                    path: dir.clone(),
+                    source,
+                })?;
+        }
+        Ok(())
+    }
+}
+
+/// A fresh policy of method `i` (0 = the baseline, then `learned` in order) for `config`.
+fn make_policy(i: usize, learned: &[LearnedPolicy], config: &EnvConfig) -> Box<dyn Policy> {
+    match i.checked_sub(1) {
+        None => Box::new(ScriptedGrasp::new(config, BaselineConfig::default())),
+        Some(j) => Box::new(agent_policy(&learned[j].meta, &learned[j].model, config)),
+    }
+}
+
+/// Adapts a boxed policy to `evaluate`'s generic parameter.
+struct Boxed(Box<dyn Policy>);
+
+impl Policy for Boxed {
+    fn reset(&mut self, seed: u64) {
+        self.0.reset(seed);
+    }
+    fn act(&mut self, obs: &fairgrasp_env::Observation) -> fairgrasp_env::Action {
+        self.0.act(obs)
+    }
+    fn gave_up(&self) -> Option<fairgrasp_env::policy::Outcome> {
+        self.0.gave_up()
+    }
+}
+
+/// The seeded scenario set of one preset.
+fn scenarios_of(preset: &ComparePreset, spec: &CompareSpec) -> Result<Vec<Scenario>, CompareError> {
+    let env = GraspEnv::new(preset.config.clone())?;
+    scenario_set(
+        &preset.config,
+        env.model(),
+        env.base_in_world(),
+        spec.seed,
+        spec.episodes,
+    )
+    .map_err(|e| CompareError::Preset {
+        preset: preset.name.clone(),
+        message: e.to_string(),
+    })
+}
+
+/// Runs the baseline and every learned policy on every preset's scenario set, then records one
+/// scenario of the last preset for every method.
+pub fn run_comparison(
+    spec: &CompareSpec,
+    learned: &[LearnedPolicy],
+    progress: &(dyn Fn(CompareEvent<'_>) + Sync),
+) -> Result<CompareOutput, CompareError> {
+    spec.check()?;
+    let mut methods = vec![BASELINE.to_string()];
+    methods.extend(learned.iter().map(|l| l.name.clone()));
+    let mut results = Vec::new();
+    let mut last_scenarios = Vec::new();
+    for preset in &spec.presets {
+        let scenarios = scenarios_of(preset, spec)?;
+        for (i, method) in methods.iter().enumerate() {
+            progress(CompareEvent::Method {
+                preset: &preset.name,
+                method,
+            });
+            let make = || Boxed(make_policy(i, learned, &preset.config));
+            let report: EvalReport = evaluate(
+                &preset.config,
+                &scenarios,
+                spec.threads,
+                None,
+                &make,
+                &|| progress(CompareEvent::Episode),
+            )?;
+            results.push(MethodResult {
+                method: method.clone(),
+                preset: preset.name.clone(),
+                arm: ArmSimulation::from(preset.config.arm.model),
+                seed: spec.seed,
+                policy: i
+                    .checked_sub(1)
+                    .map(|j| learned[j].dir.display().to_string()),
+                report,
+            });
+        }
+        last_scenarios = scenarios;
+    }
+
+    // `check` refused an empty preset list, so there is a last preset.
+    let last = &spec.presets[spec.presets.len() - 1];
+    let on_last: Vec<&MethodResult> = results.iter().filter(|r| r.preset == last.name).collect();
+    let k = spec
+        .episode
+        .unwrap_or_else(|| first_disagreement(&on_last).unwrap_or(0));
+    let mut env = GraspEnv::new(last.config.clone())?;
+    let mut recorded = Vec::new();
+    let mut episodes = Vec::new();
+    for (i, method) in methods.iter().enumerate() {
+        let mut trajectory = Trajectory::default();
+        let mut policy = make_policy(i, learned, &last.config);
+        let result = run_episode(
+            &mut env,
+            policy.as_mut(),
+            &last_scenarios[k],
+            Some(&mut trajectory),
+        )?;
+        let stem = format!("{}_{}_ep{k}", slug(method), slug(&last.name));
+        recorded.push(RecordedEpisode {
+            method: method.clone(),
+            preset: last.name.clone(),
+            episode: k,
+            outcome: result.outcome,
+            trajectory: format!("episodes/{stem}.json"),
+        });
+        episodes.push(RecordedTrajectory { stem, trajectory });
+    }
+
+    let comparison = Comparison {
+        command: spec.command.clone(),
+        presets: spec.presets.iter().map(|p| p.name.clone()).collect(),
+        methods,
+        preset_configs: spec
+            .presets
+            .iter()
+            .map(|p| Ok((p.name.clone(), toml_text(p)?)))
+            .collect::<Result<_, CompareError>>()?,
+        run_folders: learned
+            .iter()
+            .filter_map(|l| run_folder_of(&l.dir))
+            .map(|p| p.display().to_string())
+            .collect(),
+        recorded,
+        results,
+    };
+    comparison
+        .check()
+        .map_err(|e| CompareError::Request(format!("inconsistent comparison: {e}")))?;
+    Ok(CompareOutput {
+        comparison,
+        episodes,
+    })
+}
+
+/// The first scenario where the first two methods end differently.
+fn first_disagreement(on_last: &[&MethodResult]) -> Option<usize> {
+    let [a, b, ..] = on_last else {
+        return None;
+    };
+    a.report
+        .results
+        .iter()
+        .zip(&b.report.results)
+        .position(|(x, y)| x.outcome != y.outcome)
+}
+
+fn toml_text(p: &ComparePreset) -> Result<String, CompareError> {
+    toml::to_string(&p.config).map_err(|e| CompareError::Preset {
+        preset: p.name.clone(),
+        message: format!("cannot write the config as TOML: {e}"),
+    })
+}

@@ -1,0 +1,197 @@
+//! The trained policies shipped in `assets/policies/`, built into every binary that links this
+//! crate, so `fairgrasp eval` and `fairgrasp compare` find them from any folder and after
+//! `cargo install` (no path from the build machine is kept).
+//!
+//! A checkpoint is a folder (`meta.json`, `model.bpk`) beside its run files (`metrics.csv`,
+//! `config.toml`, `train.toml`); the first use unpacks each policy's files into a folder of the
+//! system's temporary directory named after this version and the files' content hash, and every
+//! use checks that the files there are byte for byte the built-in ones (rewriting any that are
+//! not).
+
+use std::path::{Path, PathBuf};
+
+use fairgrasp_types::write_atomic;
+
+/// A policy shipped with fairgrasp.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ShippedPolicy {
+    /// Residual PPO on the `hard` preset (corrections on top of the scripted baseline).
+    ResidualHard,
+    /// Pure PPO on the `hard` preset (no baseline).
+    PureHard,
+}
+
+/// A file of a shipped policy: its path inside the policy folder, and its bytes.
+type File = (&'static str, &'static [u8]);
+
+/// Every file of the policy folder `assets/policies/<name>/`.
+macro_rules! policy_files {
+    ($name:literal) => {
+        &[
+            (
+                "checkpoint/meta.json",
+                include_bytes!(concat!(
+                    "../../assets/policies/",
+                    $name,
+                    "/checkpoint/meta.json"
+                )) as &[u8],
+            ),
+            (
+                "checkpoint/model.bpk",
+                include_bytes!(concat!(
+                    "../../assets/policies/",
+                    $name,
+                    "/checkpoint/model.bpk"
+                )),
+            ),
+            (
+                "metrics.csv",
+                include_bytes!(concat!("../../assets/policies/", $name, "/metrics.csv")),
+            ),
+            (
+                "config.toml",
+                include_bytes!(concat!("../../assets/policies/", $name, "/config.toml")),
+            ),
+            (
+                "train.toml",
+                include_bytes!(concat!("../../assets/policies/", $name, "/train.toml")),
+            ),
+        ]
+    };
+}
+
+const RESIDUAL_HARD: &[File] = policy_files!("residual_hard");
+const PURE_HARD: &[File] = policy_files!("pure_hard");
+
+/// A shipped policy that could not be unpacked.
+#[derive(Debug, thiserror::Error)]
+#[error("unpacking the shipped policy `{policy}` to {path}: {source}")]
+pub struct ShippedError {
+    pub policy: &'static str,
+    pub path: PathBuf,
+    pub source: std::io::Error,
+}
+
+impl ShippedPolicy {
+    /// Every shipped policy; `fairgrasp compare` compares these by default.
+    pub const ALL: [ShippedPolicy; 2] = [ShippedPolicy::ResidualHard, ShippedPolicy::PureHard];
+
+    /// The folder name under `assets/policies/` (also the run-folder label in comparisons).
+    pub fn name(self) -> &'static str {
+        match self {
+            ShippedPolicy::ResidualHard => "residual_hard",
+            ShippedPolicy::PureHard => "pure_hard",
+        }
+    }
+
+    fn files(self) -> &'static [File] {
+        match self {
+            ShippedPolicy::ResidualHard => RESIDUAL_HARD,
+            ShippedPolicy::PureHard => PURE_HARD,
+        }
+    }
+
+    /// The policy's checkpoint folder, unpacked under the system's temporary directory.
+    pub fn checkpoint_dir(self) -> Result<PathBuf, ShippedError> {
+        self.checkpoint_dir_in(&std::env::temp_dir())
+    }
+
+    /// The policy's checkpoint folder, unpacked under `root`
+    /// (`<root>/fairgrasp-<version>-<hash>/<name>/checkpoint`).
+    pub fn checkpoint_dir_in(self, root: &Path) -> Result<PathBuf, ShippedError> {
+        let folder = unpack_root(root).join(self.name());
+        for (relative, bytes) in self.files() {
+            let path = folder.join(relative);
+            let current = std::fs::read(&path).ok();
+            if current.as_deref() != Some(*bytes) {
+                write_atomic(&path, bytes).map_err(|source| ShippedError {
+                    policy: self.name(),
+                    path: path.clone(),
+                    source,
+                })?;
+            }
+        }
+        Ok(folder.join("checkpoint"))
+    }
+}
+
+/// The shipped residual policy's checkpoint folder: the default of `fairgrasp eval`.
+pub fn default_policy() -> Result<PathBuf, ShippedError> {
+    ShippedPolicy::ResidualHard.checkpoint_dir()
+}
+
+/// Every shipped policy's checkpoint folder: the default of `fairgrasp compare`.
+pub fn default_compare_policies() -> Result<Vec<PathBuf>, ShippedError> {
+    ShippedPolicy::ALL
+        .iter()
+        .map(|p| p.checkpoint_dir())
+        .collect()
+}
+
+/// The unpack folder under `root`, named after the crate version and a hash (FNV-1a, 64 bit)
+/// of every shipped file's name and bytes: another build never reuses these files.
+fn unpack_root(root: &Path) -> PathBuf {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for p in ShippedPolicy::ALL {
+        for (name, bytes) in p.files() {
+            for b in p
+                .name()
+                .bytes()
+                .chain(name.bytes())
+                .chain(bytes.iter().copied())
+            {
+                hash = (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+    }
+    root.join(format!(
+        "fairgrasp-{}-policies-{hash:016x}",
+        env!("CARGO_PKG_VERSION")
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("fairgrasp-shipped-{name}-{}", std::process::id()));
+        std::fs::remove_dir_all(&dir).ok();
+        dir
+    }
+
+    #[test]
+    fn unpacked_policies_are_the_built_in_bytes_and_load_as_checkpoints() {
+        let root = scratch("load");
+        for p in ShippedPolicy::ALL {
+            let dir = p.checkpoint_dir_in(&root).unwrap();
+            assert!(dir.starts_with(&root), "{}", dir.display());
+            assert_eq!(dir.parent().unwrap().file_name().unwrap(), p.name());
+            for (relative, bytes) in p.files() {
+                let path = dir.parent().unwrap().join(relative);
+                assert_eq!(&std::fs::read(&path).unwrap(), bytes, "{}", path.display());
+            }
+            let (meta, _) =
+                crate::checkpoint::load_model(&dir, &burn::tensor::Device::flex()).unwrap();
+            let mode = serde_json::to_value(meta.agent.mode).unwrap();
+            assert_eq!(p.name().split('_').next(), mode.as_str(), "{}", p.name());
+        }
+        std::fs::remove_dir_all(&root).ok();
+    }
+
+    #[test]
+    fn a_tampered_unpacked_file_is_rewritten() {
+        let root = scratch("tamper");
+        let dir = ShippedPolicy::PureHard.checkpoint_dir_in(&root).unwrap();
+        std::fs::write(dir.join("meta.json"), b"{}").unwrap();
+        let again = ShippedPolicy::PureHard.checkpoint_dir_in(&root).unwrap();
+        assert_eq!(again, dir);
+        assert_eq!(
+            std::fs::read(dir.join("meta.json")).unwrap(),
+            PURE_HARD[0].1,
+            "meta.json was not restored"
+        );
+        std::fs::remove_dir_all(&root).ok();
+    }
+}

@@ -1,0 +1,132 @@
+//! The comparison experiment called as a library: identical scenarios for every method, the
+//! recorded episode reproduces its evaluation, bad requests are refused before anything runs.
+
+use std::path::PathBuf;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use fairgrasp_env::presets;
+use fairgrasp_rl::compare::{
+    BASELINE, CompareError, CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, run_comparison,
+};
+use fairgrasp_rl::shipped::ShippedPolicy;
+use fairgrasp_types::ArmSimulation;
+
+fn preset(name: &str) -> ComparePreset {
+    ComparePreset {
+        name: name.into(),
+        config: presets::load(name).unwrap(),
+    }
+}
+
+fn spec(names: &[&str], episodes: usize) -> CompareSpec {
+    CompareSpec {
+        presets: names.iter().map(|n| preset(n)).collect(),
+        episodes,
+        seed: 11,
+        threads: 2,
+        episode: None,
+        command: "fairgrasp compare (test)".into(),
+    }
+}
+
+fn shipped_residual() -> Vec<LearnedPolicy> {
+    let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rl-compare-shipped");
+    let dir = ShippedPolicy::ResidualHard
+        .checkpoint_dir_in(&root)
+        .unwrap();
+    LearnedPolicy::load_all(&[dir]).unwrap()
+}
+
+#[test]
+fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its_evaluation() {
+    let learned = shipped_residual();
+    let (episodes_done, started) = (AtomicUsize::new(0), Mutex::new(Vec::new()));
+    let out = run_comparison(&spec(&["fixed", "seed"], 3), &learned, &|e| match e {
+        CompareEvent::Episode => {
+            episodes_done.fetch_add(1, Ordering::Relaxed);
+        }
+        CompareEvent::Method { preset, method } => {
+            started.lock().unwrap().push(format!("{preset}/{method}"));
+        }
+    })
+    .unwrap();
+    let c = &out.comparison;
+    assert_eq!(c.methods, vec![BASELINE, "residual PPO: residual_hard"]);
+    assert_eq!(c.presets, vec!["fixed", "seed"]);
+    assert_eq!(episodes_done.load(Ordering::Relaxed), 2 * 2 * 3);
+    assert_eq!(
+        *started.lock().unwrap(),
+        vec![
+            "fixed/scripted baseline",
+            "fixed/residual PPO: residual_hard",
+            "seed/scripted baseline",
+            "seed/residual PPO: residual_hard",
+        ]
+    );
+    assert_eq!(c.results.len(), 4);
+    for p in &c.presets {
+        let [a, b] = [0, 1].map(|i| c.get(&c.methods[i], p).unwrap());
+        let seeds = |r: &fairgrasp_types::MethodResult| {
+            r.report
+                .results
+                .iter()
+                .map(|e| (e.seed, e.object_xy))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(seeds(a), seeds(b), "{p}: methods met different scenarios");
+        assert_eq!(a.arm, ArmSimulation::Servo);
+        assert_eq!(
+            (a.seed, a.policy.is_none(), b.policy.is_some()),
+            (11, true, true)
+        );
+    }
+    assert!(
+        c.run_folders[0].ends_with("residual_hard"),
+        "{:?}",
+        c.run_folders
+    );
+
+    // The recorded scenario: the first where the two methods end differently, else 0.
+    let [base, agent] = [0, 1].map(|i| &c.get(&c.methods[i], "seed").unwrap().report.results);
+    let k = (0..3)
+        .find(|&i| base[i].outcome != agent[i].outcome)
+        .unwrap_or(0);
+    assert_eq!(c.recorded.len(), 2);
+    for (i, (rec, traj)) in c.recorded.iter().zip(&out.episodes).enumerate() {
+        let evaluated = &c.get(&c.methods[i], "seed").unwrap().report.results[k];
+        assert_eq!((rec.preset.as_str(), rec.episode), ("seed", k));
+        assert_eq!(rec.outcome, evaluated.outcome, "{}", rec.method);
+        assert_eq!(
+            traj.trajectory.rows.len(),
+            evaluated.steps + 1,
+            "{}",
+            rec.method
+        );
+        assert_eq!(rec.trajectory, format!("episodes/{}.json", traj.stem));
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rl-compare-episodes");
+    std::fs::remove_dir_all(&dir).ok();
+    out.save_episodes(&dir).unwrap();
+    for rec in &c.recorded {
+        assert!(dir.join(&rec.trajectory).is_file(), "{}", rec.trajectory);
+    }
+}
+
+#[test]
+fn bad_requests_are_refused_before_any_episode_runs() {
+    let never = |_: CompareEvent<'_>| panic!("nothing may run for a refused request");
+    let e = run_comparison(&spec(&["fixed", "seed", "fixed"], 2), &[], &never).unwrap_err();
+    assert!(matches!(e, CompareError::Request(_)));
+    assert_eq!(e.to_string(), "--preset fixed is given twice");
+    let mut out_of_range = spec(&["fixed"], 2);
+    out_of_range.episode = Some(2);
+    let e = run_comparison(&out_of_range, &[], &never).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("--episode 2: the scenario sets have 2 episodes (0–1)"),
+        "{e}"
+    );
+    let e = run_comparison(&spec(&[], 2), &[], &never).unwrap_err();
+    assert!(e.to_string().contains("no preset"), "{e}");
+}
