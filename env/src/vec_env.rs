@@ -80,7 +80,7 @@ impl VecStep {
         self.rewards.extend_from_slice(&other.rewards);
         self.terminated.extend_from_slice(&other.terminated);
         self.truncated.extend_from_slice(&other.truncated);
-        self.infos.extend(other.infos.drain(..));
+        self.infos.append(&mut other.infos);
         self.final_obs.extend_from_slice(&other.final_obs);
         self.seeds.extend_from_slice(&other.seeds);
     }

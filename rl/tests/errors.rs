@@ -85,5 +85,5 @@ fn a_non_finite_action_is_refused_naming_the_env() {
     let err = env.step(&actions[..ACT_DIM]).unwrap_err();
     assert!(err.to_string().contains("expected 14"), "{err}");
     // The batch is still usable after a refused step.
-    assert!(env.step(&vec![0.0; 2 * ACT_DIM]).is_ok());
+    assert!(env.step(&[0.0; 2 * ACT_DIM]).is_ok());
 }
