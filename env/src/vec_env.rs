@@ -1,82 +1,154 @@
-//! N environments stepped in parallel threads, with auto-reset and batched observations.
+//! N environments stepped in parallel threads, with auto-reset and batched, typed observations.
 //!
 //! The environments are split into one chunk per thread; the calling thread steps the first
 //! chunk and persistent worker threads the others (spawning threads every step costs more than a
 //! step here). Environment `i` draws the seed of its `k`-th episode as
 //! `base_seed + i · 1 000 000 + k`, so a run is reproducible whatever the number of threads.
+//!
+//! The batch holds the environments' own [`Observation`]s (f64, `base_link`), not a flattened
+//! copy: a policy reads exactly what a single [`GraspEnv`] would have handed it.
+//!
+//! A step allocates nothing of its own once every buffer has reached its size (after the first
+//! reset and step): the actions handed to a worker, a chunk's outcomes and the batch handed back
+//! are cleared and refilled in place, and a worker is woken through a mutex and a condition
+//! variable rather than a channel (whose queue allocates as messages flow). What the environments
+//! allocate inside their own `step`/`reset` is theirs.
 
-use std::sync::mpsc::{Receiver, Sender, channel};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 
 use crate::config::{EnvConfig, RandomizationConfig};
 use crate::env::{Action, EnvError, GraspEnv, Info};
-use crate::obs::{OBS_DIM, Observation};
+use crate::obs::Observation;
 
-/// One batched step.
-#[derive(Clone, Debug)]
+/// One batched step (or reset), one entry per environment in index order.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct VecStep {
     /// Observation to act on next: after an auto-reset, the new episode's first one.
-    pub obs: Vec<[f32; OBS_DIM]>,
+    pub obs: Vec<Observation>,
+    /// Reward of this step (0 after a reset).
     pub rewards: Vec<f64>,
+    /// The episode ended in a terminal state (success or failure) in this step.
     pub terminated: Vec<bool>,
+    /// The episode was cut (time limit, physics fault) in this step.
     pub truncated: Vec<bool>,
+    /// What else happened (after a reset: the reset's info).
     pub infos: Vec<Info>,
     /// The last observation of an episode that ended in this step (for bootstrapping).
     pub final_obs: Vec<Option<Observation>>,
+    /// Seed of the episode each environment is in now (after an auto-reset, the new one's).
+    pub seeds: Vec<u64>,
 }
 
-/// One environment's step outcome: (next obs, reward, terminated, truncated, info, final obs).
-type Outcome = (Observation, f64, bool, bool, Info, Option<Observation>);
+impl VecStep {
+    fn clear(&mut self) {
+        self.obs.clear();
+        self.rewards.clear();
+        self.terminated.clear();
+        self.truncated.clear();
+        self.infos.clear();
+        self.final_obs.clear();
+        self.seeds.clear();
+    }
+
+    fn push(&mut self, obs: Observation, reward: f64, flags: [bool; 2], info: Info, seed: u64) {
+        self.push_with_final(obs, reward, flags, info, None, seed);
+    }
+
+    fn push_with_final(
+        &mut self,
+        obs: Observation,
+        reward: f64,
+        [terminated, truncated]: [bool; 2],
+        info: Info,
+        final_obs: Option<Observation>,
+        seed: u64,
+    ) {
+        self.obs.push(obs);
+        self.rewards.push(reward);
+        self.terminated.push(terminated);
+        self.truncated.push(truncated);
+        self.infos.push(info);
+        self.final_obs.push(final_obs);
+        self.seeds.push(seed);
+    }
+
+    /// Moves `other`'s entries to the end of this batch (keeps both allocations).
+    fn append_from(&mut self, other: &mut VecStep) {
+        self.obs.extend_from_slice(&other.obs);
+        self.rewards.extend_from_slice(&other.rewards);
+        self.terminated.extend_from_slice(&other.terminated);
+        self.truncated.extend_from_slice(&other.truncated);
+        self.infos.append(&mut other.infos);
+        self.final_obs.extend_from_slice(&other.final_obs);
+        self.seeds.extend_from_slice(&other.seeds);
+    }
+}
 
 fn seed_for(base: u64, env: usize, episode: u64) -> u64 {
     base.wrapping_add(env as u64 * 1_000_000)
         .wrapping_add(episode)
 }
 
-/// The environments one thread owns.
+/// The environments one thread owns, and their outcomes.
 struct Chunk {
     envs: Vec<GraspEnv>,
+    /// Episodes started so far, per environment.
     episodes: Vec<u64>,
     first_index: usize,
     base_seed: u64,
+    /// A worker's actions, copied in by the calling thread.
+    actions: Vec<Action>,
+    out: VecStep,
 }
 
 impl Chunk {
-    fn reset(&mut self) -> Result<Vec<Observation>, EnvError> {
-        let mut out = Vec::with_capacity(self.envs.len());
-        for (j, env) in self.envs.iter_mut().enumerate() {
-            let (obs, _) = env.reset(seed_for(
-                self.base_seed,
-                self.first_index + j,
-                self.episodes[j],
-            ))?;
-            self.episodes[j] += 1;
-            out.push(obs);
-        }
-        Ok(out)
+    /// Seed of environment `j`'s next episode; counts it as started.
+    fn next_seed(&mut self, j: usize) -> u64 {
+        let seed = seed_for(self.base_seed, self.first_index + j, self.episodes[j]);
+        self.episodes[j] += 1;
+        seed
     }
 
-    fn step(&mut self, actions: &[Action]) -> Result<Vec<Outcome>, EnvError> {
-        let mut out = Vec::with_capacity(self.envs.len());
-        for (j, (env, action)) in self.envs.iter_mut().zip(actions).enumerate() {
-            let step = env.step(action)?;
+    fn reset(&mut self) -> Result<(), EnvError> {
+        self.out.clear();
+        for j in 0..self.envs.len() {
+            let seed = self.next_seed(j);
+            let (obs, info) = self.envs[j].reset(seed)?;
+            self.out.push(obs, 0.0, [false, false], info, seed);
+        }
+        Ok(())
+    }
+
+    fn step(&mut self, actions: &[Action]) -> Result<(), EnvError> {
+        self.out.clear();
+        for (j, action) in actions.iter().enumerate().take(self.envs.len()) {
+            let step = self.envs[j].step(action)?;
+            let flags = [step.terminated, step.truncated];
             if step.terminated || step.truncated {
-                let seed = seed_for(self.base_seed, self.first_index + j, self.episodes[j]);
-                let (obs, _) = env.reset(seed)?;
-                self.episodes[j] += 1;
-                out.push((
-                    obs,
-                    step.reward,
-                    step.terminated,
-                    step.truncated,
-                    step.info,
-                    Some(step.obs),
-                ));
+                let seed = self.next_seed(j);
+                let (obs, _) = self.envs[j].reset(seed)?;
+                self.out
+                    .push_with_final(obs, step.reward, flags, step.info, Some(step.obs), seed);
             } else {
-                out.push((step.obs, step.reward, false, false, step.info, None));
+                let seed = seed_for(
+                    self.base_seed,
+                    self.first_index + j,
+                    self.episodes[j].saturating_sub(1),
+                );
+                self.out.push(step.obs, step.reward, flags, step.info, seed);
             }
         }
-        Ok(out)
+        Ok(())
+    }
+
+    /// Steps with the actions a worker was handed.
+    fn step_own_actions(&mut self) -> Result<(), EnvError> {
+        let actions = std::mem::take(&mut self.actions);
+        let result = self.step(&actions);
+        self.actions = actions;
+        result
     }
 
     fn set_randomization(&mut self, r: &RandomizationConfig) -> Result<(), EnvError> {
@@ -86,46 +158,122 @@ impl Chunk {
     }
 }
 
-enum Command {
+/// What a worker is asked to do, and its answer.
+enum Job {
+    Idle,
     Reset,
-    Step(Vec<Action>),
+    Step,
     SetRandomization(RandomizationConfig),
+    Finished(Result<(), EnvError>),
+    Quit,
 }
 
-enum Reply {
-    Reset(Result<Vec<Observation>, EnvError>),
-    Step(Result<Vec<Outcome>, EnvError>),
-    Done(Result<(), EnvError>),
+/// A worker's chunk and its job, behind one mutex.
+struct Shared {
+    chunk: Chunk,
+    job: Job,
+    /// A job panicked: the chunk may be half-stepped, every later job fails.
+    lost: bool,
 }
+
+type Mailbox = Arc<(Mutex<Shared>, Condvar)>;
 
 struct Worker {
-    commands: Sender<Command>,
-    replies: Receiver<Reply>,
+    mailbox: Mailbox,
     thread: Option<JoinHandle<()>>,
     len: usize,
 }
 
-fn spawn_worker(mut chunk: Chunk) -> Worker {
-    let (commands, inbox) = channel::<Command>();
-    let (outbox, replies) = channel::<Reply>();
-    let len = chunk.envs.len();
-    let thread = std::thread::spawn(move || {
-        while let Ok(command) = inbox.recv() {
-            let reply = match command {
-                Command::Reset => Reply::Reset(chunk.reset()),
-                Command::Step(actions) => Reply::Step(chunk.step(&actions)),
-                Command::SetRandomization(r) => Reply::Done(chunk.set_randomization(&r)),
-            };
-            if outbox.send(reply).is_err() {
-                break;
+fn run_job(shared: &mut Shared, job: Job) -> Result<(), EnvError> {
+    if shared.lost {
+        return Err(EnvError::WorkerLost);
+    }
+    let chunk = &mut shared.chunk;
+    let result = catch_unwind(AssertUnwindSafe(|| match job {
+        Job::Reset => chunk.reset(),
+        Job::Step => chunk.step_own_actions(),
+        Job::SetRandomization(r) => chunk.set_randomization(&r),
+        Job::Idle | Job::Finished(_) | Job::Quit => Ok(()),
+    }));
+    result.unwrap_or_else(|_| {
+        shared.lost = true;
+        Err(EnvError::WorkerLost)
+    })
+}
+
+fn worker_loop(mailbox: &Mailbox) {
+    let (lock, wake) = &**mailbox;
+    let Ok(mut shared) = lock.lock() else {
+        return;
+    };
+    loop {
+        match std::mem::replace(&mut shared.job, Job::Idle) {
+            Job::Quit => return,
+            waiting @ (Job::Idle | Job::Finished(_)) => {
+                shared.job = waiting;
+                shared = match wake.wait(shared) {
+                    Ok(s) => s,
+                    Err(_) => return,
+                };
+            }
+            job => {
+                let result = run_job(&mut shared, job);
+                shared.job = Job::Finished(result);
+                wake.notify_all();
             }
         }
-    });
+    }
+}
+
+fn spawn_worker(chunk: Chunk) -> Worker {
+    let len = chunk.envs.len();
+    let mailbox: Mailbox = Arc::new((
+        Mutex::new(Shared {
+            chunk,
+            job: Job::Idle,
+            lost: false,
+        }),
+        Condvar::new(),
+    ));
+    let theirs = Arc::clone(&mailbox);
+    let thread = std::thread::spawn(move || worker_loop(&theirs));
     Worker {
-        commands,
-        replies,
+        mailbox,
         thread: Some(thread),
         len,
+    }
+}
+
+impl Worker {
+    fn lock(&self) -> Result<MutexGuard<'_, Shared>, EnvError> {
+        self.mailbox.0.lock().map_err(|_| EnvError::WorkerLost)
+    }
+
+    /// Hands the worker a job (after `prepare` has filled its inputs).
+    fn start(&self, job: Job, prepare: impl FnOnce(&mut Chunk)) -> Result<(), EnvError> {
+        let mut shared = self.lock()?;
+        prepare(&mut shared.chunk);
+        shared.job = job;
+        self.mailbox.1.notify_all();
+        Ok(())
+    }
+
+    /// Waits for the job's end; the guard gives access to the chunk's outcomes.
+    fn finish(&self) -> Result<(MutexGuard<'_, Shared>, Result<(), EnvError>), EnvError> {
+        let mut shared = self.lock()?;
+        loop {
+            match std::mem::replace(&mut shared.job, Job::Idle) {
+                Job::Finished(result) => return Ok((shared, result)),
+                pending => {
+                    shared.job = pending;
+                    shared = self
+                        .mailbox
+                        .1
+                        .wait(shared)
+                        .map_err(|_| EnvError::WorkerLost)?;
+                }
+            }
+        }
     }
 }
 
@@ -133,6 +281,7 @@ fn spawn_worker(mut chunk: Chunk) -> Worker {
 pub struct VecEnv {
     local: Chunk,
     workers: Vec<Worker>,
+    out: VecStep,
 }
 
 impl VecEnv {
@@ -157,12 +306,18 @@ impl VecEnv {
                 episodes: vec![0; len],
                 first_index,
                 base_seed,
+                actions: Vec::with_capacity(len),
+                out: VecStep::default(),
             });
             first_index += len;
         }
         let local = chunks.remove(0);
         let workers = chunks.into_iter().map(spawn_worker).collect();
-        Ok(Self { local, workers })
+        Ok(Self {
+            local,
+            workers,
+            out: VecStep::default(),
+        })
     }
 
     /// Number of environments.
@@ -175,99 +330,95 @@ impl VecEnv {
         false
     }
 
-    fn worker_gone() -> EnvError {
-        EnvError::WorkerLost
+    /// The batch of the last reset or step (after a reset: first observations, zero rewards,
+    /// the new episodes' seeds; empty before the first reset or after an error).
+    pub fn batch(&self) -> &VecStep {
+        &self.out
     }
 
-    /// Resets every environment to its next episode.
-    pub fn reset(&mut self) -> Result<Vec<[f32; OBS_DIM]>, EnvError> {
+    /// Resets every environment to its next episode; returns their first observations.
+    pub fn reset(&mut self) -> Result<&[Observation], EnvError> {
         for w in &self.workers {
-            w.commands
-                .send(Command::Reset)
-                .map_err(|_| Self::worker_gone())?;
+            w.start(Job::Reset, |_| {})?;
         }
-        let mut out: Vec<[f32; OBS_DIM]> = self
-            .local
-            .reset()?
-            .iter()
-            .map(Observation::to_array)
-            .collect();
-        for w in &self.workers {
-            match w.replies.recv().map_err(|_| Self::worker_gone())? {
-                Reply::Reset(r) => out.extend(r?.iter().map(Observation::to_array)),
-                _ => return Err(Self::worker_gone()),
-            }
-        }
-        Ok(out)
+        let local = self.local.reset();
+        self.gather(local)?;
+        Ok(&self.out.obs)
     }
 
     /// Replaces every environment's randomisation (takes effect at their next reset).
     pub fn set_randomization(&mut self, r: &RandomizationConfig) -> Result<(), EnvError> {
         for w in &self.workers {
-            w.commands
-                .send(Command::SetRandomization(r.clone()))
-                .map_err(|_| Self::worker_gone())?;
+            w.start(Job::SetRandomization(r.clone()), |_| {})?;
         }
-        self.local.set_randomization(r)?;
+        let mut first_error = self.local.set_randomization(r).err();
         for w in &self.workers {
-            match w.replies.recv().map_err(|_| Self::worker_gone())? {
-                Reply::Done(r) => r?,
-                _ => return Err(Self::worker_gone()),
+            if let Err(e) = w.finish()?.1 {
+                first_error.get_or_insert(e);
             }
         }
-        Ok(())
+        first_error.map_or(Ok(()), Err)
     }
 
     /// Steps every environment with its action, in parallel; ended episodes are reset.
-    pub fn step(&mut self, actions: &[Action]) -> Result<VecStep, EnvError> {
-        if actions.len() != self.len() {
+    pub fn step(&mut self, actions: &[Action]) -> Result<&VecStep, EnvError> {
+        let n = self.len();
+        if actions.len() != n {
             return Err(EnvError::ActionCount {
-                expected: self.len(),
+                expected: n,
                 got: actions.len(),
             });
         }
+        if self.out.obs.len() != n {
+            return Err(EnvError::EpisodeOver);
+        }
         let mut offset = self.local.envs.len();
         for w in &self.workers {
-            let batch = actions[offset..offset + w.len].to_vec();
-            w.commands
-                .send(Command::Step(batch))
-                .map_err(|_| Self::worker_gone())?;
+            let mine = &actions[offset..offset + w.len];
+            w.start(Job::Step, |chunk| {
+                chunk.actions.clear();
+                chunk.actions.extend_from_slice(mine);
+            })?;
             offset += w.len;
         }
-        let mut outcomes = self.local.step(&actions[..self.local.envs.len()])?;
+        let local = self.local.step(&actions[..self.local.envs.len()]);
+        self.gather(local)?;
+        Ok(&self.out)
+    }
+
+    /// Collects every chunk's outcomes in index order; the first error wins, but every worker
+    /// is waited for so that none is left busy.
+    fn gather(&mut self, local: Result<(), EnvError>) -> Result<(), EnvError> {
+        self.out.clear();
+        let mut first_error = local.err();
+        self.out.append_from(&mut self.local.out);
         for w in &self.workers {
-            match w.replies.recv().map_err(|_| Self::worker_gone())? {
-                Reply::Step(r) => outcomes.extend(r?),
-                _ => return Err(Self::worker_gone()),
+            let (mut shared, result) = w.finish()?;
+            match result {
+                Ok(()) => self.out.append_from(&mut shared.chunk.out),
+                Err(e) => {
+                    first_error.get_or_insert(e);
+                }
             }
         }
-        let n = outcomes.len();
-        let mut out = VecStep {
-            obs: Vec::with_capacity(n),
-            rewards: Vec::with_capacity(n),
-            terminated: Vec::with_capacity(n),
-            truncated: Vec::with_capacity(n),
-            infos: Vec::with_capacity(n),
-            final_obs: Vec::with_capacity(n),
-        };
-        for (obs, reward, terminated, truncated, info, final_obs) in outcomes {
-            out.obs.push(obs.to_array());
-            out.rewards.push(reward);
-            out.terminated.push(terminated);
-            out.truncated.push(truncated);
-            out.infos.push(info);
-            out.final_obs.push(final_obs);
+        match first_error {
+            Some(e) => {
+                // A half-filled batch must not be stepped from.
+                self.out.clear();
+                Err(e)
+            }
+            None => Ok(()),
         }
-        Ok(out)
     }
 }
 
 impl Drop for VecEnv {
     fn drop(&mut self) {
         for w in &mut self.workers {
-            // Closing the command channel ends the worker's loop.
-            let (dead, _) = channel();
-            drop(std::mem::replace(&mut w.commands, dead));
+            if let Ok(mut shared) = w.mailbox.0.lock() {
+                shared.job = Job::Quit;
+                w.mailbox.1.notify_all();
+            }
             if let Some(t) = w.thread.take() {
                 let _ = t.join();
             }

@@ -2,7 +2,7 @@
 
 use fairgrasp_env::trajectory::Trajectory;
 use fairgrasp_env::vec_env::VecEnv;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv};
+use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
 
 fn cfg() -> EnvConfig {
     let mut c = EnvConfig::default();
@@ -11,14 +11,14 @@ fn cfg() -> EnvConfig {
     c
 }
 
-fn run(threads: usize) -> Vec<Vec<[f32; 23]>> {
+fn run(threads: usize) -> Vec<Vec<Observation>> {
     let mut v = VecEnv::new(&cfg(), 4, threads, 100).unwrap();
-    let mut trace = vec![v.reset().unwrap()];
+    let mut trace = vec![v.reset().unwrap().to_vec()];
     let actions: Vec<Action> = (0..4)
         .map(|i| Action([0.3 * i as f64 - 0.5, 0.2, 0.0, 0.0, 0.0, 0.0, -1.0]))
         .collect();
     for _ in 0..12 {
-        trace.push(v.step(&actions).unwrap().obs);
+        trace.push(v.step(&actions).unwrap().obs.clone());
     }
     trace
 }
@@ -31,7 +31,7 @@ fn results_do_not_depend_on_the_number_of_threads() {
 #[test]
 fn ended_episodes_are_reset_and_their_final_observation_kept() {
     let mut v = VecEnv::new(&cfg(), 2, 2, 0).unwrap();
-    let first = v.reset().unwrap();
+    let first = v.reset().unwrap().to_vec();
     let actions = vec![Action::hold_open(); 2];
     let mut ended = 0;
     for n in 1..=10 {
@@ -47,7 +47,7 @@ fn ended_episodes_are_reset_and_their_final_observation_kept() {
         }
         if n == 5 {
             // Episode 2 starts from another seed: another cube position.
-            assert_ne!(s.obs[0][12..15], first[0][12..15]);
+            assert_ne!(s.obs[0].object_rel_tcp, first[0].object_rel_tcp);
         }
     }
     assert_eq!(ended, 4);
@@ -55,6 +55,49 @@ fn ended_episodes_are_reset_and_their_final_observation_kept() {
         v.step(&[Action::hold_open()]).is_err(),
         "wrong action count"
     );
+}
+
+#[test]
+fn the_batch_holds_each_envs_own_observation_and_episode_seed() {
+    // Three envs on two threads against three envs stepped alone with the seeds the batch
+    // reports: observations, rewards, flags and final observations are the same values (f64,
+    // not a flattened copy), across an auto-reset.
+    let config = cfg();
+    let mut v = VecEnv::new(&config, 3, 2, 500).unwrap();
+    let first = v.reset().unwrap().to_vec();
+    let seeds = v.batch().seeds.clone();
+    assert_eq!(seeds, vec![500, 1_000_500, 2_000_500]);
+    let mut alone: Vec<GraspEnv> = (0..3)
+        .map(|_| GraspEnv::new(config.clone()).unwrap())
+        .collect();
+    for (e, env) in alone.iter_mut().enumerate() {
+        assert_eq!(env.reset(seeds[e]).unwrap().0, first[e]);
+    }
+    let actions: Vec<Action> = (0..3)
+        .map(|i| Action([0.1 * i as f64, -0.3, 0.2, 0.0, 0.1, 0.0, -1.0]))
+        .collect();
+    let mut resets = 0;
+    for _ in 0..7 {
+        let s = v.step(&actions).unwrap();
+        for (e, env) in alone.iter_mut().enumerate() {
+            let step = env.step(&actions[e]).unwrap();
+            assert_eq!(s.rewards[e], step.reward);
+            assert_eq!(
+                (s.terminated[e], s.truncated[e]),
+                (step.terminated, step.truncated)
+            );
+            if step.terminated || step.truncated {
+                resets += 1;
+                assert_eq!(s.final_obs[e], Some(step.obs));
+                assert_eq!(s.seeds[e], seeds[e] + 1, "the next episode's seed");
+                assert_eq!(env.reset(s.seeds[e]).unwrap().0, s.obs[e]);
+            } else {
+                assert_eq!(s.final_obs[e], None);
+                assert_eq!(s.obs[e], step.obs);
+            }
+        }
+    }
+    assert_eq!(resets, 3, "each env ended one episode (5 steps each)");
 }
 
 #[test]

@@ -22,6 +22,16 @@ pub enum Mode {
     Pure,
 }
 
+impl std::fmt::Display for Mode {
+    /// The config's name: `residual` or `pure`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Mode::Residual => "residual",
+            Mode::Pure => "pure",
+        })
+    }
+}
+
 /// Who commands the gripper in residual mode.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
@@ -31,6 +41,16 @@ pub enum GripperMode {
     Residual,
     /// The policy's own output.
     Learned,
+}
+
+impl std::fmt::Display for GripperMode {
+    /// The config's name: `residual` or `learned`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            GripperMode::Residual => "residual",
+            GripperMode::Learned => "learned",
+        })
+    }
 }
 
 /// How the policy's output becomes an env action.
@@ -67,19 +87,35 @@ impl AgentConfig {
         }
     }
 
-    /// The policy input for an observation and (residual mode) the baseline's action.
-    pub fn input(&self, obs: &[f32; OBS_DIM], base: Option<&Action>) -> Vec<f32> {
-        let mut x = obs.to_vec();
-        if let (Mode::Residual, Some(b)) = (self.mode, base) {
-            x.extend(b.0.iter().map(|v| *v as f32));
+    /// Writes the policy input for a typed observation and (residual mode) the baseline's
+    /// action into `out` (`input_dim` values: the observation's flat view in the order of
+    /// `fairgrasp_env::obs::OBS_NAMES`, then the baseline's 7 action values, 0 if none).
+    ///
+    /// The one place a policy input is built: training, episode ends and evaluation all call it
+    /// with the environment's own `Observation`.
+    pub fn write_input(&self, obs: &Observation, base: Option<&Action>, out: &mut [f32]) {
+        let obs = obs.to_array();
+        let base = base.map_or([0.0; ACT_DIM], |b| b.0.map(|v| v as f32));
+        let extra: &[f32] = match self.mode {
+            Mode::Residual => &base,
+            Mode::Pure => &[],
+        };
+        for (slot, v) in out.iter_mut().zip(obs.iter().chain(extra)) {
+            *slot = *v;
         }
+    }
+
+    /// [`AgentConfig::write_input`] into a new vector.
+    pub fn input(&self, obs: &Observation, base: Option<&Action>) -> Vec<f32> {
+        let mut x = vec![0.0; self.input_dim()];
+        self.write_input(obs, base, &mut x);
         x
     }
 
-    /// The env action for the policy's output.
+    /// The env action for the policy's output (`ACT_DIM` values; a missing one counts as 0).
     pub fn compose(&self, base: Option<&Action>, policy: &[f32]) -> Action {
         Action(std::array::from_fn(|i| {
-            let p = policy[i] as f64;
+            let p = policy.get(i).copied().unwrap_or(0.0) as f64;
             let v = match (self.mode, base) {
                 (Mode::Residual, Some(_)) if i == 6 && self.gripper == GripperMode::Learned => p,
                 (Mode::Residual, Some(b)) => b.0[i] + self.residual_scale as f64 * p,
@@ -125,7 +161,7 @@ impl Policy for GraspAgent {
 
     fn act(&mut self, obs: &Observation) -> Action {
         let base = self.baseline.as_mut().map(|b| b.act(obs));
-        let input = self.agent.input(&obs.to_array(), base.as_ref());
+        let input = self.agent.input(obs, base.as_ref());
         let out = (self.mean_action)(&input);
         self.agent.compose(base.as_ref(), &out)
     }

@@ -11,7 +11,7 @@ use burn::optim::ModuleOptimizer;
 use burn::tensor::Device;
 use serde::{Deserialize, Serialize};
 
-use crate::agent::AgentConfig;
+use crate::agent::{ACT_DIM, AgentConfig};
 use crate::model::{ActorCritic, ModelConfig};
 use crate::normalizer::RunningNorm;
 
@@ -110,6 +110,18 @@ pub fn load_meta(dir: &Path) -> Result<CheckpointMeta, CheckpointError> {
             format!(
                 "format version {} is not supported (expected 1)",
                 meta.version
+            ),
+        ));
+    }
+    if meta.act_dim != ACT_DIM || meta.input_dim != meta.agent.input_dim() {
+        return Err(err(
+            &path,
+            format!(
+                "input_dim {} and act_dim {} do not fit a {} agent (input {}, {ACT_DIM} actions)",
+                meta.input_dim,
+                meta.act_dim,
+                meta.agent.mode,
+                meta.agent.input_dim()
             ),
         ));
     }

@@ -32,15 +32,59 @@ pub fn compute_gae(
     gamma: f32,
     lambda: f32,
 ) -> Gae {
+    let mut advantages = vec![0.0f32; rewards.len()];
+    let mut returns = vec![0.0f32; rewards.len()];
+    compute_gae_into(
+        n_envs,
+        rewards,
+        values,
+        terminated,
+        truncated,
+        final_values,
+        next_values,
+        gamma,
+        lambda,
+        &mut advantages,
+        &mut returns,
+    );
+    Gae {
+        advantages,
+        returns,
+    }
+}
+
+/// [`compute_gae`] into caller-owned `advantages` and `returns` (one per step and env).
+///
+/// # Panics
+/// If the per-sample slices do not all have the same length, a multiple of `n_envs` (a
+/// programming error: PPO's rollout buffer sizes them together).
+#[allow(clippy::too_many_arguments)]
+pub fn compute_gae_into(
+    n_envs: usize,
+    rewards: &[f32],
+    values: &[f32],
+    terminated: &[bool],
+    truncated: &[bool],
+    final_values: &[f32],
+    next_values: &[f32],
+    gamma: f32,
+    lambda: f32,
+    advantages: &mut [f32],
+    returns: &mut [f32],
+) {
     let n = rewards.len();
     assert!(
-        n.is_multiple_of(n_envs)
+        n_envs > 0
+            && n.is_multiple_of(n_envs)
             && values.len() == n
             && terminated.len() == n
             && truncated.len() == n
+            && final_values.len() == n
+            && advantages.len() == n
+            && returns.len() == n,
+        "GAE needs one value, flag, advantage and return per sample"
     );
     let steps = n / n_envs;
-    let mut advantages = vec![0.0f32; n];
     for (e, &bootstrap) in next_values.iter().enumerate().take(n_envs) {
         let mut last = 0.0f32;
         for t in (0..steps).rev() {
@@ -64,10 +108,8 @@ pub fn compute_gae(
             advantages[i] = last;
         }
     }
-    let returns = advantages.iter().zip(values).map(|(a, v)| a + v).collect();
-    Gae {
-        advantages,
-        returns,
+    for ((r, a), v) in returns.iter_mut().zip(&*advantages).zip(values) {
+        *r = a + v;
     }
 }
 

@@ -1,24 +1,43 @@
 //! The grasping environment as PPO sees it: vectorised, with the baseline's action appended to
 //! each observation and the policy's output composed with it (residual mode).
+//!
+//! The baseline acts on the environments' own typed [`Observation`]s (f64, `base_link`), at
+//! every step and at episode ends, exactly as in evaluation; the policy input is built from the
+//! same observation by [`AgentConfig::write_input`]. Every buffer is sized in `new` and refilled in
+//! place: a step allocates nothing here.
 
 use fairgrasp_env::policy::Policy;
 use fairgrasp_env::vec_env::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, EnvError, Observation};
 use fairgrasp_planner::ScriptedGrasp;
 
-use crate::agent::{ACT_DIM, AgentConfig, OBS_DIM};
-use crate::vec_api::{EpisodeStats, StepBatch, VecEnvironment};
+use crate::agent::{ACT_DIM, AgentConfig};
+use crate::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 
 /// Vectorised grasp envs plus one baseline per env.
 pub struct GraspVecEnv {
     inner: VecEnv,
     agent: AgentConfig,
     baselines: Vec<Option<ScriptedGrasp>>,
+    /// The baselines' actions for the current observations (residual mode).
     base_actions: Vec<Option<Action>>,
-    raw_obs: Vec<[f32; OBS_DIM]>,
+    /// The composed actions handed to the envs.
+    env_actions: Vec<Action>,
     returns: Vec<f32>,
     lengths: Vec<usize>,
-    episode: u64,
+    batch: StepBatch,
+}
+
+/// The baseline's action for `obs` (if any) and the policy input built from both.
+fn act_and_write(
+    agent: &AgentConfig,
+    baseline: &mut Option<ScriptedGrasp>,
+    obs: &Observation,
+    out: &mut [f32],
+) -> Option<Action> {
+    let base = baseline.as_mut().map(|b| b.act(obs));
+    agent.write_input(obs, base.as_ref(), out);
+    base
 }
 
 impl GraspVecEnv {
@@ -30,15 +49,17 @@ impl GraspVecEnv {
         threads: usize,
         seed: u64,
     ) -> Result<Self, EnvError> {
+        let inner = VecEnv::new(config, n, threads, seed)?;
+        let n = inner.len();
         Ok(Self {
-            inner: VecEnv::new(config, n, threads, seed)?,
+            inner,
             baselines: (0..n).map(|_| agent.baseline(config)).collect(),
             base_actions: vec![None; n],
-            raw_obs: Vec::new(),
+            env_actions: vec![Action::hold_open(); n],
             returns: vec![0.0; n],
             lengths: vec![0; n],
+            batch: StepBatch::new(n, agent.input_dim()),
             agent,
-            episode: 0,
         })
     }
 
@@ -47,17 +68,15 @@ impl GraspVecEnv {
         &mut self.inner
     }
 
-    /// Runs the baselines on the current observations and builds the policy inputs.
-    fn inputs(&mut self) -> Vec<Vec<f32>> {
-        let mut out = Vec::with_capacity(self.raw_obs.len());
-        for (e, obs) in self.raw_obs.iter().enumerate() {
-            let base = self.baselines[e]
-                .as_mut()
-                .map(|b| b.act(&Observation::from_array(obs)));
-            out.push(self.agent.input(obs, base.as_ref()));
-            self.base_actions[e] = base;
-        }
-        out
+    /// The baselines' actions for the current observations, per env (None in pure mode): what
+    /// the next step composes the policy's output with.
+    pub fn baseline_actions(&self) -> &[Option<Action>] {
+        &self.base_actions
+    }
+
+    fn row(&self, e: usize) -> std::ops::Range<usize> {
+        let dim = self.agent.input_dim();
+        e * dim..(e + 1) * dim
     }
 }
 
@@ -72,57 +91,86 @@ impl VecEnvironment for GraspVecEnv {
         ACT_DIM
     }
 
-    fn reset(&mut self) -> Vec<Vec<f32>> {
-        self.raw_obs = self.inner.reset().expect("the grasp env resets");
-        for b in self.baselines.iter_mut().flatten() {
-            self.episode += 1;
-            b.reset(self.episode);
+    fn reset(&mut self) -> Result<&[f32], VecEnvError> {
+        self.inner.reset()?;
+        let now = self.inner.batch();
+        for e in 0..self.baselines.len() {
+            let row = self.row(e);
+            if let Some(b) = &mut self.baselines[e] {
+                b.reset(now.seeds[e]);
+            }
+            self.base_actions[e] = act_and_write(
+                &self.agent,
+                &mut self.baselines[e],
+                &now.obs[e],
+                &mut self.batch.obs[row],
+            );
         }
-        self.returns.iter_mut().for_each(|r| *r = 0.0);
-        self.lengths.iter_mut().for_each(|l| *l = 0);
-        self.inputs()
+        self.returns.fill(0.0);
+        self.lengths.fill(0);
+        self.batch.rewards.fill(0.0);
+        self.batch.terminated.fill(false);
+        self.batch.truncated.fill(false);
+        self.batch.finished.fill(None);
+        Ok(&self.batch.obs)
     }
 
-    fn step(&mut self, actions: &[Vec<f32>]) -> StepBatch {
-        let env_actions: Vec<Action> = actions
-            .iter()
+    fn step(&mut self, actions: &[f32]) -> Result<&StepBatch, VecEnvError> {
+        let n = self.baselines.len();
+        if actions.len() != n * ACT_DIM {
+            return Err(VecEnvError::ActionShape {
+                n_envs: n,
+                act_dim: ACT_DIM,
+                got: actions.len(),
+            });
+        }
+        check_finite(actions, ACT_DIM, "action")?;
+        for ((slot, base), policy) in self
+            .env_actions
+            .iter_mut()
             .zip(&self.base_actions)
-            .map(|(a, b)| self.agent.compose(b.as_ref(), a))
-            .collect();
-        let step = self.inner.step(&env_actions).expect("the grasp env steps");
-        let mut out = StepBatch::default();
-        for e in 0..self.baselines.len() {
-            self.returns[e] += step.rewards[e] as f32;
+            .zip(actions.chunks(ACT_DIM))
+        {
+            *slot = self.agent.compose(base.as_ref(), policy);
+        }
+        let step = self.inner.step(&self.env_actions)?;
+        for e in 0..n {
+            let row = e * self.agent.input_dim()..(e + 1) * self.agent.input_dim();
+            let reward = step.rewards[e] as f32;
+            self.returns[e] += reward;
             self.lengths[e] += 1;
-            let done = step.terminated[e] || step.truncated[e];
-            out.rewards.push(step.rewards[e] as f32);
-            out.terminated.push(step.terminated[e]);
-            out.truncated.push(step.truncated[e]);
-            if done {
+            self.batch.rewards[e] = reward;
+            self.batch.terminated[e] = step.terminated[e];
+            self.batch.truncated[e] = step.truncated[e];
+            self.batch.finished[e] = None;
+            if step.terminated[e] || step.truncated[e] {
                 // The final observation with the baseline action the policy would have seen.
-                let final_obs =
-                    step.final_obs[e].expect("an ended episode keeps its final observation");
-                let base = self.baselines[e].as_mut().map(|b| b.act(&final_obs));
-                out.final_obs
-                    .push(Some(self.agent.input(&final_obs.to_array(), base.as_ref())));
-                out.finished.push(Some(EpisodeStats {
+                if let Some(last) = &step.final_obs[e] {
+                    act_and_write(
+                        &self.agent,
+                        &mut self.baselines[e],
+                        last,
+                        &mut self.batch.final_obs[row.clone()],
+                    );
+                }
+                self.batch.finished[e] = Some(EpisodeStats {
                     success: step.infos[e].success,
                     episode_return: self.returns[e],
                     length: self.lengths[e],
-                }));
+                });
                 self.returns[e] = 0.0;
                 self.lengths[e] = 0;
                 if let Some(b) = &mut self.baselines[e] {
-                    self.episode += 1;
-                    b.reset(self.episode);
+                    b.reset(step.seeds[e]);
                 }
-            } else {
-                out.final_obs.push(None);
-                out.finished.push(None);
             }
+            self.base_actions[e] = act_and_write(
+                &self.agent,
+                &mut self.baselines[e],
+                &step.obs[e],
+                &mut self.batch.obs[row],
+            );
         }
-        self.raw_obs = step.obs;
-        out.obs = self.inputs();
-        out
+        Ok(&self.batch)
     }
 }

@@ -4,19 +4,28 @@
 //! - [`model`]: the actor-critic MLPs.
 //! - [`normalizer`]: running observation statistics.
 //! - [`ppo`]: the PPO loop, CleanRL style.
+//! - [`gaussian`]: the policy's distribution, its one log-probability.
+//! - [`rollout`]: the rollout buffer, one flat buffer per quantity.
 //! - [`vec_api`]: what PPO needs from environments; [`point_mass`]: a small task PPO must solve.
+//! - [`grasp_env`]: the grasp env as PPO sees it; [`agent`]: residual or pure agent.
+//! - [`train_config`], [`train`], [`checkpoint`], [`evaluate`]: training runs and their files.
+//! - [`bench`]: the `bench ppo` measurement.
 
 pub mod agent;
+pub mod bench;
 pub mod checkpoint;
 pub mod compare;
 pub mod evaluate;
 pub mod gae;
+pub mod gaussian;
 pub mod grasp_env;
 pub mod model;
 pub mod normalizer;
 pub mod point_mass;
 pub mod ppo;
 pub mod ppo_config;
+pub mod rollout;
 pub mod shipped;
 pub mod train;
+pub mod train_config;
 pub mod vec_api;

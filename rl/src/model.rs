@@ -8,6 +8,8 @@ use burn::nn::{Initializer, Linear, LinearConfig};
 use burn::tensor::{Device, Tensor};
 use serde::{Deserialize, Serialize};
 
+use crate::gaussian;
+
 /// Sizes and initialisation of the network.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -119,30 +121,29 @@ impl ActorCritic {
         self.log_std.val()
     }
 
-    /// Log-probability `[batch]` of `actions` under `N(mean, exp(log_std)²)` (summed over dims),
-    /// and the distribution's entropy `[batch]`.
+    /// Log-probability `[batch]` of `actions` under the policy's Gaussian (summed over dims),
+    /// and the distribution's entropy `[batch]`; both from [`crate::gaussian`].
     pub fn log_prob_and_entropy(
         &self,
         obs: Tensor<2>,
         actions: Tensor<2>,
     ) -> (Tensor<1>, Tensor<1>) {
         let mean = self.mean(obs);
-        let [batch, act_dim] = mean.dims();
-        let log_std = self
-            .log_std()
-            .unsqueeze_dim::<2>(0)
-            .expand([batch, act_dim]); // [batch, act]
-        let z = actions.sub(mean).div(log_std.clone().exp());
-        let half_log_2pi = 0.5 * (2.0 * std::f32::consts::PI).ln();
-        let log_prob = z
-            .powi_scalar(2)
-            .mul_scalar(-0.5)
-            .sub(log_std.clone())
-            .sub_scalar(half_log_2pi);
-        let entropy = log_std.add_scalar(0.5 + half_log_2pi);
+        let [batch, _] = mean.dims();
         (
-            log_prob.sum_dim(1).squeeze_dim(1),
-            entropy.sum_dim(1).squeeze_dim(1),
+            gaussian::log_prob(mean, self.log_std(), actions),
+            gaussian::entropy(self.log_std(), batch),
         )
+    }
+
+    /// Are all parameters (weights, biases, log-std) finite? A diverged update makes them NaN
+    /// or infinite; such a network must not be saved over a good checkpoint.
+    pub fn parameters_finite(&self) -> bool {
+        let finite = |t: Tensor<1>| t.into_data().iter::<f32>().all(f32::is_finite);
+        let layer_finite = |l: &Linear| {
+            finite(l.weight.val().flatten::<1>(0, 1))
+                && l.bias.as_ref().is_none_or(|b| finite(b.val()))
+        };
+        self.actor.iter().chain(&self.critic).all(layer_finite) && finite(self.log_std())
     }
 }

@@ -4,7 +4,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use crate::vec_api::{EpisodeStats, StepBatch, VecEnvironment};
+use crate::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 
 /// Time step [s].
 const DT: f32 = 0.1;
@@ -25,13 +25,18 @@ struct Mass {
 pub struct PointMass {
     masses: Vec<Mass>,
     rng: ChaCha8Rng,
+    batch: StepBatch,
 }
 
 impl PointMass {
     pub fn new(n: usize, seed: u64) -> Self {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let masses = (0..n).map(|_| Self::spawn(&mut rng)).collect();
-        Self { masses, rng }
+        Self {
+            masses,
+            rng,
+            batch: StepBatch::new(n, 2),
+        }
     }
 
     fn spawn(rng: &mut ChaCha8Rng) -> Mass {
@@ -44,8 +49,8 @@ impl PointMass {
         }
     }
 
-    fn observe(m: &Mass) -> Vec<f32> {
-        vec![m.position - m.goal, m.velocity]
+    fn observe(m: &Mass, out: &mut [f32]) {
+        out.copy_from_slice(&[m.position - m.goal, m.velocity]);
     }
 
     /// The return of doing nothing, for scale: the mass stays where it started.
@@ -64,39 +69,46 @@ impl VecEnvironment for PointMass {
     fn act_dim(&self) -> usize {
         1
     }
-    fn reset(&mut self) -> Vec<Vec<f32>> {
-        for m in &mut self.masses {
+    fn reset(&mut self) -> Result<&[f32], VecEnvError> {
+        for (m, o) in self.masses.iter_mut().zip(self.batch.obs.chunks_mut(2)) {
             *m = Self::spawn(&mut self.rng);
+            Self::observe(m, o);
         }
-        self.masses.iter().map(Self::observe).collect()
+        Ok(&self.batch.obs)
     }
-    fn step(&mut self, actions: &[Vec<f32>]) -> StepBatch {
-        let mut out = StepBatch::default();
-        for (m, a) in self.masses.iter_mut().zip(actions) {
-            let force = a[0].clamp(-1.0, 1.0) * 2.0;
+    fn step(&mut self, actions: &[f32]) -> Result<&StepBatch, VecEnvError> {
+        if actions.len() != self.masses.len() {
+            return Err(VecEnvError::ActionShape {
+                n_envs: self.masses.len(),
+                act_dim: 1,
+                got: actions.len(),
+            });
+        }
+        check_finite(actions, 1, "action")?;
+        let b = &mut self.batch;
+        for (e, (m, a)) in self.masses.iter_mut().zip(actions).enumerate() {
+            let force = a.clamp(-1.0, 1.0) * 2.0;
             m.velocity = (m.velocity + force * DT) * 0.95;
             m.position += m.velocity * DT;
             m.t += 1;
             let reward = -(m.position - m.goal).abs();
             m.episode_return += reward;
             let truncated = m.t >= HORIZON;
-            out.rewards.push(reward);
-            out.terminated.push(false);
-            out.truncated.push(truncated);
+            b.rewards[e] = reward;
+            b.terminated[e] = false;
+            b.truncated[e] = truncated;
+            b.finished[e] = None;
             if truncated {
-                out.final_obs.push(Some(Self::observe(m)));
-                out.finished.push(Some(EpisodeStats {
+                Self::observe(m, &mut b.final_obs[2 * e..2 * e + 2]);
+                b.finished[e] = Some(EpisodeStats {
                     success: false,
                     episode_return: m.episode_return,
                     length: m.t,
-                }));
+                });
                 *m = Self::spawn(&mut self.rng);
-            } else {
-                out.final_obs.push(None);
-                out.finished.push(None);
             }
-            out.obs.push(Self::observe(m));
+            Self::observe(m, &mut b.obs[2 * e..2 * e + 2]);
         }
-        out
+        Ok(&self.batch)
     }
 }

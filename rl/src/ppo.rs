@@ -1,8 +1,12 @@
 //! PPO (Schulman et al. 2017), readable top to bottom like CleanRL's `ppo_continuous_action.py`:
 //! rollout → GAE → epochs × minibatches of the clipped-surrogate loss → Adam.
 //!
-//! Storage is named after the quantity (`obs`, `actions`, `logprobs`, `rewards`, `values`,
-//! `terminated`, `truncated`); batch views are `b_*`, minibatch tensors `mb_*`.
+//! Storage is one preallocated flat buffer per quantity ([`RolloutBuffer`]: `obs`, `actions`,
+//! `logprobs`, `rewards`, `terminated`, `truncated`, `values`, `advantages`, `returns`);
+//! minibatches gather the rows they index (`mb_*` tensors), as CleanRL's `b_obs[mb_inds]`.
+//! One log-probability ([`crate::gaussian::log_prob`]) serves the rollout and the update.
+//! Where this follows SB3 rather than CleanRL: the optional `target_kl` stop (checked per
+//! minibatch) and observation normalisation (`VecNormalize`'s running statistics).
 
 use burn::grad_clipping::GradientClippingConfig;
 use burn::module::Module;
@@ -14,10 +18,12 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use serde::Serialize;
 
-use crate::gae::{compute_gae, explained_variance, normalize};
+use crate::gae::{explained_variance, normalize};
+use crate::gaussian;
 use crate::model::ActorCritic;
 use crate::normalizer::RunningNorm;
-use crate::vec_api::{EpisodeStats, VecEnvironment};
+use crate::rollout::{RolloutBuffer, RolloutShape, gather, gather_rows};
+use crate::vec_api::{EpisodeStats, VecEnvError, VecEnvironment, check_finite};
 
 pub use crate::ppo_config::{PpoConfig, PpoConfigError};
 
@@ -33,6 +39,30 @@ pub struct UpdateStats {
     pub learning_rate: f64,
     /// Episodes that finished during the rollout.
     pub episodes: Vec<EpisodeStats>,
+    /// Largest `|r − 1|` of the PPO ratio on the update's first minibatch, before any gradient
+    /// step: 0 when the rollout and the update compute the same log-probability.
+    pub first_ratio_deviation: f32,
+}
+
+/// Why a PPO iteration stopped.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PpoError {
+    #[error(transparent)]
+    Env(#[from] VecEnvError),
+    #[error(
+        "the network's {what} for environment {env} is {value}, not finite: the policy diverged (a lower learning_rate may help)"
+    )]
+    NonFiniteOutput {
+        what: &'static str,
+        env: usize,
+        value: f32,
+    },
+    #[error(
+        "the update made the network's parameters non-finite: the policy diverged (a lower learning_rate may help)"
+    )]
+    NonFiniteParameters,
+    #[error("reading a tensor: {0}")]
+    Tensor(String),
 }
 
 /// The clipped surrogate objective, as a loss `[1]`: `mean(max(−A·r, −A·clip(r, 1−ε, 1+ε)))`
@@ -73,18 +103,37 @@ pub fn value_loss(
     }
 }
 
-fn tensor1(values: &[f32], device: &Device) -> Tensor<1> {
-    Tensor::from_data(TensorData::new(values.to_vec(), [values.len()]), device)
+fn tensor1(values: Vec<f32>, device: &Device) -> Tensor<1> {
+    let n = values.len();
+    Tensor::from_data(TensorData::new(values, [n]), device)
 }
 
-fn tensor2(rows: &[Vec<f32>], device: &Device) -> Tensor<2> {
-    let cols = rows.first().map_or(0, Vec::len);
-    let flat: Vec<f32> = rows.iter().flatten().copied().collect();
-    Tensor::from_data(TensorData::new(flat, [rows.len(), cols]), device)
+/// A `[rows, cols]` tensor from row-major `values` (`rows · cols` of them).
+fn tensor2(values: Vec<f32>, cols: usize, device: &Device) -> Tensor<2> {
+    let rows = values.len() / cols.max(1);
+    Tensor::from_data(TensorData::new(values, [rows, cols]), device)
 }
 
-fn to_vec<const D: usize>(t: Tensor<D>) -> Vec<f32> {
-    t.into_data().try_to_vec::<f32>().expect("f32 tensor")
+fn to_vec<const D: usize>(t: Tensor<D>) -> Result<Vec<f32>, PpoError> {
+    t.into_data()
+        .try_to_vec::<f32>()
+        .map_err(|e| PpoError::Tensor(format!("{e:?}")))
+}
+
+fn scalar(t: Tensor<1>) -> Result<f32, PpoError> {
+    Ok(to_vec(t)?.first().copied().unwrap_or(f32::NAN))
+}
+
+/// The first non-finite network output of `[env][dim]` rows, as an error.
+fn finite_output(values: &[f32], dim: usize, what: &'static str) -> Result<(), PpoError> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(PpoError::NonFiniteOutput {
+            what,
+            env: i / dim.max(1),
+            value: values[i],
+        }),
+    }
 }
 
 /// A new Adam optimiser with PPO's gradient-norm clipping.
@@ -93,20 +142,6 @@ pub fn adam(config: &PpoConfig) -> ModuleOptimizer {
         .with_epsilon(1e-5)
         .with_grad_clipping(Some(GradientClippingConfig::Norm(config.max_grad_norm)))
         .init()
-}
-
-/// One rollout: `[step][env]` flattened step-major.
-struct Rollout {
-    obs: Vec<Vec<f32>>,
-    actions: Vec<Vec<f32>>,
-    logprobs: Vec<f32>,
-    rewards: Vec<f32>,
-    values: Vec<f32>,
-    terminated: Vec<bool>,
-    truncated: Vec<bool>,
-    final_values: Vec<f32>,
-    next_values: Vec<f32>,
-    episodes: Vec<EpisodeStats>,
 }
 
 /// PPO state: the model, its optimiser, observation statistics and the sampling RNG.
@@ -118,8 +153,10 @@ pub struct Ppo {
     /// The autodiff device the model trains on.
     pub device: Device,
     rng: ChaCha8Rng,
-    /// The observation the next rollout starts from, per env (raw).
-    next_obs: Option<Vec<Vec<f32>>>,
+    /// The raw policy inputs the next rollout starts from, `[env][obs_dim]` (empty: reset).
+    next_obs: Vec<f32>,
+    /// The rollout storage, kept between iterations.
+    buffer: Option<RolloutBuffer>,
 }
 
 impl Ppo {
@@ -139,161 +176,163 @@ impl Ppo {
             optimizer,
             device,
             rng: ChaCha8Rng::seed_from_u64(seed),
-            next_obs: None,
+            next_obs: Vec::new(),
+            buffer: None,
         }
     }
 
-    /// Mean and log-std for raw observations, without gradients.
-    fn act_batch(
-        &self,
+    /// Normalises the raw `[env][dim]` rows `raw` into `out`, row by row.
+    fn normalize_rows(&self, raw: &[f32], dim: usize, out: &mut [f32]) {
+        for (o, r) in out.chunks_mut(dim.max(1)).zip(raw.chunks(dim.max(1))) {
+            self.obs_norm.normalize_into(r, o);
+        }
+    }
+
+    /// Values `[rows]` of normalised inputs `[rows][dim]`, without gradients.
+    fn values_of(
         inference: &ActorCritic,
-        obs_n: &[Vec<f32>],
-    ) -> (Vec<f32>, Vec<f32>, Vec<f32>) {
-        let device = self.device.clone().inner();
-        let x = tensor2(obs_n, &device);
-        let mean = to_vec(inference.mean(x.clone()));
-        let values = to_vec(inference.value(x));
-        let log_std = to_vec(inference.log_std());
-        (mean, log_std, values)
+        obs_n: Vec<f32>,
+        dim: usize,
+        device: &Device,
+    ) -> Result<Vec<f32>, PpoError> {
+        to_vec(inference.value(tensor2(obs_n, dim, device)))
     }
 
-    fn collect<E: VecEnvironment>(&mut self, env: &mut E) -> Rollout {
-        let n_envs = env.n_envs();
-        let act_dim = env.act_dim();
-        let mut obs = self.next_obs.take().unwrap_or_else(|| env.reset());
-        let inference = self.model.valid();
-        let mut r = Rollout {
-            obs: Vec::new(),
-            actions: Vec::new(),
-            logprobs: Vec::new(),
-            rewards: Vec::new(),
-            values: Vec::new(),
-            terminated: Vec::new(),
-            truncated: Vec::new(),
-            final_values: Vec::new(),
-            next_values: Vec::new(),
-            episodes: Vec::new(),
+    /// Fills the rollout buffer with `n_steps` steps of every env.
+    fn collect<E: VecEnvironment>(&mut self, env: &mut E) -> Result<RolloutBuffer, PpoError> {
+        let shape = RolloutShape {
+            n_steps: self.config.n_steps,
+            n_envs: env.n_envs(),
+            obs_dim: env.obs_dim(),
+            act_dim: env.act_dim(),
         };
-        let half_log_2pi = 0.5 * (2.0 * std::f32::consts::PI).ln();
-        for _ in 0..self.config.n_steps {
-            if self.config.norm_obs {
-                self.obs_norm.update(&obs);
+        let (n_envs, od, ad) = (shape.n_envs, shape.obs_dim, shape.act_dim);
+        let mut b = match self.buffer.take() {
+            Some(b) if b.shape == shape => b,
+            _ => {
+                self.next_obs.clear();
+                RolloutBuffer::new(shape)
             }
-            let obs_n: Vec<Vec<f32>> = obs.iter().map(|o| self.obs_norm.normalize(o)).collect();
-            let (mean, log_std, values) = self.act_batch(&inference, &obs_n);
-            let mut actions = Vec::with_capacity(n_envs);
-            for e in 0..n_envs {
-                let mut action = Vec::with_capacity(act_dim);
-                let mut logprob = 0.0;
-                for d in 0..act_dim {
-                    let z: f32 = StandardNormal.sample(&mut self.rng);
-                    action.push(mean[e * act_dim + d] + log_std[d].exp() * z);
-                    logprob += -0.5 * z * z - log_std[d] - half_log_2pi;
+        };
+        if self.next_obs.len() != n_envs * od {
+            let first = env.reset()?;
+            if first.len() != n_envs * od {
+                return Err(VecEnvError::Shape {
+                    what: "observation",
+                    expected: n_envs * od,
+                    got: first.len(),
                 }
-                r.logprobs.push(logprob);
-                actions.push(action);
+                .into());
             }
-            let step = env.step(&actions);
-            // Bootstrap values of truncated episodes' last observations.
-            let finals: Vec<Vec<f32>> = step
-                .final_obs
-                .iter()
-                .flatten()
-                .map(|o| self.obs_norm.normalize(o))
-                .collect();
-            let final_values = if finals.is_empty() {
-                Vec::new()
-            } else {
-                self.act_batch(&inference, &finals).2
-            };
-            let mut k = 0;
-            for f in &step.final_obs {
-                r.final_values.push(if f.is_some() {
-                    k += 1;
-                    final_values[k - 1]
-                } else {
-                    0.0
-                });
-            }
-            r.obs.extend(obs_n);
-            r.actions.extend(actions);
-            r.values.extend(values);
-            r.rewards.extend(&step.rewards);
-            r.terminated.extend(&step.terminated);
-            r.truncated.extend(&step.truncated);
-            r.episodes.extend(step.finished.iter().flatten());
-            obs = step.obs;
+            self.next_obs.clear();
+            self.next_obs.extend_from_slice(first);
         }
-        let obs_n: Vec<Vec<f32>> = obs.iter().map(|o| self.obs_norm.normalize(o)).collect();
-        r.next_values = self.act_batch(&inference, &obs_n).2;
-        self.next_obs = Some(obs);
-        r
+        let device = self.device.clone().inner();
+        let inference = self.model.valid();
+        b.episodes.clear();
+        for t in 0..shape.n_steps {
+            let rows = b.step_range(t);
+            check_finite(&self.next_obs, od, "observation")?;
+            if self.config.norm_obs {
+                self.obs_norm.update_rows(&self.next_obs);
+            }
+            let obs_n = &mut b.obs[rows.start * od..rows.end * od];
+            self.normalize_rows(&self.next_obs, od, obs_n);
+            let x = tensor2(obs_n.to_vec(), od, &device);
+            let mean_t = inference.mean(x.clone());
+            let mean = to_vec(mean_t.clone())?;
+            let values = to_vec(inference.value(x))?;
+            let log_std_t = inference.log_std();
+            let log_std = to_vec(log_std_t.clone())?;
+            finite_output(&mean, ad, "mean action")?;
+            finite_output(&values, 1, "value")?;
+            let actions = &mut b.actions[rows.start * ad..rows.end * ad];
+            for (k, a) in actions.iter_mut().enumerate() {
+                let z: f32 = StandardNormal.sample(&mut self.rng);
+                *a = mean[k] + log_std[k % ad].exp() * z;
+            }
+            finite_output(actions, ad, "sampled action")?;
+            let logprob =
+                gaussian::log_prob(mean_t, log_std_t, tensor2(actions.to_vec(), ad, &device));
+            for (slot, v) in b.logprobs[rows.clone()].iter_mut().zip(to_vec(logprob)?) {
+                *slot = v;
+            }
+            b.values[rows.clone()].copy_from_slice(&values);
+            let step = env.step(actions)?;
+            step.check_shape(n_envs, od)?;
+            // Bootstrap values of ended episodes' last observations.
+            let ended: Vec<usize> = (0..n_envs).filter(|&e| step.ended(e)).collect();
+            b.final_values[rows.clone()].fill(0.0);
+            if !ended.is_empty() {
+                let raw = gather_rows(&step.final_obs, od, &ended);
+                check_finite(&raw, od, "final observation")?;
+                let mut finals = vec![0.0; raw.len()];
+                self.normalize_rows(&raw, od, &mut finals);
+                let final_values = Self::values_of(&inference, finals, od, &device)?;
+                for (&e, v) in ended.iter().zip(final_values) {
+                    b.final_values[rows.start + e] = v;
+                }
+            }
+            b.rewards[rows.clone()].copy_from_slice(&step.rewards);
+            b.terminated[rows.clone()].copy_from_slice(&step.terminated);
+            b.truncated[rows.clone()].copy_from_slice(&step.truncated);
+            b.episodes.extend(step.finished.iter().flatten());
+            self.next_obs.copy_from_slice(&step.obs);
+        }
+        check_finite(&self.next_obs, od, "observation")?;
+        let mut obs_n = vec![0.0; self.next_obs.len()];
+        self.normalize_rows(&self.next_obs, od, &mut obs_n);
+        let next_values = Self::values_of(&inference, obs_n, od, &device)?;
+        finite_output(&next_values, 1, "value")?;
+        b.next_values.copy_from_slice(&next_values);
+        Ok(b)
     }
 
     /// One PPO iteration: a rollout of `n_steps` per env, then the update. `progress` in
     /// [0, 1] is the fraction of training done (for the learning-rate schedule).
-    pub fn iterate<E: VecEnvironment>(&mut self, env: &mut E, progress: f64) -> UpdateStats {
+    pub fn iterate<E: VecEnvironment>(
+        &mut self,
+        env: &mut E,
+        progress: f64,
+    ) -> Result<UpdateStats, PpoError> {
         let c = self.config.clone();
-        let r = self.collect(env);
-        let gae = compute_gae(
-            env.n_envs(),
-            &r.rewards,
-            &r.values,
-            &r.terminated,
-            &r.truncated,
-            &r.final_values,
-            &r.next_values,
-            c.gamma,
-            c.gae_lambda,
-        );
+        let mut b = self.collect(env)?;
+        b.compute_advantages(c.gamma, c.gae_lambda);
         let lr = if c.anneal_lr {
             c.learning_rate * (1.0 - progress).max(0.0)
         } else {
             c.learning_rate
         };
-        let n = r.rewards.len();
-        let mut b_inds: Vec<usize> = (0..n).collect();
+        let (od, ad) = (b.shape.obs_dim, b.shape.act_dim);
+        let mut b_inds: Vec<usize> = (0..b.shape.samples()).collect();
         let mut stats = UpdateStats {
             learning_rate: lr,
-            episodes: r.episodes.clone(),
+            episodes: b.episodes.clone(),
             ..UpdateStats::default()
         };
         let (mut count, mut sums) = (0.0f32, [0.0f32; 5]);
         'epochs: for _ in 0..c.n_epochs {
             b_inds.shuffle(&mut self.rng);
             for mb_inds in b_inds.chunks(c.batch_size) {
-                let pick = |v: &[f32]| mb_inds.iter().map(|&i| v[i]).collect::<Vec<f32>>();
-                let mb_obs = tensor2(
-                    &mb_inds
-                        .iter()
-                        .map(|&i| r.obs[i].clone())
-                        .collect::<Vec<_>>(),
-                    &self.device,
-                );
-                let mb_actions = tensor2(
-                    &mb_inds
-                        .iter()
-                        .map(|&i| r.actions[i].clone())
-                        .collect::<Vec<_>>(),
-                    &self.device,
-                );
-                let mut mb_adv = pick(&gae.advantages);
+                let mb_obs = tensor2(gather_rows(&b.obs, od, mb_inds), od, &self.device);
+                let mb_actions = tensor2(gather_rows(&b.actions, ad, mb_inds), ad, &self.device);
+                let mut mb_adv = gather(&b.advantages, mb_inds);
                 if c.norm_adv {
                     normalize(&mut mb_adv);
                 }
                 let (new_logprob, entropy) =
                     self.model.log_prob_and_entropy(mb_obs.clone(), mb_actions);
                 let (pg_loss, ratio) = clipped_surrogate(
-                    new_logprob.clone(),
-                    tensor1(&pick(&r.logprobs), &self.device),
-                    tensor1(&mb_adv, &self.device),
+                    new_logprob,
+                    tensor1(gather(&b.logprobs, mb_inds), &self.device),
+                    tensor1(mb_adv, &self.device),
                     c.clip_coef,
                 );
                 let new_values = self.model.value(mb_obs);
                 let v_loss = value_loss(
                     new_values,
-                    tensor1(&pick(&gae.returns), &self.device),
-                    tensor1(&pick(&r.values), &self.device),
+                    tensor1(gather(&b.returns, mb_inds), &self.device),
+                    tensor1(gather(&b.values, mb_inds), &self.device),
                     c.clip_vloss.then_some(c.clip_coef),
                 );
                 let entropy = entropy.mean();
@@ -302,7 +341,11 @@ impl Ppo {
                     .sub(entropy.clone().mul_scalar(c.ent_coef))
                     .add(v_loss.clone().mul_scalar(c.vf_coef));
                 // Diagnostics (no gradients).
-                let ratio = to_vec(ratio.inner());
+                let ratio = to_vec(ratio.inner())?;
+                if count == 0.0 {
+                    stats.first_ratio_deviation =
+                        ratio.iter().map(|r| (r - 1.0).abs()).fold(0.0, f32::max);
+                }
                 let approx_kl =
                     ratio.iter().map(|r| (r - 1.0) - r.ln()).sum::<f32>() / ratio.len() as f32;
                 let clip_frac = ratio
@@ -313,9 +356,9 @@ impl Ppo {
                 let grads = GradientsParams::from_grads(loss.backward(), &self.model);
                 self.model = self.optimizer.step(lr, self.model.clone(), grads);
                 for (s, v) in sums.iter_mut().zip([
-                    to_vec(pg_loss.inner())[0],
-                    to_vec(v_loss.inner())[0],
-                    to_vec(entropy.inner())[0],
+                    scalar(pg_loss.inner())?,
+                    scalar(v_loss.inner())?,
+                    scalar(entropy.inner())?,
                     approx_kl,
                     clip_frac,
                 ]) {
@@ -334,14 +377,18 @@ impl Ppo {
             stats.approx_kl,
             stats.clip_fraction,
         ] = sums.map(|s| s / count.max(1.0));
-        stats.explained_variance = explained_variance(&r.values, &gae.returns);
-        stats
+        stats.explained_variance = explained_variance(&b.values, &b.returns);
+        self.buffer = Some(b);
+        if !self.model.parameters_finite() {
+            return Err(PpoError::NonFiniteParameters);
+        }
+        Ok(stats)
     }
 
-    /// The deterministic (mean) action for a raw observation.
-    pub fn mean_action(&self, obs: &[f32]) -> Vec<f32> {
+    /// The deterministic (mean) action for a raw policy input.
+    pub fn mean_action(&self, obs: &[f32]) -> Result<Vec<f32>, PpoError> {
         let inference = self.model.valid();
         let o = self.obs_norm.normalize(obs);
-        self.act_batch(&inference, &[o]).0
+        to_vec(inference.mean(tensor2(o, obs.len(), &self.device.clone().inner())))
     }
 }

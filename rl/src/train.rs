@@ -1,155 +1,31 @@
 //! A training run: config in, run folder out (`config.toml`, `metrics.csv`,
 //! `checkpoints/latest`, `checkpoints/best`, `eval.json`); resumable after Ctrl-C or a kill.
+//!
+//! A fresh run saves its untrained network as `checkpoints/latest` (update 0) before the first
+//! update, and `latest` is only ever replaced by a network whose parameters are finite: a run
+//! that diverges or meets an environment fault stops with an error naming the update, and
+//! `latest` still loads.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use burn::tensor::Device;
-use fairgrasp_env::curriculum::{Curriculum, CurriculumConfig};
+use fairgrasp_env::GraspEnv;
+use fairgrasp_env::curriculum::Curriculum;
 use fairgrasp_env::policy::EvalReport;
-use fairgrasp_env::presets;
 use fairgrasp_env::randomize::scenario_set;
 use fairgrasp_env::trajectory::write_atomic;
-use fairgrasp_env::{ArmModelKind, EnvConfig, GraspEnv};
-use serde::{Deserialize, Serialize};
 
-use crate::agent::{ACT_DIM, AgentConfig};
+use crate::agent::ACT_DIM;
 use crate::checkpoint::{self, CheckpointMeta};
 pub use crate::evaluate::{agent_policy, evaluate_model};
 use crate::grasp_env::GraspVecEnv;
-use crate::model::{ActorCritic, ModelConfig};
+use crate::model::ActorCritic;
 use crate::normalizer::RunningNorm;
-use crate::ppo::{Ppo, PpoConfig, UpdateStats};
-
-/// Everything a training run needs; saved as `config.toml` in the run folder.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct TrainConfig {
-    /// Environment preset (`fixed`, `seed`, `wide`, `full`, `hard`) or a .toml file.
-    pub preset: String,
-    /// Arm simulation.
-    pub arm: ArmModelKind,
-    /// Seed of the network initialisation, the sampling and the episodes.
-    pub seed: u64,
-    /// Environment steps to train for.
-    pub total_timesteps: u64,
-    /// Stop earlier once this much wall-clock time has passed in this invocation [s] (for
-    /// comparisons at an equal time budget); None = no limit.
-    pub max_wall_time_s: Option<f64>,
-    /// Parallel environments.
-    pub n_envs: usize,
-    /// Threads stepping them.
-    pub threads: usize,
-    /// Evaluate (deterministic, on a fixed scenario set) every this many updates; 0 = never.
-    pub eval_every: u64,
-    /// Scenarios per evaluation.
-    pub eval_episodes: usize,
-    /// Updates at the start that train only the critic (the actor is frozen).
-    pub critic_warmup_updates: u64,
-    /// Stage the randomisation with the curriculum (fixed → position → yaw → friction/mass).
-    pub curriculum: Option<CurriculumConfig>,
-    pub agent: AgentConfig,
-    pub model: ModelConfig,
-    pub ppo: PpoConfig,
-}
-
-impl Default for TrainConfig {
-    fn default() -> Self {
-        Self {
-            preset: "hard".into(),
-            arm: ArmModelKind::Servo,
-            seed: 0,
-            total_timesteps: 200_000,
-            max_wall_time_s: None,
-            n_envs: 4,
-            threads: 2,
-            eval_every: 10,
-            eval_episodes: 50,
-            critic_warmup_updates: 0,
-            curriculum: None,
-            agent: AgentConfig::default(),
-            model: ModelConfig {
-                log_std_init: -1.0,
-                zero_actor_output: true,
-                ..ModelConfig::default()
-            },
-            ppo: PpoConfig {
-                n_steps: 512,
-                ..PpoConfig::default()
-            },
-        }
-    }
-}
-
-/// Why a run could not start or go on.
-#[derive(Debug, thiserror::Error)]
-pub enum TrainError {
-    #[error("{0}")]
-    Config(String),
-    #[error(transparent)]
-    Checkpoint(#[from] checkpoint::CheckpointError),
-    #[error(transparent)]
-    Env(#[from] fairgrasp_env::EnvError),
-    #[error("{path}: {source}")]
-    Io {
-        path: String,
-        source: std::io::Error,
-    },
-}
-
-fn io(path: &Path) -> impl FnOnce(std::io::Error) -> TrainError + '_ {
-    move |source| TrainError::Io {
-        path: path.display().to_string(),
-        source,
-    }
-}
-
-impl TrainConfig {
-    /// Reads and checks a TOML file.
-    pub fn from_toml_file(path: &Path) -> Result<Self, TrainError> {
-        let text = std::fs::read_to_string(path).map_err(io(path))?;
-        let config: TrainConfig = toml::from_str(&text)
-            .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
-        config
-            .validate()
-            .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
-        Ok(config)
-    }
-
-    /// Checks every part; the message names the field.
-    pub fn validate(&self) -> Result<(), String> {
-        if self.n_envs == 0 || self.threads == 0 {
-            return Err(format!(
-                "n_envs = {}, threads = {}: both must be at least 1",
-                self.n_envs, self.threads
-            ));
-        }
-        if self.model.hidden.is_empty() || self.model.hidden.contains(&0) {
-            return Err(format!(
-                "model.hidden = {:?}: give one or more non-zero layer widths",
-                self.model.hidden
-            ));
-        }
-        if self.agent.residual_scale.is_nan() || self.agent.residual_scale <= 0.0 {
-            return Err(format!(
-                "agent.residual_scale = {}: must be positive",
-                self.agent.residual_scale
-            ));
-        }
-        self.ppo
-            .validate(self.n_envs)
-            .map_err(|e| format!("ppo: {e}"))?;
-        self.env_config().map(|_| ()).map_err(|e| e.to_string())
-    }
-
-    /// The environment configuration of the preset and arm.
-    pub fn env_config(&self) -> Result<EnvConfig, fairgrasp_env::ConfigError> {
-        let mut env = presets::load(&self.preset)?;
-        env.arm.model = self.arm;
-        Ok(env)
-    }
-}
+use crate::ppo::{Ppo, UpdateStats};
+use crate::train_config::io;
+pub use crate::train_config::{TrainConfig, TrainError};
 
 /// One row of `metrics.csv`.
 pub const METRICS_HEADER: &str = "update,timesteps,wall_time_s,episodes,episode_return,success_rate,episode_length,policy_loss,value_loss,entropy,approx_kl,clip_fraction,explained_variance,learning_rate,stage,eval_success_rate";
@@ -192,7 +68,150 @@ pub struct Progress<'a> {
     pub eval: Option<f64>,
 }
 
+/// A run in progress: its files, network, env and bookkeeping.
+struct Run<'a> {
+    config: &'a TrainConfig,
+    run_dir: PathBuf,
+    meta: CheckpointMeta,
+    ppo: Ppo,
+    env: GraspVecEnv,
+    curriculum: Option<Curriculum>,
+    /// Best evaluation success rate so far (-1 before any).
+    best: f64,
+    last_report: Option<EvalReport>,
+    start: Instant,
+    wall_before: f64,
+    /// The update `checkpoints/latest` holds.
+    saved_updates: u64,
+}
+
+impl Run<'_> {
+    fn latest(&self) -> PathBuf {
+        self.run_dir.join("checkpoints/latest")
+    }
+
+    fn save_latest(&mut self) -> Result<(), TrainError> {
+        checkpoint::save(
+            &self.latest(),
+            &self.meta,
+            &self.ppo.model,
+            Some(&self.ppo.optimizer),
+        )?;
+        self.saved_updates = self.meta.updates;
+        Ok(())
+    }
+
+    /// One PPO update, its evaluation (when due), checkpoints and metrics row.
+    fn update(&mut self, report: &mut dyn FnMut(Progress)) -> Result<(), TrainError> {
+        let config = self.config;
+        if let Some(c) = &self.curriculum {
+            self.env.inner_mut().set_randomization(&c.randomization())?;
+        }
+        let frozen_actor = self.meta.updates < config.critic_warmup_updates;
+        let actor_before = frozen_actor.then(|| self.ppo.model.clone());
+        let progress = self.meta.timesteps as f64 / config.total_timesteps as f64;
+        let stats = self.ppo.iterate(&mut self.env, progress)?;
+        if let Some(before) = actor_before {
+            self.ppo.model = before.with_critic_of(self.ppo.model.clone());
+        }
+        self.meta.timesteps += (config.ppo.n_steps * config.n_envs) as u64;
+        self.meta.updates += 1;
+        self.meta.wall_time_s = self.wall_before + self.start.elapsed().as_secs_f64();
+        self.meta.obs_norm = self.ppo.obs_norm.clone();
+        if let Some(c) = &mut self.curriculum {
+            for e in &stats.episodes {
+                c.record(e.success);
+            }
+        }
+        let due = config.eval_every > 0
+            && (self.meta.updates.is_multiple_of(config.eval_every)
+                || self.meta.timesteps >= config.total_timesteps);
+        let eval = if due {
+            let r = evaluate_model(config, &self.meta, &self.ppo.model, config.eval_episodes)?;
+            self.meta.eval_success_rate = Some(r.success_rate);
+            if r.success_rate > self.best {
+                self.best = r.success_rate;
+                let best_dir = self.run_dir.join("checkpoints/best");
+                checkpoint::save(&best_dir, &self.meta, &self.ppo.model, None)?;
+            }
+            let json = serde_json::to_vec_pretty(&r)
+                .map_err(|e| TrainError::Config(format!("eval.json: {e}")))?;
+            write_atomic(&self.run_dir.join("eval.json"), &json).map_err(io(&self.run_dir))?;
+            let rate = r.success_rate;
+            self.last_report = Some(r);
+            Some(rate)
+        } else {
+            None
+        };
+        self.save_latest()?;
+        let stage = self.curriculum.as_ref().map_or(0, Curriculum::stage);
+        let m = &self.meta;
+        let row = metrics_row(m.updates, m.timesteps, m.wall_time_s, &stats, stage, eval);
+        let metrics_path = self.run_dir.join("metrics.csv");
+        let mut f = std::fs::OpenOptions::new()
+            .append(true)
+            .open(&metrics_path)
+            .map_err(io(&metrics_path))?;
+        writeln!(f, "{row}").map_err(io(&metrics_path))?;
+        report(Progress {
+            timesteps: self.meta.timesteps,
+            total: config.total_timesteps,
+            stats: &stats,
+            stage,
+            eval,
+        });
+        Ok(())
+    }
+}
+
+/// The network to start from: `latest` when resuming (with its meta and optimiser folder),
+/// else a fresh one (and the run folder's `config.toml` and `metrics.csv` header).
+fn start_from(
+    config: &TrainConfig,
+    run_dir: &Path,
+    resume: bool,
+    device: &Device,
+) -> Result<(CheckpointMeta, ActorCritic, Option<PathBuf>), TrainError> {
+    let latest = run_dir.join("checkpoints/latest");
+    let input_dim = config.agent.input_dim();
+    if resume {
+        let (meta, model) = checkpoint::load_model(&latest, device)?;
+        if meta.input_dim != input_dim {
+            return Err(TrainError::Config(format!(
+                "the checkpoint's input size {} differs from this config's {input_dim}",
+                meta.input_dim
+            )));
+        }
+        return Ok((meta, model, Some(latest)));
+    }
+    let toml = toml::to_string_pretty(config)
+        .map_err(|e| TrainError::Config(format!("config.toml: {e}")))?;
+    write_atomic(&run_dir.join("config.toml"), toml.as_bytes()).map_err(io(run_dir))?;
+    write_atomic(
+        &run_dir.join("metrics.csv"),
+        format!("{METRICS_HEADER}\n").as_bytes(),
+    )
+    .map_err(io(run_dir))?;
+    let meta = CheckpointMeta {
+        version: 1,
+        input_dim,
+        act_dim: ACT_DIM,
+        model: config.model.clone(),
+        agent: config.agent.clone(),
+        obs_norm: RunningNorm::new(input_dim, config.ppo.norm_obs),
+        timesteps: 0,
+        updates: 0,
+        wall_time_s: 0.0,
+        eval_success_rate: None,
+    };
+    let model = ActorCritic::new(input_dim, ACT_DIM, &config.model, device);
+    Ok((meta, model, None))
+}
+
 /// Trains (or resumes) in `run_dir`; `report` is called after every update.
+///
+/// An error during an update ([`TrainError::Update`]) names the update and the one
+/// `checkpoints/latest` still holds.
 pub fn train(
     config: &TrainConfig,
     run_dir: &Path,
@@ -201,53 +220,12 @@ pub fn train(
 ) -> Result<EvalReport, TrainError> {
     config.validate().map_err(TrainError::Config)?;
     std::fs::create_dir_all(run_dir.join("checkpoints")).map_err(io(run_dir))?;
-    let latest = run_dir.join("checkpoints/latest");
-    let best_dir = run_dir.join("checkpoints/best");
-    let metrics_path = run_dir.join("metrics.csv");
     let device = Device::flex().autodiff();
     device.seed(config.seed);
     let env_config = config
         .env_config()
         .map_err(|e| TrainError::Config(e.to_string()))?;
-    let input_dim = config.agent.input_dim();
-
-    let (mut meta, model, optimizer_from) = if resume {
-        let (meta, model) = checkpoint::load_model(&latest, &device)?;
-        if meta.input_dim != input_dim {
-            return Err(TrainError::Config(format!(
-                "the checkpoint's input size {} differs from this config's {input_dim}",
-                meta.input_dim
-            )));
-        }
-        (meta, model, Some(latest.clone()))
-    } else {
-        write_atomic(
-            &run_dir.join("config.toml"),
-            toml::to_string_pretty(config)
-                .expect("serialisable")
-                .as_bytes(),
-        )
-        .map_err(io(run_dir))?;
-        write_atomic(&metrics_path, format!("{METRICS_HEADER}\n").as_bytes())
-            .map_err(io(run_dir))?;
-        let meta = CheckpointMeta {
-            version: 1,
-            input_dim,
-            act_dim: ACT_DIM,
-            model: config.model.clone(),
-            agent: config.agent.clone(),
-            obs_norm: RunningNorm::new(input_dim, config.ppo.norm_obs),
-            timesteps: 0,
-            updates: 0,
-            wall_time_s: 0.0,
-            eval_success_rate: None,
-        };
-        (
-            meta,
-            ActorCritic::new(input_dim, ACT_DIM, &config.model, &device),
-            None,
-        )
-    };
+    let (meta, model, optimizer_from) = start_from(config, run_dir, resume, &device)?;
     // Fail here, with the reason, rather than inside the rollout if no scenario can be drawn.
     let probe = GraspEnv::new(env_config.clone())?;
     scenario_set(
@@ -262,7 +240,7 @@ pub fn train(
         .seed
         .wrapping_mul(7_919)
         .wrapping_add(meta.updates * 1_000);
-    let mut env = GraspVecEnv::new(
+    let env = GraspVecEnv::new(
         &env_config,
         config.agent.clone(),
         config.n_envs,
@@ -279,88 +257,40 @@ pub fn train(
     if let Some(dir) = optimizer_from {
         ppo.optimizer = checkpoint::load_optimizer(&dir, ppo.optimizer)?;
     }
-    let mut curriculum = config
-        .curriculum
-        .clone()
-        .map(|c| Curriculum::new(c, env_config.randomization.clone()));
-    let per_update = (config.ppo.n_steps * config.n_envs) as u64;
-    let start = Instant::now();
-    let wall_before = meta.wall_time_s;
-    let mut best = meta.eval_success_rate.unwrap_or(-1.0);
-    let mut last_report = None;
+    let mut run = Run {
+        config,
+        run_dir: run_dir.to_path_buf(),
+        curriculum: config
+            .curriculum
+            .clone()
+            .map(|c| Curriculum::new(c, env_config.randomization.clone())),
+        best: meta.eval_success_rate.unwrap_or(-1.0),
+        last_report: None,
+        start: Instant::now(),
+        wall_before: meta.wall_time_s,
+        saved_updates: meta.updates,
+        meta,
+        ppo,
+        env,
+    };
+    if !resume {
+        run.save_latest()?;
+    }
     let out_of_time = |start: &Instant| {
         config
             .max_wall_time_s
             .is_some_and(|t| start.elapsed().as_secs_f64() >= t)
     };
-    while meta.timesteps < config.total_timesteps && !out_of_time(&start) {
-        if let Some(c) = &curriculum {
-            env.inner_mut().set_randomization(&c.randomization())?;
-        }
-        let frozen_actor = meta.updates < config.critic_warmup_updates;
-        let actor_before = frozen_actor.then(|| ppo.model.clone());
-        let stats = ppo.iterate(
-            &mut env,
-            meta.timesteps as f64 / config.total_timesteps as f64,
-        );
-        if let Some(before) = actor_before {
-            ppo.model = before.with_critic_of(ppo.model.clone());
-        }
-        meta.timesteps += per_update;
-        meta.updates += 1;
-        meta.wall_time_s = wall_before + start.elapsed().as_secs_f64();
-        meta.obs_norm = ppo.obs_norm.clone();
-        if let Some(c) = &mut curriculum {
-            for e in &stats.episodes {
-                c.record(e.success);
-            }
-        }
-        let eval = if config.eval_every > 0
-            && (meta.updates % config.eval_every == 0 || meta.timesteps >= config.total_timesteps)
-        {
-            let r = evaluate_model(config, &meta, &ppo.model, config.eval_episodes)?;
-            meta.eval_success_rate = Some(r.success_rate);
-            if r.success_rate > best {
-                best = r.success_rate;
-                checkpoint::save(&best_dir, &meta, &ppo.model, None)?;
-            }
-            let json = serde_json::to_vec_pretty(&r).expect("serialisable");
-            write_atomic(&run_dir.join("eval.json"), &json).map_err(io(run_dir))?;
-            last_report = Some(r.clone());
-            Some(r.success_rate)
-        } else {
-            None
-        };
-        checkpoint::save(&latest, &meta, &ppo.model, Some(&ppo.optimizer))?;
-        let stage = curriculum.as_ref().map_or(0, Curriculum::stage);
-        let row = metrics_row(
-            meta.updates,
-            meta.timesteps,
-            meta.wall_time_s,
-            &stats,
-            stage,
-            eval,
-        );
-        let mut f = std::fs::OpenOptions::new()
-            .append(true)
-            .open(&metrics_path)
-            .map_err(io(&metrics_path))?;
-        writeln!(f, "{row}").map_err(io(&metrics_path))?;
-        report(Progress {
-            timesteps: meta.timesteps,
-            total: config.total_timesteps,
-            stats: &stats,
-            stage,
-            eval,
-        });
+    while run.meta.timesteps < config.total_timesteps && !out_of_time(&run.start) {
+        let update = run.saved_updates + 1;
+        run.update(report).map_err(|e| TrainError::Update {
+            update,
+            last_good: run.saved_updates,
+            source: Box::new(e),
+        })?;
     }
-    match last_report {
+    match run.last_report {
         Some(r) => Ok(r),
-        None => evaluate_model(config, &meta, &ppo.model, config.eval_episodes),
+        None => evaluate_model(config, &run.meta, &run.ppo.model, config.eval_episodes),
     }
-}
-
-/// The run folder's latest checkpoint.
-pub fn latest_checkpoint(run_dir: &Path) -> PathBuf {
-    run_dir.join("checkpoints/latest")
 }

@@ -1,6 +1,8 @@
 //! PPO: the losses against hand computations, config refusals, and learning a small task.
 
 use burn::tensor::{Device, Tensor, TensorData};
+use fairgrasp_rl::agent::ACT_DIM;
+use fairgrasp_rl::bench::FreeEnv;
 use fairgrasp_rl::model::{ActorCritic, ModelConfig};
 use fairgrasp_rl::normalizer::RunningNorm;
 use fairgrasp_rl::point_mass::{HORIZON, PointMass};
@@ -93,22 +95,22 @@ fn a_rollout_that_is_not_a_multiple_of_the_batch_size_is_refused() {
 }
 
 fn evaluate(ppo: &Ppo, episodes: usize) -> f32 {
-    evaluate_with(&|o| ppo.mean_action(o), episodes)
+    evaluate_with(&|o| ppo.mean_action(o).unwrap(), episodes)
 }
 
 fn evaluate_with(policy: &dyn Fn(&[f32]) -> Vec<f32>, episodes: usize) -> f32 {
     let mut env = PointMass::new(1, 999);
-    let mut obs = env.reset();
+    let mut obs = env.reset().unwrap().to_vec();
     let mut total = 0.0;
     let mut done = 0;
     while done < episodes {
-        let action = policy(&obs[0]);
-        let step = env.step(&[action]);
+        let action = policy(&obs);
+        let step = env.step(&action).unwrap();
         total += step.rewards[0];
         if step.truncated[0] {
             done += 1;
         }
-        obs = step.obs;
+        obs.copy_from_slice(&step.obs);
     }
     total / episodes as f32
 }
@@ -132,7 +134,7 @@ fn ppo_learns_to_drive_a_point_mass_to_its_goal() {
     let before = evaluate(&ppo, 20);
     let iterations = 60; // 60 × 64 × 8 = 30 720 env steps
     for k in 0..iterations {
-        ppo.iterate(&mut env, k as f64 / iterations as f64);
+        ppo.iterate(&mut env, k as f64 / iterations as f64).unwrap();
     }
     let after = evaluate(&ppo, 20);
     // The reference: the best saturated PD controller a = clip(−kp·x − kd·v) over a gain grid,
@@ -153,4 +155,49 @@ fn ppo_learns_to_drive_a_point_mass_to_its_goal() {
         after >= 1.25 * best_pd,
         "PPO {after:.2} is not near the best PD controller {best_pd:.2} (before {before:.2})"
     );
+}
+
+/// PPO on `env` with a random actor (so actions and log-probabilities vary), seed 3.
+fn ppo_for(env: &impl VecEnvironment, n_steps: usize) -> Ppo {
+    let device = Device::flex().autodiff();
+    device.seed(3);
+    let config = PpoConfig {
+        n_steps,
+        batch_size: 64,
+        n_epochs: 2,
+        learning_rate: 1e-3,
+        ..PpoConfig::default()
+    };
+    config.validate(env.n_envs()).unwrap();
+    let (obs_dim, act_dim) = (env.obs_dim(), env.act_dim());
+    let model = ActorCritic::new(obs_dim, act_dim, &ModelConfig::default(), &device);
+    Ppo::new(config, model, RunningNorm::new(obs_dim, true), device, 3)
+}
+
+#[test]
+fn the_ppo_ratio_is_exactly_one_on_the_first_minibatch_of_every_update() {
+    // Before the first gradient step of an update the parameters are those that sampled the
+    // rollout, and one log-probability function serves both: r = exp(logπ − logπ_old) = 1
+    // exactly, on a 1-D and a 7-D action space, in the first update and after training moved
+    // the network.
+    let mut point_mass = PointMass::new(8, 1);
+    let mut ppo = ppo_for(&point_mass, 32);
+    for update in 0..3 {
+        let stats = ppo.iterate(&mut point_mass, 0.0).unwrap();
+        assert_eq!(
+            stats.first_ratio_deviation, 0.0,
+            "point mass, update {update}"
+        );
+        assert!(stats.approx_kl > 0.0, "the updates move the policy");
+    }
+    let mut free = FreeEnv::new(4, 30);
+    assert_eq!(free.act_dim(), ACT_DIM);
+    let mut ppo = ppo_for(&free, 32);
+    for update in 0..3 {
+        let stats = ppo.iterate(&mut free, 0.0).unwrap();
+        assert_eq!(
+            stats.first_ratio_deviation, 0.0,
+            "7-D actions, update {update}"
+        );
+    }
 }

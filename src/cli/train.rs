@@ -62,8 +62,7 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
     bar.set_style(
         indicatif::ProgressStyle::with_template(
             "{bar:30} {pos}/{len} steps {per_sec} eta {eta} {msg}",
-        )
-        .expect("valid template")
+        )?
         .progress_chars("=> "),
     );
     let report = train(&config, &run_dir, a.resume, &mut |p| {
@@ -124,7 +123,7 @@ pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
     let policy = a.policy.clone().unwrap_or_else(default_policy);
     let (meta, model) = checkpoint::load_model(&policy, &Device::flex())
         .context("loading the policy (pass --policy DIR to choose one)")?;
-    let method = format!("{:?} agent ({})", meta.agent.mode, policy.display()).to_lowercase();
+    let method = format!("{} agent ({})", meta.agent.mode, policy.display());
     let make = |config: &EnvConfig| agent_policy(&meta, &model, config);
     let extra = serde_json::json!({"policy": policy.display().to_string(), "trained_timesteps": meta.timesteps});
     evaluate_and_print(&a.scenarios, &method, &make, extra)
