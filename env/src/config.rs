@@ -70,7 +70,7 @@ pub struct ArmConfig {
     pub home_joints: [f64; 6],
     /// Joint velocity for an action of 1.0 [rad/s] (the seed's 0.5).
     pub action_scale: f64,
-    /// Joint acceleration limit [rad/s²] (FR3.md publishes none: fairgrasp's choice).
+    /// Joint acceleration limit [rad/s²] (FAIRINO publishes none, see docs/FR3.md: fairgrasp's choice).
     pub max_acceleration: f64,
 }
 
@@ -244,7 +244,7 @@ impl RandomizationConfig {
         }
     }
 
-    /// A wider sector for harder training: radius 0.25–0.45 m (FR3.md's comfortable table
+    /// A wider sector for harder training: radius 0.25–0.45 m (docs/FR3.md's comfortable table
     /// region), angle ±135°, random yaw; also fully graspable top-down (10 000 samples).
     pub fn wide_sector() -> Self {
         Self {

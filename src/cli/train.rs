@@ -104,15 +104,10 @@ fn arm_arg(c: &TrainConfig) -> ArmArg {
     }
 }
 
-/// The shipped residual policy, used when `--policy` is omitted.
-pub fn default_policy() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/policies/residual_hard/checkpoint")
-}
-
 #[derive(Args, Debug)]
 pub struct EvalArgs {
     /// Checkpoint folder (a run's checkpoints/best or checkpoints/latest). Default: the shipped
-    /// residual policy, assets/policies/residual_hard/checkpoint.
+    /// residual policy (built into the binary; assets/policies/residual_hard in the sources).
     #[arg(long, value_name = "DIR")]
     policy: Option<PathBuf>,
     #[command(flatten)]
@@ -120,7 +115,12 @@ pub struct EvalArgs {
 }
 
 pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
-    let policy = a.policy.clone().unwrap_or_else(default_policy);
+    // The shipped residual policy is built into the binary: found from any folder.
+    let policy = match &a.policy {
+        Some(p) => p.clone(),
+        None => fairgrasp_rl::shipped::default_policy()
+            .context("unpacking the shipped residual policy")?,
+    };
     let (meta, model) = checkpoint::load_model(&policy, &Device::flex())
         .context("loading the policy (pass --policy DIR to choose one)")?;
     let method = format!("{} agent ({})", meta.agent.mode, policy.display());
