@@ -2,21 +2,14 @@
 //! with the base yawed, and a raised pedestal. "Top-down" is along world gravity, whatever the
 //! base's pose.
 
-use fairgrasp_env::policy::{EvalReport, run_episode};
+use fairgrasp_env::EnvConfig;
+use fairgrasp_env::policy::{EvalReport, evaluate_seeded};
 use fairgrasp_env::presets;
-use fairgrasp_env::randomize::scenario_set;
-use fairgrasp_env::{EnvConfig, GraspEnv};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
 fn evaluate(config: &EnvConfig, seed: u64, n: usize) -> EvalReport {
-    let mut env = GraspEnv::new(config.clone()).unwrap();
-    let scenarios = scenario_set(config, env.model(), env.base_in_world(), seed, n).unwrap();
-    let mut policy = ScriptedGrasp::new(config, BaselineConfig::default());
-    let results = scenarios
-        .iter()
-        .map(|s| run_episode(&mut env, &mut policy, s, None).unwrap())
-        .collect();
-    EvalReport::from_results(results)
+    let make = || ScriptedGrasp::new(config, BaselineConfig::default());
+    evaluate_seeded(config, seed, n, 2, None, &make, &|| {}).unwrap()
 }
 
 fn full_with_mount(xyz_offset: [f64; 3], rpy: [f64; 3]) -> EnvConfig {
