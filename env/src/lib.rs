@@ -35,6 +35,7 @@ pub mod task;
 pub mod trajectory;
 pub mod validate;
 pub mod vec_env;
+mod vec_worker;
 
 pub use config::{ArmModelKind, ConfigError, EnvConfig};
 pub use env::{Action, EnvError, GraspEnv, Info, Step};

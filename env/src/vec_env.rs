@@ -14,13 +14,10 @@
 //! variable rather than a channel (whose queue allocates as messages flow). What the environments
 //! allocate inside their own `step`/`reset` is theirs.
 
-use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::sync::{Arc, Condvar, Mutex, MutexGuard};
-use std::thread::JoinHandle;
-
 use crate::config::{EnvConfig, RandomizationConfig};
 use crate::env::{Action, EnvError, GraspEnv, Info};
 use crate::obs::Observation;
+use crate::vec_worker::{Job, Worker, spawn_worker};
 
 /// One batched step (or reset), one entry per environment in index order.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -92,8 +89,8 @@ fn seed_for(base: u64, env: usize, episode: u64) -> u64 {
 }
 
 /// The environments one thread owns, and their outcomes.
-struct Chunk {
-    envs: Vec<GraspEnv>,
+pub(crate) struct Chunk {
+    pub(crate) envs: Vec<GraspEnv>,
     /// Episodes started so far, per environment.
     episodes: Vec<u64>,
     first_index: usize,
@@ -111,7 +108,7 @@ impl Chunk {
         seed
     }
 
-    fn reset(&mut self) -> Result<(), EnvError> {
+    pub(crate) fn reset(&mut self) -> Result<(), EnvError> {
         self.out.clear();
         for j in 0..self.envs.len() {
             let seed = self.next_seed(j);
@@ -144,136 +141,17 @@ impl Chunk {
     }
 
     /// Steps with the actions a worker was handed.
-    fn step_own_actions(&mut self) -> Result<(), EnvError> {
+    pub(crate) fn step_own_actions(&mut self) -> Result<(), EnvError> {
         let actions = std::mem::take(&mut self.actions);
         let result = self.step(&actions);
         self.actions = actions;
         result
     }
 
-    fn set_randomization(&mut self, r: &RandomizationConfig) -> Result<(), EnvError> {
+    pub(crate) fn set_randomization(&mut self, r: &RandomizationConfig) -> Result<(), EnvError> {
         self.envs
             .iter_mut()
             .try_for_each(|e| e.set_randomization(r.clone()))
-    }
-}
-
-/// What a worker is asked to do, and its answer.
-enum Job {
-    Idle,
-    Reset,
-    Step,
-    SetRandomization(RandomizationConfig),
-    Finished(Result<(), EnvError>),
-    Quit,
-}
-
-/// A worker's chunk and its job, behind one mutex.
-struct Shared {
-    chunk: Chunk,
-    job: Job,
-    /// A job panicked: the chunk may be half-stepped, every later job fails.
-    lost: bool,
-}
-
-type Mailbox = Arc<(Mutex<Shared>, Condvar)>;
-
-struct Worker {
-    mailbox: Mailbox,
-    thread: Option<JoinHandle<()>>,
-    len: usize,
-}
-
-fn run_job(shared: &mut Shared, job: Job) -> Result<(), EnvError> {
-    if shared.lost {
-        return Err(EnvError::WorkerLost);
-    }
-    let chunk = &mut shared.chunk;
-    let result = catch_unwind(AssertUnwindSafe(|| match job {
-        Job::Reset => chunk.reset(),
-        Job::Step => chunk.step_own_actions(),
-        Job::SetRandomization(r) => chunk.set_randomization(&r),
-        Job::Idle | Job::Finished(_) | Job::Quit => Ok(()),
-    }));
-    result.unwrap_or_else(|_| {
-        shared.lost = true;
-        Err(EnvError::WorkerLost)
-    })
-}
-
-fn worker_loop(mailbox: &Mailbox) {
-    let (lock, wake) = &**mailbox;
-    let Ok(mut shared) = lock.lock() else {
-        return;
-    };
-    loop {
-        match std::mem::replace(&mut shared.job, Job::Idle) {
-            Job::Quit => return,
-            waiting @ (Job::Idle | Job::Finished(_)) => {
-                shared.job = waiting;
-                shared = match wake.wait(shared) {
-                    Ok(s) => s,
-                    Err(_) => return,
-                };
-            }
-            job => {
-                let result = run_job(&mut shared, job);
-                shared.job = Job::Finished(result);
-                wake.notify_all();
-            }
-        }
-    }
-}
-
-fn spawn_worker(chunk: Chunk) -> Worker {
-    let len = chunk.envs.len();
-    let mailbox: Mailbox = Arc::new((
-        Mutex::new(Shared {
-            chunk,
-            job: Job::Idle,
-            lost: false,
-        }),
-        Condvar::new(),
-    ));
-    let theirs = Arc::clone(&mailbox);
-    let thread = std::thread::spawn(move || worker_loop(&theirs));
-    Worker {
-        mailbox,
-        thread: Some(thread),
-        len,
-    }
-}
-
-impl Worker {
-    fn lock(&self) -> Result<MutexGuard<'_, Shared>, EnvError> {
-        self.mailbox.0.lock().map_err(|_| EnvError::WorkerLost)
-    }
-
-    /// Hands the worker a job (after `prepare` has filled its inputs).
-    fn start(&self, job: Job, prepare: impl FnOnce(&mut Chunk)) -> Result<(), EnvError> {
-        let mut shared = self.lock()?;
-        prepare(&mut shared.chunk);
-        shared.job = job;
-        self.mailbox.1.notify_all();
-        Ok(())
-    }
-
-    /// Waits for the job's end; the guard gives access to the chunk's outcomes.
-    fn finish(&self) -> Result<(MutexGuard<'_, Shared>, Result<(), EnvError>), EnvError> {
-        let mut shared = self.lock()?;
-        loop {
-            match std::mem::replace(&mut shared.job, Job::Idle) {
-                Job::Finished(result) => return Ok((shared, result)),
-                pending => {
-                    shared.job = pending;
-                    shared = self
-                        .mailbox
-                        .1
-                        .wait(shared)
-                        .map_err(|_| EnvError::WorkerLost)?;
-                }
-            }
-        }
     }
 }
 
