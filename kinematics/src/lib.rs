@@ -4,6 +4,7 @@
 //!   [`model::ArmModel`] says what each number means.
 //! - [`pose`]: rigid poses, RPY/quaternion conversions, `world_to_base` / `base_to_world`.
 //! - [`fk`]: closed-form DH forward kinematics, geometric Jacobian, manipulability.
+//! - [`geometry`]: exact segment–box and box–box distances and penetration depths.
 //! - [`urdf`]: any serial URDF: joint table, chain to a tip link, FK; errors name the culprit.
 //! - [`analytic_ik`]: all (up to 8) closed-form IK branches, wrapped into the joint limits.
 //! - [`diff_ik`] and [`qp_ik`]: differential IK as one clarabel QP, and an iterative solver.
@@ -38,6 +39,7 @@ pub mod collision;
 pub mod diff_ik;
 pub mod fairino;
 pub mod fk;
+pub mod geometry;
 mod ik_tasks;
 pub mod model;
 pub mod pose;
