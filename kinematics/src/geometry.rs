@@ -32,10 +32,16 @@ impl Cuboid {
         self.pose.rotation * Vector3::ith(k, 1.0)
     }
 
-    /// Radius [m] of the box's projection onto the unit direction `l` (common frame).
-    fn projected_radius(&self, l: &Vector3<f64>) -> f64 {
+    /// The box's three unit axes in the common frame.
+    fn axes(&self) -> [Vector3<f64>; 3] {
+        let m = self.pose.rotation.to_rotation_matrix();
+        [0, 1, 2].map(|k| m.matrix().column(k).into_owned())
+    }
+
+    /// Radius [m] of the projection onto the unit direction `l` of a box with `axes`.
+    fn projected_radius(&self, axes: &[Vector3<f64>; 3], l: &Vector3<f64>) -> f64 {
         (0..3)
-            .map(|k| self.half_extents[k] * self.axis(k).dot(l).abs())
+            .map(|k| self.half_extents[k] * axes[k].dot(l).abs())
             .sum()
     }
 
@@ -52,14 +58,8 @@ impl Cuboid {
 /// quadratic in `t` whose pieces change only where a coordinate crosses a face plane, so its
 /// minimum is at a crossing, an end, or the vertex of one piece's parabola.
 pub fn segment_box_distance(a: [f64; 3], b: [f64; 3], cuboid: &Cuboid) -> f64 {
-    let p0 = cuboid
-        .pose
-        .inverse_transform_point(&Point3::from(a))
-        .coords;
-    let p1 = cuboid
-        .pose
-        .inverse_transform_point(&Point3::from(b))
-        .coords;
+    let p0 = cuboid.pose.inverse_transform_point(&Point3::from(a)).coords;
+    let p1 = cuboid.pose.inverse_transform_point(&Point3::from(b)).coords;
     let d = p1 - p0;
     let h = cuboid.half_extents;
     let at = |t: f64| cuboid.local_point_distance_squared(&(p0 + d * t));
@@ -116,14 +116,16 @@ pub fn segment_box_penetration(a: [f64; 3], b: [f64; 3], cuboid: &Cuboid) -> f64
     let (a, b) = (Vector3::from(a), Vector3::from(b));
     let centre = 0.5 * (a + b) - cuboid.pose.translation.vector;
     let half = 0.5 * (b - a);
+    let axes = cuboid.axes();
     let mut depth = f64::INFINITY;
     let mut try_axis = |l: Vector3<f64>| {
-        let overlap = cuboid.projected_radius(&l) + half.dot(&l).abs() - centre.dot(&l).abs();
+        let overlap =
+            cuboid.projected_radius(&axes, &l) + half.dot(&l).abs() - centre.dot(&l).abs();
         depth = depth.min(overlap);
     };
-    for k in 0..3 {
-        try_axis(cuboid.axis(k));
-        let l = half.cross(&cuboid.axis(k));
+    for axis in axes {
+        try_axis(axis);
+        let l = half.cross(&axis);
         if l.norm_squared() > DEGENERATE {
             try_axis(l.normalize());
         }
@@ -152,16 +154,20 @@ pub fn segment_box_signed_distance(a: [f64; 3], b: [f64; 3], cuboid: &Cuboid) ->
 /// translation separating two boxes is along one of these axes).
 pub fn box_box_separation(a: &Cuboid, b: &Cuboid) -> f64 {
     let t = b.pose.translation.vector - a.pose.translation.vector;
+    let (axes_a, axes_b) = (a.axes(), b.axes());
     let mut separation = f64::NEG_INFINITY;
     let mut try_axis = |l: Vector3<f64>| {
-        let gap = t.dot(&l).abs() - a.projected_radius(&l) - b.projected_radius(&l);
+        let gap =
+            t.dot(&l).abs() - a.projected_radius(&axes_a, &l) - b.projected_radius(&axes_b, &l);
         separation = separation.max(gap);
     };
-    for i in 0..3 {
-        try_axis(a.axis(i));
-        try_axis(b.axis(i));
-        for j in 0..3 {
-            let l = a.axis(i).cross(&b.axis(j));
+    for (u, v) in axes_a.iter().zip(&axes_b) {
+        try_axis(*u);
+        try_axis(*v);
+    }
+    for u in &axes_a {
+        for v in &axes_b {
+            let l = u.cross(v);
             if l.norm_squared() > DEGENERATE {
                 try_axis(l.normalize());
             }
@@ -227,8 +233,12 @@ mod tests {
 
     /// Distance between two boxes: one of the closest points always lies on an edge.
     fn brute_box_distance(a: &Cuboid, b: &Cuboid) -> f64 {
-        let ab = edges(a).into_iter().map(|(p, q)| segment_box_distance(p, q, b));
-        let ba = edges(b).into_iter().map(|(p, q)| segment_box_distance(p, q, a));
+        let ab = edges(a)
+            .into_iter()
+            .map(|(p, q)| segment_box_distance(p, q, b));
+        let ba = edges(b)
+            .into_iter()
+            .map(|(p, q)| segment_box_distance(p, q, a));
         ab.chain(ba).fold(f64::INFINITY, f64::min)
     }
 
@@ -281,10 +291,20 @@ mod tests {
                 .fold(f64::INFINITY, f64::min);
             let step = (vb - va).norm() / 4000.0;
             assert!(exact <= sampled + 1e-12, "{exact} above sampled {sampled}");
-            assert!(sampled - exact <= step, "{exact} far below sampled {sampled}");
-            if exact == 0.0 { touching += 1 } else { apart += 1 }
+            assert!(
+                sampled - exact <= step,
+                "{exact} far below sampled {sampled}"
+            );
+            if exact == 0.0 {
+                touching += 1
+            } else {
+                apart += 1
+            }
         }
-        assert!(touching > 30 && apart > 30, "{touching} touching, {apart} apart");
+        assert!(
+            touching > 30 && apart > 30,
+            "{touching} touching, {apart} apart"
+        );
     }
 
     #[test]
@@ -304,8 +324,14 @@ mod tests {
                 continue;
             }
             let brute = brute_depth(apart, 1500, 2.0);
-            assert!(depth <= brute + 1e-9, "depth {depth} above brute force {brute}");
-            assert!(brute - depth < 0.01 * brute + 1e-4, "{depth} vs brute force {brute}");
+            assert!(
+                depth <= brute + 1e-9,
+                "depth {depth} above brute force {brute}"
+            );
+            assert!(
+                brute - depth < 0.01 * brute + 1e-4,
+                "{depth} vs brute force {brute}"
+            );
             assert!(segment_box_signed_distance(a, b, &c) == -depth);
             checked += 1;
         }
@@ -320,18 +346,31 @@ mod tests {
             let (a, b) = (random_box(&mut rng, 0.3), random_box(&mut rng, 0.3));
             let separation = box_box_separation(&a, &b);
             let distance = brute_box_distance(&a, &b);
-            assert_eq!(separation > 1e-12, distance > 1e-12, "{separation} vs {distance}");
+            assert_eq!(
+                separation > 1e-12,
+                distance > 1e-12,
+                "{separation} vs {distance}"
+            );
             if distance > 1e-12 {
-                assert!(separation <= distance + 1e-12, "{separation} above {distance}");
+                assert!(
+                    separation <= distance + 1e-12,
+                    "{separation} above {distance}"
+                );
                 exact_gaps += usize::from(distance - separation < 1e-9);
                 apart += 1;
             } else {
                 overlapping += 1;
             }
         }
-        assert!(overlapping > 40 && apart > 40, "{overlapping} overlap, {apart} apart");
+        assert!(
+            overlapping > 40 && apart > 40,
+            "{overlapping} overlap, {apart} apart"
+        );
         // A face normal separates most pairs, and there the bound is the distance itself.
-        assert!(exact_gaps * 3 > apart, "the bound is exact for only {exact_gaps}/{apart}");
+        assert!(
+            exact_gaps * 3 > apart,
+            "the bound is exact for only {exact_gaps}/{apart}"
+        );
     }
 
     #[test]
@@ -348,8 +387,14 @@ mod tests {
                 brute_box_distance(&a, &moved) > 0.0
             };
             let brute = brute_depth(apart, 600, 2.0);
-            assert!(depth <= brute + 1e-9, "depth {depth} above brute force {brute}");
-            assert!(brute - depth < 0.03 * brute + 1e-4, "{depth} vs brute force {brute}");
+            assert!(
+                depth <= brute + 1e-9,
+                "depth {depth} above brute force {brute}"
+            );
+            assert!(
+                brute - depth < 0.03 * brute + 1e-4,
+                "{depth} vs brute force {brute}"
+            );
             checked += 1;
         }
     }
