@@ -87,6 +87,61 @@ pub fn pad_offset(model: &ArmModel) -> [f64; 3] {
     ]
 }
 
+/// Half thickness of the table slab [m]: its top face is at `scene.table_height`.
+pub const TABLE_HALF_THICKNESS: f64 = 0.05;
+/// Half height of a finger strut [m]: it spans z ∈ [0, 2 · this] in the finger frame, from the
+/// palm's outer face up to the pad.
+pub const STRUT_HALF_HEIGHT: f64 = 0.0105;
+/// How far a strut's centre sits outboard of its finger frame [m], away from the other finger.
+pub const STRUT_OUTBOARD: f64 = 0.002;
+
+/// The table box in the world: half extents and centre [m]. It is centred under the base
+/// (`base_xy`, world) with its top face at `scene.table_height`.
+pub fn table_box(config: &EnvConfig, base_xy: [f64; 2]) -> ([f64; 3], [f64; 3]) {
+    let s = &config.scene;
+    let half = [
+        s.table_size[0] / 2.0,
+        s.table_size[1] / 2.0,
+        TABLE_HALF_THICKNESS,
+    ];
+    let centre = [base_xy[0], base_xy[1], s.table_height - half[2]];
+    (half, centre)
+}
+
+/// The palm box on `tool0`: half extents and centre in `tool0` [m] (it spans z ∈ [0, size.z]).
+pub fn palm_box(model: &ArmModel) -> ([f64; 3], [f64; 3]) {
+    let p = model.gripper.palm_size;
+    ([p[0] / 2.0, p[1] / 2.0, p[2] / 2.0], [0.0, 0.0, p[2] / 2.0])
+}
+
+/// Finger `finger`'s strut box: half extents and centre in the finger frame [m].
+pub fn strut_box(model: &ArmModel, finger: usize) -> ([f64; 3], [f64; 3]) {
+    let g = &model.gripper;
+    let outboard = if finger == 0 {
+        -STRUT_OUTBOARD
+    } else {
+        STRUT_OUTBOARD
+    };
+    (
+        [g.pad_size[0] / 2.0, g.pad_size[1] / 2.0, STRUT_HALF_HEIGHT],
+        [outboard, 0.0, STRUT_HALF_HEIGHT],
+    )
+}
+
+/// A finger's pad box: half extents and centre in the finger frame [m].
+pub fn pad_box(model: &ArmModel) -> ([f64; 3], [f64; 3]) {
+    let p = model.gripper.pad_size;
+    ([p[0] / 2.0, p[1] / 2.0, p[2] / 2.0], pad_offset(model))
+}
+
+/// The finger frame of finger `finger` in `tool0` after closing by `travel` [m] (0 = open) along
+/// its axis (see [`finger_anchor`]); the fingers do not rotate.
+pub fn finger_in_tool0(model: &ArmModel, finger: usize, travel: f64) -> Isometry3<f64> {
+    let (anchor, axis) = finger_anchor(model, finger);
+    let p: [f64; 3] = std::array::from_fn(|k| anchor[k] + travel * axis[k]);
+    Isometry3::translation(p[0], p[1], p[2])
+}
+
 /// Robot parts are computed against each other (to report self-collisions) but exert no forces
 /// on each other: the overlapping capsules of neighbouring links would otherwise push apart.
 fn robot_solver_groups() -> InteractionGroups {
@@ -147,9 +202,9 @@ pub fn build(
     // Table: a fixed box whose top is at table_height, centred under the arm base.
     let base_xy = base_in_world.xyz();
     let table_body = world.bodies.insert(RigidBodyBuilder::fixed());
-    let half = [s.table_size[0] / 2.0, s.table_size[1] / 2.0, 0.05];
+    let (half, centre) = table_box(config, [base_xy[0], base_xy[1]]);
     let table = ColliderBuilder::cuboid(half[0] as f32, half[1] as f32, half[2] as f32)
-        .translation(vec3([base_xy[0], base_xy[1], s.table_height - half[2]]))
+        .translation(vec3(centre))
         .friction(s.table_friction as f32)
         .build();
     let h = world
@@ -207,12 +262,13 @@ pub fn build(
         RigidBodyBuilder::kinematic_position_based()
     };
     let palm = world.bodies.insert(palm_builder.pose(to_rapier(&tool0)));
+    let (palm_half, palm_centre) = palm_box(model);
     let palm_collider = ColliderBuilder::cuboid(
-        (g.palm_size[0] / 2.0) as f32,
-        (g.palm_size[1] / 2.0) as f32,
-        (g.palm_size[2] / 2.0) as f32,
+        palm_half[0] as f32,
+        palm_half[1] as f32,
+        palm_half[2] as f32,
     )
-    .translation(vec3([0.0, 0.0, g.palm_size[2] / 2.0]))
+    .translation(vec3(palm_centre))
     .mass(g.palm_mass as f32);
     insert_robot_collider(&mut world, &mut parts, palm_collider, palm, Part::Palm);
 
@@ -224,27 +280,25 @@ pub fn build(
     let mut finger_joints = Vec::new();
     for f in 0..2 {
         let (anchor, axis) = finger_anchor(model, f);
-        let finger_pose = tool0 * Isometry3::translation(anchor[0], anchor[1], anchor[2]);
+        let finger_pose = tool0 * finger_in_tool0(model, f, 0.0);
         let body = world
             .bodies
             .insert(RigidBodyBuilder::dynamic().pose(to_rapier(&finger_pose)));
-        let outboard = if f == 0 { -0.002 } else { 0.002 };
+        let (strut_half, strut_centre) = strut_box(model, f);
         let strut = ColliderBuilder::cuboid(
-            (g.pad_size[0] / 2.0) as f32,
-            (g.pad_size[1] / 2.0) as f32,
-            0.0105,
+            strut_half[0] as f32,
+            strut_half[1] as f32,
+            strut_half[2] as f32,
         )
-        .translation(vec3([outboard, 0.0, 0.0105]))
+        .translation(vec3(strut_centre))
         .mass((g.finger_mass * 0.4) as f32);
         insert_robot_collider(&mut world, &mut parts, strut, body, Part::Finger(f));
-        let pad = ColliderBuilder::cuboid(
-            (g.pad_size[0] / 2.0) as f32,
-            (g.pad_size[1] / 2.0) as f32,
-            (g.pad_size[2] / 2.0) as f32,
-        )
-        .translation(vec3(pad_offset(model)))
-        .mass((g.finger_mass * 0.6) as f32)
-        .friction(config.gripper.pad_friction as f32);
+        let (pad_half, pad_centre) = pad_box(model);
+        let pad =
+            ColliderBuilder::cuboid(pad_half[0] as f32, pad_half[1] as f32, pad_half[2] as f32)
+                .translation(vec3(pad_centre))
+                .mass((g.finger_mass * 0.6) as f32)
+                .friction(config.gripper.pad_friction as f32);
         insert_robot_collider(&mut world, &mut parts, pad, body, Part::Pad(f));
         let joint = PrismaticJointBuilder::new(vec3(axis))
             .local_anchor1(vec3(anchor))
