@@ -7,7 +7,8 @@
 //!   (drawn from a seed) and what a policy observes of it.
 //!
 //! [`env`]'s `GraspEnv` composes them over [`sim`], the facade that alone touches rapier
-//! ([`scene`] builds its world, [`contacts`] reads its narrow phase). Frames: [`mount`] (the
+//! ([`scene`] builds its world, [`contacts`] reads its narrow phase; [`shapes`] places the
+//! same colliders analytically for checks without rapier). Frames: [`mount`] (the
 //! base and the table frame, for any mount). Interface: [`obs`], [`spaces`], [`step`];
 //! [`config`] and [`validate`] for settings; [`vec_env`], [`trajectory`], [`policy`] for
 //! parallel stepping, episode export and evaluation.
@@ -27,6 +28,7 @@ pub mod presets;
 pub mod randomize;
 pub mod robot;
 pub mod scene;
+pub mod shapes;
 pub mod sim;
 mod snapshot;
 pub mod spaces;
