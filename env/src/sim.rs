@@ -11,12 +11,10 @@ use rapier3d::prelude::*;
 use crate::config::EnvConfig;
 use crate::contacts::{CollisionFilter, ContactReport, TouchingPair, analyze, touching_pairs};
 use crate::convert::{from_rapier, to_rapier};
+use crate::finger_drive::{FINGER_DAMPING, FINGER_STIFFNESS, FingerState};
 use crate::scene::{SceneHandles, build, finger_anchor};
 use crate::snapshot::Snapshot;
 
-/// Stiffness [N/m] and damping [N·s/m] of the finger position motors.
-const FINGER_STIFFNESS: f32 = 1.0e4;
-const FINGER_DAMPING: f32 = 1.0e2;
 /// Multibody joint servo: stiffness [N·m/rad] and damping [N·m·s/rad] of the position motors.
 const MOTOR_STIFFNESS: f32 = 2.0e4;
 const MOTOR_DAMPING: f32 = 4.0e2;
@@ -204,14 +202,61 @@ impl Sim {
                 joint.data.set_motor_position(
                     JointAxis::LinX,
                     target as f32,
-                    FINGER_STIFFNESS,
-                    FINGER_DAMPING,
+                    FINGER_STIFFNESS as f32,
+                    FINGER_DAMPING as f32,
                 );
                 joint
                     .data
                     .set_motor_max_force(JointAxis::LinX, max_force as f32);
             }
         }
+    }
+
+    /// Places each finger at its closing travel [m] on the flange at FK(`q`) on `base`, moving
+    /// with the palm (its velocity from the flange's motion `previous → q` over `dt` [s]) plus
+    /// its travel rate [m/s]; the finger joints' solver impulses restart from zero.
+    pub fn place_fingers(
+        &mut self,
+        model: &ArmModel,
+        base: &Pose,
+        (previous, q): (&[f64; 6], &[f64; 6]),
+        dt: f64,
+        fingers: [FingerState; 2],
+    ) {
+        let tool0 = base.iso * model.fk_flange(q).iso;
+        let before = base.iso * model.fk_flange(previous).iso;
+        let angvel = (tool0.rotation * before.rotation.inverse()).scaled_axis() / dt;
+        let origin_velocity = (tool0.translation.vector - before.translation.vector) / dt;
+        for (f, state) in fingers.iter().enumerate() {
+            let (anchor, axis) = finger_anchor(model, f);
+            let local =
+                nalgebra::Vector3::from(anchor) + nalgebra::Vector3::from(axis) * state.travel;
+            let pose = tool0 * Isometry3::translation(local.x, local.y, local.z);
+            let arm = pose.translation.vector - tool0.translation.vector;
+            let axis_world = tool0.rotation * nalgebra::Vector3::from(axis);
+            let linvel = origin_velocity + angvel.cross(&arm) + axis_world * state.rate;
+            if let Some(body) = self.world.bodies.get_mut(self.handles.fingers[f]) {
+                body.set_position(to_rapier(&pose), true);
+                body.set_linvel(crate::convert::vec3(linvel.into()), true);
+                body.set_angvel(crate::convert::vec3(angvel.into()), true);
+            }
+            if let Some(joint) = self
+                .world
+                .impulse_joints
+                .get_mut(self.handles.finger_joints[f], true)
+            {
+                joint.impulses = Default::default();
+            }
+        }
+    }
+
+    /// Is the object at rest: moving slower than `max_speed` [m/s] and turning slower than
+    /// `max_turn_rate` [rad/s] (a sleeping object is)?
+    pub fn object_at_rest(&self, max_speed: f64, max_turn_rate: f64) -> bool {
+        let body = &self.world.bodies[self.handles.cube];
+        body.is_sleeping()
+            || (f64::from(body.linvel().length()) < max_speed
+                && f64::from(body.angvel().length()) < max_turn_rate)
     }
 
     /// The first non-finite body state, if any.
