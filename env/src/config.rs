@@ -43,6 +43,10 @@ pub struct PhysicsConfig {
     pub contact_natural_frequency: f64,
     /// Solver iterations per physics step.
     pub solver_iterations: usize,
+    /// Skip rigid-body simulation in env steps where nothing can touch the object (servo arm
+    /// only): the links are placed by FK, the fingers follow their motor, and table and
+    /// self-collisions are checked with the exact shapes. `false` simulates every step.
+    pub free_space: bool,
 }
 
 impl Default for PhysicsConfig {
@@ -52,6 +56,7 @@ impl Default for PhysicsConfig {
             substeps: 20,
             contact_natural_frequency: 120.0,
             solver_iterations: 3,
+            free_space: true,
         }
     }
 }

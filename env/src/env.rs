@@ -5,8 +5,9 @@
 //! (−1 open, +1 closed) with a limited force. `terminated` means success or failure, `truncated`
 //! the time limit or a physics fault; never both.
 
-use crate::config::EnvConfig;
+use crate::config::{ArmModelKind, EnvConfig};
 use crate::contacts::ContactReport;
+use crate::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
 use crate::mount::Mount;
 use crate::obs::Observation;
 use crate::perception::observe_object;
@@ -31,6 +32,11 @@ pub struct GraspEnv {
     mount: Mount,
     sim: Sim,
     robot: Robot,
+    free_space: FreeSpace,
+    /// The simulator's bodies are where the robot is (false after free-space steps).
+    sim_in_sync: bool,
+    /// What the latest step (or reset) found touching.
+    contacts: ContactReport,
     object_rest_z: f64,
     steps: usize,
     done: bool,
@@ -45,7 +51,10 @@ impl GraspEnv {
         let mount = Mount::from_config(&config);
         let sim = Self::build_sim(&config, &model, &mount);
         Ok(Self {
+            free_space: FreeSpace::new(&config, &model),
             robot: Robot::new(&config, model, mount.base_in_world),
+            sim_in_sync: true,
+            contacts: ContactReport::default(),
             config,
             mount,
             sim,
@@ -140,15 +149,18 @@ impl GraspEnv {
         for _ in 0..SETTLE_SUBSTEPS {
             self.physics_substep(&[0.0; 6]);
         }
+        self.sim_in_sync = true;
         self.object_rest_z = self.sim.object_pose().translation.z;
         self.steps = 0;
         self.done = false;
         self.scenario = Some(*scenario);
         let info = Info {
             scenario: Some(*scenario),
+            simulated: true,
             ..Info::default()
         };
-        (self.observe([0.0; 6], &self.sim.contacts()), info)
+        self.contacts = self.sim.contacts();
+        (self.observe([0.0; 6], &self.contacts), info)
     }
 
     fn physics_substep(&mut self, joint_command: &[f64; 6]) {
@@ -165,8 +177,16 @@ impl GraspEnv {
         }
         let command = self.apply_action(action)?;
         let q_before = self.robot.q;
-        for _ in 0..self.config.physics.substeps {
-            self.physics_substep(&command);
+        let free = self.free_step(&command);
+        let simulated = free.is_none();
+        if simulated {
+            if !self.sim_in_sync {
+                self.robot.hand_over(&mut self.sim, self.config.physics.dt);
+                self.sim_in_sync = true;
+            }
+            for _ in 0..self.config.physics.substeps {
+                self.physics_substep(&command);
+            }
         }
         self.steps += 1;
         let env_dt = self.config.physics.dt * self.config.physics.substeps as f64;
@@ -174,12 +194,13 @@ impl GraspEnv {
         let mut info = Info {
             step: self.steps,
             scenario: self.scenario,
+            simulated,
             ..Info::default()
         };
         if let Some(fault) = self.sim.fault().or_else(|| self.robot.fault()) {
             self.done = true;
             info.physics_fault = Some(fault);
-            let obs = self.observe([0.0; 6], &self.sim.contacts());
+            let obs = self.observe([0.0; 6], &ContactReport::default());
             return Ok(Step {
                 obs,
                 reward: 0.0,
@@ -188,8 +209,9 @@ impl GraspEnv {
                 info,
             });
         }
-        // One contact scan serves the observation and the collision check.
-        let contacts = self.sim.contacts();
+        // One contact report serves the observation and the collision check.
+        let contacts = free.unwrap_or_else(|| self.sim.contacts());
+        self.contacts = contacts.clone();
         let obs = self.observe(velocities, &contacts);
         let collision = contacts.collision.map(|(a, b, depth)| {
             info.collision_depth_m = Some(depth);
@@ -208,6 +230,28 @@ impl GraspEnv {
             truncated,
             info,
         })
+    }
+
+    /// A free-space step ([`FreeSpace`]) if the config allows it, the arm is the servo arm, the
+    /// object rests and the previous step found no collision; `None` when the step must run
+    /// physics (the robot is then unchanged).
+    fn free_step(&mut self, command: &[f64; 6]) -> Option<ContactReport> {
+        let allowed = self.config.physics.free_space
+            && self.robot.kind == ArmModelKind::Servo
+            && self.contacts.collision.is_none()
+            && self.sim.object_at_rest(REST_SPEED, REST_TURN_RATE);
+        if !allowed {
+            return None;
+        }
+        let report = self.free_space.try_step(
+            &mut self.robot,
+            &self.sim.object_pose(),
+            command,
+            self.config.physics.dt,
+            self.config.physics.substeps,
+        )?;
+        self.sim_in_sync = false;
+        Some(report)
     }
 
     /// Checks an action and hands it to the robot: returns the joint-velocity command [rad/s].
@@ -247,7 +291,7 @@ impl GraspEnv {
             joints: self.robot.q,
             joint_velocities,
             object_rel_tcp: [0, 1, 2].map(|i| seen.position[i] - tcp[i]),
-            gripper_opening: self.robot.gripper_opening(&self.sim),
+            gripper_opening: self.robot.gripper_opening(),
             object_yaw: seen.yaw,
             tcp_position: tcp,
             pad_contact: contacts.pad_contact,
@@ -268,15 +312,17 @@ impl GraspEnv {
 
     /// Current finger travels [m] (0 open … 0.0425 closed).
     pub fn finger_travel(&self) -> [f64; 2] {
-        self.sim.finger_travel(&self.robot.model)
+        self.robot.fingers.map(|f| f.travel)
     }
 
-    /// What the narrow phase says now: collisions, pad contacts, pad penetration.
+    /// What the latest step (or reset) found touching: collisions, pad contacts, pad
+    /// penetration (from the narrow phase, or from the exact shapes in a free-space step).
     pub fn contacts(&self) -> ContactReport {
-        self.sim.contacts()
+        self.contacts.clone()
     }
 
-    /// Every touching pair of the narrow phase now, deepest first, with how it is judged.
+    /// Every touching pair of the narrow phase as of the latest step that ran physics (or the
+    /// reset), deepest first, with how it is judged.
     pub fn touching_pairs(&self) -> Vec<crate::contacts::TouchingPair> {
         self.sim.touching_pairs()
     }

@@ -20,6 +20,8 @@ pub mod convert;
 pub mod curriculum;
 pub mod diagnostics;
 pub mod env;
+pub mod finger_drive;
+pub mod free_space;
 pub mod mount;
 pub mod obs;
 pub mod perception;

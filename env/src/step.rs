@@ -39,6 +39,8 @@ pub struct Info {
     pub collision_depth_m: Option<f64>,
     /// A non-finite physics state ended the episode (as truncated): what was found.
     pub physics_fault: Option<String>,
+    /// This step ran rigid-body physics (false: a free-space step, see `physics.free_space`).
+    pub simulated: bool,
     /// The scenario this episode started from.
     pub scenario: Option<Scenario>,
 }
