@@ -189,6 +189,8 @@ fn bench_env_json_follows_the_flags_and_the_preset_and_its_rates_agree_with_its_
         10.0,
         "the preset's substeps, not the default 20"
     );
+    // The multibody arm always simulates: every env step ran its 10 physics steps.
+    assert_eq!(f("simulated_share"), 1.0, "{v}");
     assert!(
         (f("physics_steps_per_s") / f("env_steps_per_s") - 10.0).abs() < 1e-9,
         "{v}"

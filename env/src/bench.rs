@@ -38,6 +38,9 @@ pub struct EnvBenchReport {
     pub env_steps: f64,
     /// Episodes that ended (and were auto-reset) during the throughput phase.
     pub episodes_ended: usize,
+    /// Share of the throughput phase's env steps that ran rigid-body physics (the rest were
+    /// free-space steps, see `physics.free_space`), in [0, 1].
+    pub simulated_share: f64,
     /// Physics steps per environment step (the config's substeps).
     pub substeps: usize,
     /// Physics time step [s].
@@ -48,6 +51,7 @@ pub struct EnvBenchReport {
     pub cpu_s: f64,
     pub env_steps_per_s: f64,
     pub env_steps_per_cpu_s: f64,
+    /// Physics steps actually run per second (free-space env steps run none).
     pub physics_steps_per_s: f64,
     /// Mean soft reset time [ms].
     pub soft_reset_ms: f64,
@@ -142,6 +146,7 @@ pub fn bench_env(
         .collect();
     before_stepping();
     let mut episodes_ended = 0;
+    let mut simulated = 0;
     let (cpu0, t) = (cpu_seconds(), Instant::now());
     for k in 0..spec.steps {
         let step = vec_env.step(&actions[k % actions.len()])?;
@@ -151,6 +156,7 @@ pub fn bench_env(
             .zip(&step.truncated)
             .filter(|(a, b)| **a || **b)
             .count();
+        simulated += step.infos.iter().filter(|i| i.simulated).count();
     }
     let wall_s = t.elapsed().as_secs_f64();
     let cpu_s = cpu_seconds() - cpu0;
@@ -162,13 +168,14 @@ pub fn bench_env(
         envs,
         env_steps,
         episodes_ended,
+        simulated_share: simulated as f64 / env_steps,
         substeps,
         dt: config.physics.dt,
         wall_s,
         cpu_s,
         env_steps_per_s: env_steps / wall_s,
         env_steps_per_cpu_s: env_steps / cpu_s.max(1e-9),
-        physics_steps_per_s: env_steps * substeps as f64 / wall_s,
+        physics_steps_per_s: simulated as f64 * substeps as f64 / wall_s,
         soft_reset_ms,
         hard_reset_ms,
         soft_reset_min_ms,

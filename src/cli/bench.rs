@@ -107,6 +107,10 @@ fn run_env(a: &EnvBenchArgs) -> anyhow::Result<ExitCode> {
         println!("  env steps per CPU-second {:>10.0}", r.env_steps_per_cpu_s);
         println!("  physics steps per second {:>10.0}", r.physics_steps_per_s);
         println!(
+            "  steps with full physics  {:>10.1} % (the rest free-space)",
+            100.0 * r.simulated_share
+        );
+        println!(
             "  soft reset               {:>10.3} ms (fastest {:.3} ms)",
             r.soft_reset_ms, r.soft_reset_min_ms
         );
