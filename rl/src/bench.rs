@@ -86,7 +86,9 @@ pub struct PpoBench {
     pub update_samples_per_s: f64,
     /// One iteration (rollout + update) on [`FreeEnv`] [s].
     pub ppo_iteration_s_without_env: f64,
-    /// Env steps per second of training on the grasp env (residual agent, `hard` preset).
+    /// The preset (or config file) the training phase ran on.
+    pub preset: String,
+    /// Env steps per second of training on the grasp env (residual agent, `preset`).
     pub train_env_steps_per_s: f64,
     /// One iteration on the grasp env [s].
     pub training_iteration_s: f64,
@@ -119,9 +121,9 @@ fn ppo(config: &PpoConfig, dim: usize) -> Ppo {
 }
 
 /// Times `iterations` PPO iterations (after one warm-up) on [`FreeEnv`], then `iterations` on
-/// the grasp env (residual agent, `hard` preset, 4 envs on 2 threads); `n_steps` 512, SB3's
-/// other defaults.
-pub fn bench_ppo(iterations: u32) -> Result<PpoBench, BenchError> {
+/// the grasp env of `preset` (a preset name or a `.toml` file; residual agent, 4 envs on 2
+/// threads); `n_steps` 512, SB3's other defaults.
+pub fn bench_ppo(iterations: u32, preset: &str) -> Result<PpoBench, BenchError> {
     if iterations == 0 {
         return Err(BenchError::NoIterations);
     }
@@ -143,7 +145,7 @@ pub fn bench_ppo(iterations: u32) -> Result<PpoBench, BenchError> {
     }
     let ppo_s = t.elapsed().as_secs_f64() / iterations as f64;
 
-    let env_config = presets::load("hard")?;
+    let env_config = presets::load(preset)?;
     let mut env = GraspVecEnv::new(&env_config, agent, n_envs, 2, 0)?;
     let mut p = ppo(&config, dim);
     let t = Instant::now();
@@ -160,6 +162,7 @@ pub fn bench_ppo(iterations: u32) -> Result<PpoBench, BenchError> {
         minibatch: config.batch_size,
         update_samples_per_s: samples as f64 * config.n_epochs as f64 / ppo_s,
         ppo_iteration_s_without_env: ppo_s,
+        preset: preset.to_string(),
         train_env_steps_per_s: samples as f64 / train_s,
         training_iteration_s: train_s,
     })

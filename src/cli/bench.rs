@@ -28,6 +28,10 @@ pub struct PpoBenchArgs {
     /// PPO iterations to time (each: 512 steps × 4 envs, 10 epochs of minibatches of 64).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
     iterations: u32,
+    /// Preset or env config (.toml) of the training phase (e.g. one with `[physics]
+    /// free_space = false` to time always-simulated training).
+    #[arg(long, default_value = "hard")]
+    preset: String,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -62,7 +66,7 @@ pub struct EnvBenchArgs {
 pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
     match &a.what {
         BenchWhat::Env(a) => run_env(a),
-        BenchWhat::Ppo(a) => super::bench_ppo::run(a.iterations, a.json),
+        BenchWhat::Ppo(a) => super::bench_ppo::run(a.iterations, &a.preset, a.json),
     }
 }
 

@@ -15,8 +15,8 @@ pub fn peak_rss_mb() -> f64 {
     usage.ru_maxrss as f64 / 1024.0
 }
 
-pub fn run(iterations: u32, as_json: bool) -> anyhow::Result<ExitCode> {
-    let b = bench_ppo(iterations)?;
+pub fn run(iterations: u32, preset: &str, as_json: bool) -> anyhow::Result<ExitCode> {
+    let b = bench_ppo(iterations, preset)?;
     let peak = peak_rss_mb();
     if as_json {
         let mut out = serde_json::to_value(&b)?;
@@ -36,8 +36,8 @@ pub fn run(iterations: u32, as_json: bool) -> anyhow::Result<ExitCode> {
             b.ppo_iteration_s_without_env
         );
         println!(
-            "  training with the env    {:>10.0} env steps/s (residual agent, hard preset, {} envs, 2 threads)",
-            b.train_env_steps_per_s, b.n_envs
+            "  training with the env    {:>10.0} env steps/s (residual agent, preset {}, {} envs, 2 threads)",
+            b.train_env_steps_per_s, b.preset, b.n_envs
         );
         println!("  peak resident memory     {peak:>10.1} MB");
     }
