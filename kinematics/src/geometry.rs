@@ -27,11 +27,6 @@ impl Cuboid {
         Cuboid { pose, half_extents }
     }
 
-    /// The box's axis `k` (0 = x, 1 = y, 2 = z) in the common frame, unit length.
-    pub fn axis(&self, k: usize) -> Vector3<f64> {
-        self.pose.rotation * Vector3::ith(k, 1.0)
-    }
-
     /// The box's three unit axes in the common frame.
     fn axes(&self) -> [Vector3<f64>; 3] {
         let m = self.pose.rotation.to_rotation_matrix();
@@ -213,22 +208,19 @@ mod tests {
 
     /// The twelve edges of a box in the common frame.
     fn edges(c: &Cuboid) -> Vec<([f64; 3], [f64; 3])> {
-        let h = c.half_extents;
-        let corner = |s: [f64; 3]| {
-            let p = c.pose * Point3::new(s[0] * h[0], s[1] * h[1], s[2] * h[2]);
-            [p.x, p.y, p.z]
-        };
-        let mut out = Vec::new();
-        for k in 0..3 {
-            for (u, v) in [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {
-                let (mut s0, mut s1) = ([0.0; 3], [0.0; 3]);
-                let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-                (s0[i], s0[j], s1[i], s1[j]) = (u, v, u, v);
+        let h = Vector3::from(c.half_extents);
+        let corner =
+            |s: [f64; 3]| (c.pose * Point3::from(h.component_mul(&Vector3::from(s)))).coords;
+        let sign = |bit: bool| if bit { 1.0 } else { -1.0 };
+        (0..12)
+            .map(|e| {
+                let (k, mut s0) = (e / 4, [0.0; 3]);
+                (s0[(k + 1) % 3], s0[(k + 2) % 3]) = (sign(e & 1 == 1), sign(e & 2 == 2));
+                let mut s1 = s0;
                 (s0[k], s1[k]) = (-1.0, 1.0);
-                out.push((corner(s0), corner(s1)));
-            }
-        }
-        out
+                (corner(s0).into(), corner(s1).into())
+            })
+            .collect()
     }
 
     /// Distance between two boxes: one of the closest points always lies on an edge.
@@ -290,11 +282,8 @@ mod tests {
                 .map(|i| point_distance(&(va + (vb - va) * (i as f64 / 4000.0)), &c))
                 .fold(f64::INFINITY, f64::min);
             let step = (vb - va).norm() / 4000.0;
-            assert!(exact <= sampled + 1e-12, "{exact} above sampled {sampled}");
-            assert!(
-                sampled - exact <= step,
-                "{exact} far below sampled {sampled}"
-            );
+            assert!(exact <= sampled + 1e-12, "{exact} > {sampled}");
+            assert!(sampled - exact <= step, "{exact} ≪ {sampled}");
             if exact == 0.0 {
                 touching += 1
             } else {
@@ -324,13 +313,10 @@ mod tests {
                 continue;
             }
             let brute = brute_depth(apart, 1500, 2.0);
-            assert!(
-                depth <= brute + 1e-9,
-                "depth {depth} above brute force {brute}"
-            );
+            assert!(depth <= brute + 1e-9, "{depth} > brute {brute}");
             assert!(
                 brute - depth < 0.01 * brute + 1e-4,
-                "{depth} vs brute force {brute}"
+                "{depth} ≪ brute {brute}"
             );
             assert!(segment_box_signed_distance(a, b, &c) == -depth);
             checked += 1;
@@ -387,13 +373,10 @@ mod tests {
                 brute_box_distance(&a, &moved) > 0.0
             };
             let brute = brute_depth(apart, 600, 2.0);
-            assert!(
-                depth <= brute + 1e-9,
-                "depth {depth} above brute force {brute}"
-            );
+            assert!(depth <= brute + 1e-9, "{depth} > brute {brute}");
             assert!(
                 brute - depth < 0.03 * brute + 1e-4,
-                "{depth} vs brute force {brute}"
+                "{depth} ≪ brute {brute}"
             );
             checked += 1;
         }
