@@ -29,6 +29,13 @@ pub enum Failure {
     Collision(String, String),
     /// The object fell off the table.
     ObjectOffTable,
+    /// A robot part pushed on the cube or the table harder than `task.protective_stop_force`:
+    /// the robot's part, the other part and the contact force [N].
+    ProtectiveStop {
+        robot_part: String,
+        other_part: String,
+        force_n: f64,
+    },
 }
 
 /// Distance from the TCP to the object centre [m].
@@ -100,5 +107,16 @@ pub fn judge(s: &TaskState, collision: Option<Failure>, cfg: &TaskConfig) -> Jud
         failure,
         terminated,
         reward: reward(s, success, collided, cfg),
+    }
+}
+
+/// Judges a step that a protective stop ended ([`Failure::ProtectiveStop`]): never a success,
+/// always terminated, and paid `collision_reward` (the stop is a collision the robot felt).
+pub fn judge_protective_stop(s: &TaskState, stop: Failure, cfg: &TaskConfig) -> Judgement {
+    Judgement {
+        success: false,
+        failure: Some(stop),
+        terminated: true,
+        reward: reward(s, false, true, cfg),
     }
 }
