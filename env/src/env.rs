@@ -151,8 +151,9 @@ impl GraspEnv {
         (self.observe([0.0; 6], &self.sim.contacts()), info)
     }
 
-    /// One physics step; returns the protective stop if a robot contact with the cube or the
-    /// table pushed harder than `task.protective_stop_force` [N] in it.
+    /// One physics step; returns why the robot stopped if a robot contact with the cube or the
+    /// table pushed harder than `task.protective_stop_force` [N] in it: a protective stop, or,
+    /// on the table, the collision that any robot–table touch is.
     fn physics_substep(&mut self, joint_command: &[f64; 6]) -> Option<Failure> {
         self.robot
             .substep(&mut self.sim, joint_command, self.config.physics.dt);
@@ -161,10 +162,15 @@ impl GraspEnv {
         let contact = self.sim.strongest_robot_contact()?;
         (contact.force > self.config.task.protective_stop_force).then(|| {
             let model = &self.robot.model;
-            Failure::ProtectiveStop {
-                robot_part: contact.robot.name(model).to_string(),
-                other_part: contact.other.name(model).to_string(),
-                force_n: contact.force,
+            let (robot, other) = (contact.robot.name(model), contact.other.name(model));
+            if contact.other == crate::scene::Part::Table {
+                Failure::Collision(other.to_string(), robot.to_string())
+            } else {
+                Failure::ProtectiveStop {
+                    robot_part: robot.to_string(),
+                    other_part: other.to_string(),
+                    force_n: contact.force,
+                }
             }
         })
     }
@@ -208,7 +214,7 @@ impl GraspEnv {
         });
         let state = self.task_state(&contacts);
         let judgement = match stop {
-            Some(stop) => judge_protective_stop(&state, stop, &self.config.task),
+            Some(stop) => judge_protective_stop(&state, collision, stop, &self.config.task),
             None => judge(&state, collision, &self.config.task),
         };
         info.success = judgement.success;

@@ -110,12 +110,20 @@ pub fn judge(s: &TaskState, collision: Option<Failure>, cfg: &TaskConfig) -> Jud
     }
 }
 
-/// Judges a step that a protective stop ended ([`Failure::ProtectiveStop`]): never a success,
-/// always terminated, and paid `collision_reward` (the stop is a collision the robot felt).
-pub fn judge_protective_stop(s: &TaskState, stop: Failure, cfg: &TaskConfig) -> Judgement {
+/// Judges a step that a protective stop ended: never a success, always terminated (the robot
+/// has stopped, whatever `terminate_on_collision`), and paid `collision_reward`. The failure is
+/// the contact scan's `collision` if the stopped state has one (a part in the table or in the
+/// arm: the diagnosis the env has always given), else `stop`: [`Failure::ProtectiveStop`] for
+/// the cube, [`Failure::Collision`] for the table (any robot–table touch is a collision).
+pub fn judge_protective_stop(
+    s: &TaskState,
+    collision: Option<Failure>,
+    stop: Failure,
+    cfg: &TaskConfig,
+) -> Judgement {
     Judgement {
         success: false,
-        failure: Some(stop),
+        failure: Some(collision.unwrap_or(stop)),
         terminated: true,
         reward: reward(s, false, true, cfg),
     }

@@ -119,10 +119,58 @@ fn a_protective_stop_is_never_a_success_even_when_lifted_and_held() {
         other_part: "cube".into(),
         force_n: 50.0,
     };
-    let j = judge_protective_stop(&lifted_and_held, stop.clone(), &cfg);
+    let j = judge_protective_stop(&lifted_and_held, None, stop.clone(), &cfg);
     assert!(!j.success && j.terminated);
-    assert_eq!(j.failure, Some(stop));
+    assert_eq!(j.failure, Some(stop.clone()));
     assert_eq!(j.reward, cfg.collision_reward);
+
+    // A stop whose state is also a collision is reported as the collision, still terminated
+    // even when collisions do not end episodes.
+    let cfg = TaskConfig {
+        terminate_on_collision: false,
+        ..TaskConfig::default()
+    };
+    let collision = Failure::Collision("table".into(), "finger_left_pad".into());
+    let j = judge_protective_stop(&lifted_and_held, Some(collision.clone()), stop, &cfg);
+    assert!(!j.success && j.terminated);
+    assert_eq!(j.failure, Some(collision));
+}
+
+#[test]
+fn a_finger_hitting_the_table_stops_the_robot_even_without_collision_termination() {
+    let mut config = common::config(ArmModelKind::Servo);
+    config.task.terminate_on_collision = false;
+    let mut env = GraspEnv::new(config).unwrap();
+    env.reset(0).unwrap();
+    // Beside the cube, 6.5 cm below the grasp pose: the open fingers reach the table first.
+    let (grasp, _) = common::grasp_targets(&env);
+    let mut below = env.model().fk_tcp(&grasp);
+    below.iso.translation.vector.y += 0.12;
+    below.iso.translation.vector.z -= 0.065;
+    let target = env
+        .model()
+        .ik_nearest(&below, fairgrasp_kinematics::EndFrame::Tcp, &grasp)
+        .unwrap()
+        .unwrap()
+        .joints;
+    let mut ended = None;
+    for _ in 0..150 {
+        let step = env.step(&common::toward(&env, target, -1.0)).unwrap();
+        if step.terminated || step.truncated {
+            ended = Some(step);
+            break;
+        }
+    }
+    let step = ended.expect("the press into the table must end the episode");
+    assert!(step.terminated && !step.info.success, "{:?}", step.info);
+    match step.info.failure {
+        // A robot part on the table is a collision, whatever the force.
+        Some(Failure::Collision(a, b)) => {
+            assert_eq!(a, "table");
+            assert!(b.starts_with("finger"), "{b}");
+        }
+        other => panic!("expected the table collision that stopped the robot, got {other:?}"),
+    }
 }
 
 #[test]
