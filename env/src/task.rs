@@ -84,7 +84,8 @@ pub struct Judgement {
     pub success: bool,
     /// Why the episode failed, if it did (never together with success).
     pub failure: Option<Failure>,
-    /// The episode ends here (success, an ending collision, the object off the table).
+    /// The episode ends here (success, an ending collision, a protective stop, the object off
+    /// the table).
     pub terminated: bool,
     pub reward: f64,
 }
