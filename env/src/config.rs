@@ -165,6 +165,19 @@ pub struct TaskConfig {
     pub terminate_on_collision: bool,
     /// Which reward the task pays (the evaluation's success criterion is the same for all).
     pub reward: RewardKind,
+    /// Protective stop threshold [N]: a contact between the robot (links, palm, finger struts,
+    /// pads) and the cube or the table pushing harder than this ends the episode with
+    /// `protective_stop`, as a real cobot's collision detection stops the arm. Checked after
+    /// every physics substep; the force is the contact pair's solver impulse over `physics.dt`.
+    ///
+    /// Default 35 N, from measurement, well under the published limits (ISO/TS 15066 Annex A:
+    /// 140 N quasi-static for hands and fingers, 65 N for the face, the lowest region; UR's
+    /// default power-and-force limit 150 N; FAIRINO states its collision levels per joint, not
+    /// as a TCP force). The simulated contacts are soft: a pad pressing the cube sinks it 2 mm
+    /// into the table at 46–95 N (baseline on `hard`), so 140 N would stop nothing in time.
+    /// Normal baseline grasps peak at 26 N (`full`) and 27 N (`hard`): the fingers' closing
+    /// impact on the cube. See README, "Protective stop".
+    pub protective_stop_force: f64,
 }
 
 /// The task's reward function; each is a pure function in [`crate::task`].
@@ -177,6 +190,9 @@ pub enum RewardKind {
     Seed,
 }
 
+/// Default protective stop threshold [N] (see [`TaskConfig::protective_stop_force`]).
+pub const DEFAULT_PROTECTIVE_STOP_FORCE: f64 = 35.0;
+
 impl Default for TaskConfig {
     fn default() -> Self {
         Self {
@@ -187,6 +203,7 @@ impl Default for TaskConfig {
             distance_reward: -0.005,
             terminate_on_collision: true,
             reward: RewardKind::Seed,
+            protective_stop_force: DEFAULT_PROTECTIVE_STOP_FORCE,
         }
     }
 }

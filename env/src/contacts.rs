@@ -218,3 +218,53 @@ pub fn set_collision_groups(
         }
     }
 }
+
+/// The strongest solver contact between a robot part and the cube or the table.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RobotContactForce {
+    /// The robot's part (arm link, palm, finger strut or pad).
+    pub robot: Part,
+    /// What it pushes on: [`Part::Cube`] or [`Part::Table`].
+    pub other: Part,
+    /// Magnitude of the pair's net contact force [N] (solver impulse over the physics step).
+    pub force: f64,
+}
+
+/// The strongest robot–cube or robot–table contact force of the last physics step of `dt` [s]:
+/// each pair's net impulse [N·s] (normal impulses summed over its manifolds) divided by `dt`.
+///
+/// Only the pairs of `cube` and `table` are visited (through the narrow phase's per-collider
+/// adjacency, no allocation). A kinematic link against the fixed table has no solver contact,
+/// hence no impulse; such a touch is a collision ([`CollisionFilter::is_collision`]) anyway.
+pub fn strongest_robot_contact(
+    world: &PhysicsWorld,
+    parts: &HashMap<ColliderHandle, Part>,
+    cube: ColliderHandle,
+    table: ColliderHandle,
+    dt: f64,
+) -> Option<RobotContactForce> {
+    let mut strongest: Option<RobotContactForce> = None;
+    let pairs = world
+        .narrow_phase
+        .contact_pairs_with(cube)
+        .chain(world.narrow_phase.contact_pairs_with(table));
+    for pair in pairs {
+        let (Some(&a), Some(&b)) = (parts.get(&pair.collider1), parts.get(&pair.collider2)) else {
+            continue;
+        };
+        let (robot, other) = match (a.is_robot(), b.is_robot()) {
+            (true, false) => (a, b),
+            (false, true) => (b, a),
+            _ => continue,
+        };
+        let force = f64::from(pair.total_impulse().length()) / dt;
+        if strongest.is_none_or(|s| force > s.force) {
+            strongest = Some(RobotContactForce {
+                robot,
+                other,
+                force,
+            });
+        }
+    }
+    strongest
+}

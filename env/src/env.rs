@@ -15,7 +15,7 @@ use crate::randomize::Scenario;
 use crate::robot::Robot;
 use crate::sim::Sim;
 pub use crate::step::{Action, EnvError, Info, Step};
-use crate::task::{Failure, TaskState, judge};
+use crate::task::{Failure, TaskState, judge, judge_protective_stop};
 use fairgrasp_kinematics::{ArmKind, ArmModel, Pose};
 use nalgebra::Isometry3;
 use rapier3d::prelude::PhysicsWorld;
@@ -163,11 +163,28 @@ impl GraspEnv {
         (self.observe([0.0; 6], &self.contacts), info)
     }
 
-    fn physics_substep(&mut self, joint_command: &[f64; 6]) {
+    /// One physics step; returns why the robot stopped if a robot contact with the cube or the
+    /// table pushed harder than `task.protective_stop_force` [N] in it: a protective stop, or,
+    /// on the table, the collision that any robot–table touch is.
+    fn physics_substep(&mut self, joint_command: &[f64; 6]) -> Option<Failure> {
         self.robot
             .substep(&mut self.sim, joint_command, self.config.physics.dt);
         self.sim.step();
         self.robot.sync(&self.sim);
+        let contact = self.sim.strongest_robot_contact()?;
+        (contact.force > self.config.task.protective_stop_force).then(|| {
+            let model = &self.robot.model;
+            let (robot, other) = (contact.robot.name(model), contact.other.name(model));
+            if contact.other == crate::scene::Part::Table {
+                Failure::Collision(other.to_string(), robot.to_string())
+            } else {
+                Failure::ProtectiveStop {
+                    robot_part: robot.to_string(),
+                    other_part: other.to_string(),
+                    force_n: contact.force,
+                }
+            }
+        })
     }
 
     /// Applies one action for `physics.substeps` physics steps.
@@ -179,14 +196,14 @@ impl GraspEnv {
         let q_before = self.robot.q;
         let free = self.free_step(&command);
         let simulated = free.is_none();
+        let mut stop = None;
         if simulated {
             if !self.sim_in_sync {
                 self.robot.hand_over(&mut self.sim, self.config.physics.dt);
                 self.sim_in_sync = true;
             }
-            for _ in 0..self.config.physics.substeps {
-                self.physics_substep(&command);
-            }
+            // The protective stop is watched every substep and halts the arm at once.
+            stop = (0..self.config.physics.substeps).find_map(|_| self.physics_substep(&command));
         }
         self.steps += 1;
         let env_dt = self.config.physics.dt * self.config.physics.substeps as f64;
@@ -218,7 +235,11 @@ impl GraspEnv {
             let model = &self.robot.model;
             Failure::Collision(a.name(model).to_string(), b.name(model).to_string())
         });
-        let judgement = judge(&self.task_state(&contacts), collision, &self.config.task);
+        let state = self.task_state(&contacts);
+        let judgement = match stop {
+            Some(stop) => judge_protective_stop(&state, collision, stop, &self.config.task),
+            None => judge(&state, collision, &self.config.task),
+        };
         info.success = judgement.success;
         info.failure = judgement.failure;
         let truncated = !judgement.terminated && self.steps >= self.config.task.max_steps;

@@ -67,6 +67,8 @@ pub fn run_episode(
                 Outcome::PhysicsFault
             } else if let Some(Failure::Collision(..)) = step.info.failure {
                 Outcome::Collision
+            } else if let Some(Failure::ProtectiveStop { .. }) = step.info.failure {
+                Outcome::ProtectiveStop
             } else if let Some(reason) = policy.gave_up() {
                 reason
             } else if lifted_while_held {

@@ -29,6 +29,13 @@ pub enum Failure {
     Collision(String, String),
     /// The object fell off the table.
     ObjectOffTable,
+    /// A robot part pushed on the cube or the table harder than `task.protective_stop_force`:
+    /// the robot's part, the other part and the contact force [N].
+    ProtectiveStop {
+        robot_part: String,
+        other_part: String,
+        force_n: f64,
+    },
 }
 
 /// Distance from the TCP to the object centre [m].
@@ -77,7 +84,8 @@ pub struct Judgement {
     pub success: bool,
     /// Why the episode failed, if it did (never together with success).
     pub failure: Option<Failure>,
-    /// The episode ends here (success, an ending collision, the object off the table).
+    /// The episode ends here (success, an ending collision, a protective stop, the object off
+    /// the table).
     pub terminated: bool,
     pub reward: f64,
 }
@@ -100,5 +108,24 @@ pub fn judge(s: &TaskState, collision: Option<Failure>, cfg: &TaskConfig) -> Jud
         failure,
         terminated,
         reward: reward(s, success, collided, cfg),
+    }
+}
+
+/// Judges a step that a protective stop ended: never a success, always terminated (the robot
+/// has stopped, whatever `terminate_on_collision`), and paid `collision_reward`. The failure is
+/// the contact scan's `collision` if the stopped state has one (a part in the table or in the
+/// arm: the diagnosis the env has always given), else `stop`: [`Failure::ProtectiveStop`] for
+/// the cube, [`Failure::Collision`] for the table (any robot–table touch is a collision).
+pub fn judge_protective_stop(
+    s: &TaskState,
+    collision: Option<Failure>,
+    stop: Failure,
+    cfg: &TaskConfig,
+) -> Judgement {
+    Judgement {
+        success: false,
+        failure: Some(collision.unwrap_or(stop)),
+        terminated: true,
+        reward: reward(s, false, true, cfg),
     }
 }

@@ -212,6 +212,12 @@ impl EnvConfig {
             t.lift_height,
             "must be positive",
         )?;
+        check(
+            t.protective_stop_force.is_finite() && t.protective_stop_force > 0.0,
+            "task.protective_stop_force",
+            t.protective_stop_force,
+            "must be a finite force in (0, inf) N (default 35 N)",
+        )?;
         let r = &self.randomization;
         check_range(&r.radius, "randomization.radius", 0.0)?;
         check_range(&r.angle, "randomization.angle", -std::f64::consts::PI)?;

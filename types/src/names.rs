@@ -86,6 +86,10 @@ pub enum Outcome {
     IkFailure,
     /// The object was pushed off the table.
     ObjectOffTable,
+    /// A robot part pushed on the object or the table harder than the protective stop
+    /// threshold (`task.protective_stop_force`): the robot stopped, as a cobot's collision
+    /// detection stops it.
+    ProtectiveStop,
     /// The time limit passed without any of the above.
     Timeout,
     /// The physics state became non-finite.
@@ -102,6 +106,7 @@ named_enum!(
         (Collision, "collision"),
         (IkFailure, "ik_failure"),
         (ObjectOffTable, "object_off_table"),
+        (ProtectiveStop, "protective_stop"),
         (Timeout, "timeout"),
         (PhysicsFault, "physics_fault"),
     ]
@@ -138,7 +143,7 @@ mod tests {
             assert_eq!(serde_json::to_string(&a).unwrap(), format!("\"{a}\""));
             assert_eq!(a.to_string().parse::<ArmSimulation>(), Ok(a));
         }
-        assert_eq!(Outcome::ALL.len(), 8);
+        assert_eq!(Outcome::ALL.len(), 9);
     }
 
     #[test]

@@ -84,6 +84,7 @@ pub fn outcome_color(outcome: Outcome) -> RGBColor {
         Outcome::Collision => RGBColor(225, 87, 89),
         Outcome::IkFailure => RGBColor(156, 117, 95),
         Outcome::ObjectOffTable => RGBColor(118, 183, 178),
+        Outcome::ProtectiveStop => RGBColor(78, 121, 167),
         Outcome::Timeout => RGBColor(120, 120, 120),
         Outcome::PhysicsFault => RGBColor(0, 0, 0),
     }
