@@ -18,9 +18,9 @@ pub struct CollisionFilter {
     ignored: HashSet<(Part, Part)>,
 }
 
+/// The pair in a fixed order, so that (a, b) and (b, a) are one key.
 fn ordered(a: Part, b: Part) -> (Part, Part) {
-    let key = |p: Part| format!("{p:?}");
-    if key(a) <= key(b) { (a, b) } else { (b, a) }
+    if a <= b { (a, b) } else { (b, a) }
 }
 
 impl CollisionFilter {

@@ -15,7 +15,7 @@ pub use crate::convert::from_rapier;
 use crate::convert::{to_rapier, vec3};
 
 /// What a collider belongs to, for collision reports and finger contacts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Part {
     Table,
     Cube,
@@ -60,6 +60,7 @@ pub struct SceneHandles {
     pub finger_joints: [ImpulseJointHandle; 2],
     pub cube: RigidBodyHandle,
     pub cube_collider: ColliderHandle,
+    pub table_collider: ColliderHandle,
     /// Multibody joint handles j1 … j6 (multibody arm only).
     pub arm_joints: Option<[MultibodyJointHandle; 6]>,
     /// Which part each collider is.
@@ -207,10 +208,10 @@ pub fn build(
         .translation(vec3(centre))
         .friction(s.table_friction as f32)
         .build();
-    let h = world
+    let table_collider = world
         .colliders
         .insert_with_parent(table, table_body, &mut world.bodies);
-    parts.insert(h, Part::Table);
+    parts.insert(table_collider, Part::Table);
 
     // Cube.
     let cube = world.bodies.insert(
@@ -320,6 +321,7 @@ pub fn build(
         finger_joints: finger_joints.try_into().expect("two finger joints"),
         cube,
         cube_collider,
+        table_collider,
         arm_joints,
         parts,
     };
