@@ -5,7 +5,7 @@ use std::collections::{HashMap, HashSet};
 use fairgrasp_kinematics::ArmModel;
 use rapier3d::prelude::*;
 
-use crate::scene::{Part, SceneHandles};
+use crate::scene::{Part, ROBOT_PARTS, SceneHandles};
 
 /// A contact counts as touching below this signed distance [m] (negative = penetrating).
 const TOUCH_DISTANCE: f32 = 0.0;
@@ -38,8 +38,8 @@ impl CollisionFilter {
             }
         }
         ignored.insert(ordered(Part::Link(0), Part::Table));
-        // wrist3_link and the gripper's parts: ALL_PARTS[6..12].
-        let gripper = &ALL_PARTS[6..12];
+        // wrist3_link and the gripper's parts.
+        let gripper = &ROBOT_PARTS[6..12];
         for (i, a) in gripper.iter().enumerate() {
             for b in &gripper[i + 1..] {
                 ignored.insert(ordered(*a, *b));
@@ -175,23 +175,6 @@ fn group_bit(part: Part) -> u32 {
     }
 }
 
-/// Every part but the cube; indices 6..12 are wrist3_link and the gripper.
-const ALL_PARTS: [Part; 13] = [
-    Part::Link(0),
-    Part::Link(1),
-    Part::Link(2),
-    Part::Link(3),
-    Part::Link(4),
-    Part::Link(5),
-    Part::Link(6),
-    Part::Palm,
-    Part::Finger(0),
-    Part::Finger(1),
-    Part::Pad(0),
-    Part::Pad(1),
-    Part::Table,
-];
-
 /// Collision groups that skip the pairs [`CollisionFilter`] ignores (neighbouring links that
 /// always overlap, the gripper's own parts, the base on its table): they cost narrow-phase time
 /// every physics step and are never reported.
@@ -203,7 +186,7 @@ pub fn set_collision_groups(
     let filter = CollisionFilter::new(model);
     for (handle, part) in parts {
         let mut allowed = 0u32;
-        for other in ALL_PARTS.iter().chain(&[Part::Cube]) {
+        for other in ROBOT_PARTS.iter().chain(&[Part::Table, Part::Cube]) {
             if !filter.ignores(*part, *other) {
                 allowed |= 1 << group_bit(*other);
             }

@@ -28,6 +28,22 @@ pub enum Part {
     Pad(usize),
 }
 
+/// Every part of the robot, arm links first (base_link … wrist3_link), then the gripper.
+pub const ROBOT_PARTS: [Part; 12] = [
+    Part::Link(0),
+    Part::Link(1),
+    Part::Link(2),
+    Part::Link(3),
+    Part::Link(4),
+    Part::Link(5),
+    Part::Link(6),
+    Part::Palm,
+    Part::Finger(0),
+    Part::Finger(1),
+    Part::Pad(0),
+    Part::Pad(1),
+];
+
 impl Part {
     /// The URDF link name (or "table", "cube").
     pub fn name(self, model: &ArmModel) -> &'static str {

@@ -106,20 +106,7 @@ pub struct RobotShapes {
 
 impl RobotShapes {
     /// The robot part of each shape, in order.
-    pub const PARTS: [Part; ROBOT_SHAPES] = [
-        Part::Link(0),
-        Part::Link(1),
-        Part::Link(2),
-        Part::Link(3),
-        Part::Link(4),
-        Part::Link(5),
-        Part::Link(6),
-        Part::Palm,
-        Part::Finger(0),
-        Part::Finger(1),
-        Part::Pad(0),
-        Part::Pad(1),
-    ];
+    pub const PARTS: [Part; ROBOT_SHAPES] = crate::scene::ROBOT_PARTS;
 
     /// The shapes of `model`'s arm and gripper (placed at zero joints, on a base at the world
     /// origin, fingers open until [`RobotShapes::place`]) and the table of `config` under the

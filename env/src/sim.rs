@@ -290,16 +290,12 @@ impl Sim {
     /// The strongest robot–cube or robot–table contact force of the last physics step
     /// ([`crate::contacts::strongest_robot_contact`]): what a cobot's collision detection watches.
     pub fn strongest_robot_contact(&self) -> Option<crate::contacts::RobotContactForce> {
-        let table =
-            self.handles.parts.iter().find_map(|(handle, part)| {
-                (*part == crate::scene::Part::Table).then_some(*handle)
-            })?;
         let dt = f64::from(self.world.integration_parameters.dt);
         crate::contacts::strongest_robot_contact(
             &self.world,
             &self.handles.parts,
             self.handles.cube_collider,
-            table,
+            self.handles.table_collider,
             dt,
         )
     }

@@ -40,16 +40,7 @@ fn driving_the_gripper_into_the_table_is_a_collision_that_names_the_pair() {
         let mut env = make_env(arm);
         env.reset(0).unwrap();
         // Shift the cube out of the way, then push the TCP 4 cm below the table top.
-        let (grasp, _) = common::grasp_targets(&env);
-        let mut below = env.model().fk_tcp(&grasp);
-        below.iso.translation.vector.y += 0.12;
-        below.iso.translation.vector.z -= 0.065;
-        let target = env
-            .model()
-            .ik_nearest(&below, fairgrasp_kinematics::EndFrame::Tcp, &grasp)
-            .unwrap()
-            .unwrap()
-            .joints;
+        let target = common::beside_and_below_grasp(&env);
         let mut found = None;
         for _ in 0..150 {
             let step = env.step(&common::toward(&env, target, -1.0)).unwrap();

@@ -143,16 +143,7 @@ fn a_finger_hitting_the_table_stops_the_robot_even_without_collision_termination
     let mut env = GraspEnv::new(config).unwrap();
     env.reset(0).unwrap();
     // Beside the cube, 6.5 cm below the grasp pose: the open fingers reach the table first.
-    let (grasp, _) = common::grasp_targets(&env);
-    let mut below = env.model().fk_tcp(&grasp);
-    below.iso.translation.vector.y += 0.12;
-    below.iso.translation.vector.z -= 0.065;
-    let target = env
-        .model()
-        .ik_nearest(&below, fairgrasp_kinematics::EndFrame::Tcp, &grasp)
-        .unwrap()
-        .unwrap()
-        .joints;
+    let target = common::beside_and_below_grasp(&env);
     let mut ended = None;
     for _ in 0..150 {
         let step = env.step(&common::toward(&env, target, -1.0)).unwrap();

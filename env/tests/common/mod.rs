@@ -51,3 +51,17 @@ pub fn grasp_targets(env: &GraspEnv) -> ([f64; 6], [f64; 6]) {
     )
     .expect("graspable")
 }
+
+/// Joints that put the TCP 12 cm beside the grasp pose (clear of the cube) and 6.5 cm below it,
+/// where the open fingers are inside the table.
+pub fn beside_and_below_grasp(env: &GraspEnv) -> [f64; 6] {
+    let (grasp, _) = grasp_targets(env);
+    let mut below = env.model().fk_tcp(&grasp);
+    below.iso.translation.vector.y += 0.12;
+    below.iso.translation.vector.z -= 0.065;
+    env.model()
+        .ik_nearest(&below, fairgrasp_kinematics::EndFrame::Tcp, &grasp)
+        .expect("valid pose")
+        .expect("reachable")
+        .joints
+}
