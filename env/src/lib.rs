@@ -24,6 +24,7 @@ pub mod finger_drive;
 pub mod free_space;
 pub mod mount;
 pub mod obs;
+pub mod part;
 pub mod perception;
 pub mod policy;
 pub mod presets;
