@@ -77,6 +77,24 @@ pub struct ArmConfig {
     pub action_scale: f64,
     /// Joint acceleration limit [rad/s²] (FAIRINO publishes none, see docs/FR3.md: fairgrasp's choice).
     pub max_acceleration: f64,
+    /// What an action's first entries command: `joint` velocities (the seed's) or the `tcp`'s
+    /// velocity and yaw rate in the table frame ([`crate::tcp_action`]).
+    pub action_space: ActionSpace,
+    /// TCP speed for an action of 1.0 in `tcp` mode [m/s].
+    pub tcp_speed: f64,
+    /// Yaw rate for an action of 1.0 in `tcp` mode [rad/s].
+    pub tcp_yaw_rate: f64,
+}
+
+/// What the action's entries 0–5 command.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ActionSpace {
+    /// Joint velocities j1 … j6 (× `arm.action_scale` rad/s).
+    #[default]
+    Joint,
+    /// TCP velocity x, y, z (× `arm.tcp_speed`), yaw rate (× `arm.tcp_yaw_rate`), two unused.
+    Tcp,
 }
 
 impl Default for ArmConfig {
@@ -88,6 +106,9 @@ impl Default for ArmConfig {
             home_joints: crate::HOME_JOINTS,
             action_scale: 0.5,
             max_acceleration: 10.0,
+            action_space: ActionSpace::Joint,
+            tcp_speed: 0.15,
+            tcp_yaw_rate: 1.0,
         }
     }
 }
@@ -178,6 +199,8 @@ pub struct TaskConfig {
     /// Normal baseline grasps peak at 26 N (`full`) and 27 N (`hard`): the fingers' closing
     /// impact on the cube. See README, "Protective stop".
     pub protective_stop_force: f64,
+    /// Weights of the staged reward (used when `reward = "staged"`).
+    pub staged: crate::reward::StagedReward,
 }
 
 /// The task's reward function; each is a pure function in [`crate::task`].
@@ -188,6 +211,9 @@ pub enum RewardKind {
     /// `distance_reward · |TCP − object|`.
     #[default]
     Seed,
+    /// Reach, grasp, lift shaping gated on the grasp, success; bounded per step
+    /// ([`crate::reward`], weights in `[task.staged]`).
+    Staged,
 }
 
 /// Default protective stop threshold [N] (see [`TaskConfig::protective_stop_force`]).
@@ -204,6 +230,7 @@ impl Default for TaskConfig {
             terminate_on_collision: true,
             reward: RewardKind::Seed,
             protective_stop_force: DEFAULT_PROTECTIVE_STOP_FORCE,
+            staged: crate::reward::StagedReward::default(),
         }
     }
 }

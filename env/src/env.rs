@@ -5,7 +5,7 @@
 //! (−1 open, +1 closed) with a limited force. `terminated` means success or failure, `truncated`
 //! the time limit or a physics fault; never both.
 
-use crate::config::{ArmModelKind, EnvConfig};
+use crate::config::{ActionSpace, ArmModelKind, EnvConfig};
 use crate::contacts::ContactReport;
 use crate::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
 use crate::mount::Mount;
@@ -16,6 +16,7 @@ use crate::robot::Robot;
 use crate::sim::Sim;
 pub use crate::step::{Action, EnvError, Info, Step};
 use crate::task::{Failure, TaskState, judge, judge_protective_stop};
+use crate::tcp_action::{TcpCommand, joint_velocities};
 use fairgrasp_kinematics::{ArmKind, ArmModel, Pose};
 use nalgebra::Isometry3;
 use rapier3d::prelude::PhysicsWorld;
@@ -275,16 +276,27 @@ impl GraspEnv {
         Some(report)
     }
 
-    /// Checks an action and hands it to the robot: returns the joint-velocity command [rad/s].
+    /// Checks an action and hands it to the robot: returns the joint-velocity command [rad/s]
+    /// (from joint velocities, or from the TCP command through the Jacobian in `tcp` mode).
     fn apply_action(&mut self, action: &Action) -> Result<[f64; 6], EnvError> {
         if let Some((index, &value)) = action.0.iter().enumerate().find(|(_, v)| !v.is_finite()) {
             return Err(EnvError::NonFiniteAction { index, value });
         }
         let clipped = action.0.map(|v| v.clamp(-1.0, 1.0));
         self.robot.gripper_command = clipped[6];
-        Ok(std::array::from_fn(|i| {
-            clipped[i] * self.config.arm.action_scale
-        }))
+        let arm = &self.config.arm;
+        Ok(match arm.action_space {
+            ActionSpace::Joint => std::array::from_fn(|i| clipped[i] * arm.action_scale),
+            ActionSpace::Tcp => {
+                let command = TcpCommand::from_action(&clipped, arm.tcp_speed, arm.tcp_yaw_rate);
+                joint_velocities(
+                    &self.robot.model,
+                    &self.mount.table_in_base,
+                    &self.robot.q,
+                    &command,
+                )
+            }
+        })
     }
 
     /// The facts the task judges, in `world` [m].

@@ -62,6 +62,9 @@ pub fn is_off_table(s: &TaskState) -> bool {
 pub fn reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
     match cfg.reward {
         RewardKind::Seed => seed_reward(s, success, collision, cfg),
+        RewardKind::Staged => {
+            crate::reward::staged_reward(s, success, collision, cfg.lift_height, &cfg.staged)
+        }
     }
 }
 

@@ -129,6 +129,18 @@ impl EnvConfig {
             "must be positive",
         )?;
         check(
+            a.tcp_speed > 0.0 && a.tcp_speed <= 1.0,
+            "arm.tcp_speed",
+            a.tcp_speed,
+            "must be in (0, 1] m/s",
+        )?;
+        check(
+            a.tcp_yaw_rate > 0.0 && a.tcp_yaw_rate <= 3.2,
+            "arm.tcp_yaw_rate",
+            a.tcp_yaw_rate,
+            "must be in (0, 3.2] rad/s (the FR3's wrist velocity limit)",
+        )?;
+        check(
             a.base_xyz.iter().chain(&a.base_rpy).all(|v| v.is_finite()),
             "arm.base_xyz/base_rpy",
             (a.base_xyz, a.base_rpy),
@@ -218,6 +230,33 @@ impl EnvConfig {
             t.protective_stop_force,
             "must be a finite force in (0, inf) N (default 35 N)",
         )?;
+        let w = &t.staged;
+        for (value, field) in [
+            (w.reach, "task.staged.reach"),
+            (w.grasp, "task.staged.grasp"),
+            (w.lift, "task.staged.lift"),
+            (w.reach_sharpness, "task.staged.reach_sharpness"),
+            (w.lift_sharpness, "task.staged.lift_sharpness"),
+        ] {
+            check(
+                value.is_finite() && value >= 0.0,
+                field,
+                value,
+                "must be a non-negative number",
+            )?;
+        }
+        check(
+            w.reach + w.grasp + w.lift > 0.0,
+            "task.staged",
+            w.reach + w.grasp + w.lift,
+            "reach + grasp + lift must be positive (the per-step normaliser)",
+        )?;
+        for (value, field) in [
+            (w.success, "task.staged.success"),
+            (w.collision, "task.staged.collision"),
+        ] {
+            check(value.is_finite(), field, value, "must be a finite number")?;
+        }
         let r = &self.randomization;
         check_range(&r.radius, "randomization.radius", 0.0)?;
         check_range(&r.angle, "randomization.angle", -std::f64::consts::PI)?;
