@@ -6,8 +6,11 @@
 //! `gripper = "learned"` the gripper command is the policy's own output, not a correction.
 //! Pure mode (the seed's setup): `input = obs`, the env receives `clip(a_policy)`.
 
+use fairgrasp_env::config::ActionSpace;
 use fairgrasp_env::policy::Policy;
 use fairgrasp_env::{Action, EnvConfig, Observation};
+
+use crate::action_map::ActionMap;
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use serde::{Deserialize, Serialize};
 
@@ -61,6 +64,9 @@ pub struct AgentConfig {
     /// Scale of the residual (action units per policy unit).
     pub residual_scale: f32,
     pub gripper: GripperMode,
+    /// What the policy's output commands: `joint` velocities (the seed's) or the TCP's velocity
+    /// and yaw rate (`tcp`, pure mode only; [`crate::action_map`]).
+    pub action_space: ActionSpace,
 }
 
 impl Default for AgentConfig {
@@ -69,6 +75,7 @@ impl Default for AgentConfig {
             mode: Mode::Residual,
             residual_scale: 0.3,
             gripper: GripperMode::Residual,
+            action_space: ActionSpace::Joint,
         }
     }
 }
@@ -125,6 +132,27 @@ impl AgentConfig {
         }))
     }
 
+    /// The map from the policy's task-space output to joint actions (`tcp` mode only).
+    pub fn action_map(&self, env: &EnvConfig) -> Option<ActionMap> {
+        (self.action_space == ActionSpace::Tcp).then(|| ActionMap::new(env))
+    }
+
+    /// The env action for the policy's output at observation `obs`: [`AgentConfig::compose`],
+    /// then, in `tcp` mode, through `map` to joint velocities.
+    pub fn env_action(
+        &self,
+        obs: &Observation,
+        base: Option<&Action>,
+        policy: &[f32],
+        map: Option<&ActionMap>,
+    ) -> Action {
+        let action = self.compose(base, policy);
+        match map {
+            Some(map) => map.to_joint_action(&obs.joints, &action),
+            None => action,
+        }
+    }
+
     /// A baseline for residual mode.
     pub fn baseline(&self, env: &EnvConfig) -> Option<ScriptedGrasp> {
         (self.mode == Mode::Residual).then(|| ScriptedGrasp::new(env, BaselineConfig::default()))
@@ -138,6 +166,7 @@ pub type MeanAction = Box<dyn Fn(&[f32]) -> Vec<f32> + Send>;
 pub struct GraspAgent {
     pub agent: AgentConfig,
     baseline: Option<ScriptedGrasp>,
+    action_map: Option<ActionMap>,
     mean_action: MeanAction,
 }
 
@@ -146,6 +175,7 @@ impl GraspAgent {
     pub fn new(agent: AgentConfig, env: &EnvConfig, mean_action: MeanAction) -> Self {
         Self {
             baseline: agent.baseline(env),
+            action_map: agent.action_map(env),
             agent,
             mean_action,
         }
@@ -163,7 +193,8 @@ impl Policy for GraspAgent {
         let base = self.baseline.as_mut().map(|b| b.act(obs));
         let input = self.agent.input(obs, base.as_ref());
         let out = (self.mean_action)(&input);
-        self.agent.compose(base.as_ref(), &out)
+        self.agent
+            .env_action(obs, base.as_ref(), &out, self.action_map.as_ref())
     }
 
     fn gave_up(&self) -> Option<fairgrasp_env::policy::Outcome> {

@@ -11,6 +11,7 @@ use fairgrasp_env::vec_env::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, EnvError, Observation};
 use fairgrasp_planner::ScriptedGrasp;
 
+use crate::action_map::ActionMap;
 use crate::agent::{ACT_DIM, AgentConfig};
 use crate::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 
@@ -18,6 +19,8 @@ use crate::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check
 pub struct GraspVecEnv {
     inner: VecEnv,
     agent: AgentConfig,
+    /// Task-space to joint actions (`agent.action_space = "tcp"`).
+    action_map: Option<ActionMap>,
     baselines: Vec<Option<ScriptedGrasp>>,
     /// The baselines' actions for the current observations (residual mode).
     base_actions: Vec<Option<Action>>,
@@ -59,6 +62,7 @@ impl GraspVecEnv {
             returns: vec![0.0; n],
             lengths: vec![0; n],
             batch: StepBatch::new(n, agent.input_dim()),
+            action_map: agent.action_map(config),
             agent,
         })
     }
@@ -125,13 +129,17 @@ impl VecEnvironment for GraspVecEnv {
             });
         }
         check_finite(actions, ACT_DIM, "action")?;
-        for ((slot, base), policy) in self
+        let now = &self.inner.batch().obs;
+        for (((slot, base), policy), obs) in self
             .env_actions
             .iter_mut()
             .zip(&self.base_actions)
             .zip(actions.chunks(ACT_DIM))
+            .zip(now)
         {
-            *slot = self.agent.compose(base.as_ref(), policy);
+            *slot = self
+                .agent
+                .env_action(obs, base.as_ref(), policy, self.action_map.as_ref());
         }
         let step = self.inner.step(&self.env_actions)?;
         for e in 0..n {

@@ -7,10 +7,12 @@
 //! - [`gaussian`]: the policy's distribution, its one log-probability.
 //! - [`rollout`]: the rollout buffer, one flat buffer per quantity.
 //! - [`vec_api`]: what PPO needs from environments; [`point_mass`]: a small task PPO must solve.
-//! - [`grasp_env`]: the grasp env as PPO sees it; [`agent`]: residual or pure agent.
+//! - [`grasp_env`]: the grasp env as PPO sees it; [`agent`]: residual or pure agent;
+//!   [`action_map`]: its task-space action.
 //! - [`train_config`], [`train`], [`checkpoint`], [`evaluate`]: training runs and their files.
 //! - [`bench`]: the `bench ppo` measurement.
 
+pub mod action_map;
 pub mod agent;
 pub mod bench;
 pub mod checkpoint;

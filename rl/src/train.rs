@@ -223,7 +223,7 @@ pub fn train(
     let device = Device::flex().autodiff();
     device.seed(config.seed);
     let env_config = config
-        .env_config()
+        .training_env_config()
         .map_err(|e| TrainError::Config(e.to_string()))?;
     let (meta, model, optimizer_from) = start_from(config, run_dir, resume, &device)?;
     // Fail here, with the reason, rather than inside the rollout if no scenario can be drawn.

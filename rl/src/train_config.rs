@@ -42,6 +42,22 @@ pub struct TrainConfig {
     pub agent: AgentConfig,
     pub model: ModelConfig,
     pub ppo: PpoConfig,
+    /// Settings laid over the preset's env configuration for training only, as in an env
+    /// config file (e.g. `[env.task] reward = "staged"`, `terminate_on_collision = false`).
+    /// Evaluations use the preset as it is: the success criterion never changes.
+    pub env: Option<toml::Table>,
+}
+
+/// Lays `top` over `base`: tables merge key by key, any other value replaces.
+fn overlay(base: &mut toml::Table, top: &toml::Table) {
+    for (key, value) in top {
+        match (base.get_mut(key), value) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(t)) => overlay(b, t),
+            _ => {
+                base.insert(key.clone(), value.clone());
+            }
+        }
+    }
 }
 
 impl Default for TrainConfig {
@@ -58,6 +74,7 @@ impl Default for TrainConfig {
             eval_episodes: 50,
             critic_warmup_updates: 0,
             curriculum: None,
+            env: None,
             agent: AgentConfig::default(),
             model: ModelConfig {
                 log_std_init: -1.0,
@@ -144,13 +161,40 @@ impl TrainConfig {
         self.ppo
             .validate(self.n_envs)
             .map_err(|e| format!("ppo: {e}"))?;
-        self.env_config().map(|_| ()).map_err(|e| e.to_string())
+        if self.agent.action_space == fairgrasp_env::config::ActionSpace::Tcp
+            && self.agent.mode == crate::agent::Mode::Residual
+        {
+            return Err(
+                "agent.action_space = \"tcp\" needs agent.mode = \"pure\" (the baseline's actions are joint velocities)"
+                    .into(),
+            );
+        }
+        self.training_env_config()
+            .map(|_| ())
+            .map_err(|e| e.to_string())
     }
 
-    /// The environment configuration of the preset and arm.
+    /// The environment configuration of the preset and arm (what evaluations use).
     pub fn env_config(&self) -> Result<EnvConfig, fairgrasp_env::ConfigError> {
         let mut env = presets::load(&self.preset)?;
         env.arm.model = self.arm;
         Ok(env)
+    }
+
+    /// The environment configuration training steps: [`TrainConfig::env_config`] with the
+    /// `[env]` overrides laid over it, validated.
+    pub fn training_env_config(&self) -> Result<EnvConfig, fairgrasp_env::ConfigError> {
+        let env = self.env_config()?;
+        let Some(overrides) = &self.env else {
+            return Ok(env);
+        };
+        let invalid = |message: String| fairgrasp_env::ConfigError::File {
+            path: "[env] of the training config".into(),
+            message,
+        };
+        let mut table = toml::Table::try_from(&env).map_err(|e| invalid(e.to_string()))?;
+        overlay(&mut table, overrides);
+        let text = toml::to_string(&table).map_err(|e| invalid(e.to_string()))?;
+        EnvConfig::from_toml_str(&text).map_err(|e| invalid(e.to_string()))
     }
 }
