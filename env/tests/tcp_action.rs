@@ -84,3 +84,48 @@ fn the_staged_reward_grows_as_the_gripper_nears_the_cube() {
     assert!((rewards[29] - 0.154).abs() < 0.003, "{rewards:?}");
     assert!(rewards[0] < rewards[29] - 0.05, "{rewards:?}");
 }
+
+/// The task can be done through the task-space action: straight above the cube, turn to its
+/// yaw, descend with the gripper open, close, lift.
+#[test]
+fn a_scripted_task_space_grasp_lifts_the_cube() {
+    let mut config: EnvConfig = fairgrasp_env::presets::load("seed").unwrap();
+    config.arm.action_space = ActionSpace::Tcp;
+    let mut env = GraspEnv::new(config).unwrap();
+    let mut successes = 0;
+    for seed in 0..10 {
+        env.reset(seed).unwrap();
+        let yaw_of = |env: &GraspEnv| {
+            let x = env.tcp_in_base().iso.rotation * nalgebra::Vector3::x();
+            x.y.atan2(x.x)
+        };
+        let cube = env.object_in_base();
+        let c = cube.xyz();
+        let cube_yaw = {
+            let x = cube.iso.rotation * nalgebra::Vector3::x();
+            x.y.atan2(x.x)
+        };
+        let mut result = None;
+        for k in 0..120 {
+            // Yaw error modulo the cube's 90° symmetry, in (−45°, 45°].
+            let q = std::f64::consts::FRAC_PI_2;
+            let e = (cube_yaw - yaw_of(&env) + q / 2.0).rem_euclid(q) - q / 2.0;
+            let (target, grip) = match k {
+                0..40 => ([c[0], c[1], c[2] + 0.10], -1.0),
+                40..70 => ([c[0], c[1], c[2]], -1.0),
+                70..80 => ([c[0], c[1], c[2]], 1.0),
+                _ => ([c[0], c[1], c[2] + 0.10], 1.0),
+            };
+            let mut action = toward(&env, target, grip);
+            action.0[3] = (e * 4.0).clamp(-1.0, 1.0);
+            let step = env.step(&action).unwrap();
+            if step.terminated || step.truncated {
+                result = Some((step.info.success, step.info.failure));
+                break;
+            }
+        }
+        eprintln!("seed {seed}: {result:?}");
+        successes += usize::from(matches!(result, Some((true, _))));
+    }
+    assert!(successes >= 9, "{successes} of 10");
+}

@@ -4,7 +4,9 @@
 //! ([`fairgrasp_env::tcp_action`]), at the joints the observation reports.
 //!
 //! The env's joint action is `q̇ / arm.action_scale`; if any joint would need more than 1, the
-//! whole joint action is scaled down so that the TCP keeps its direction.
+//! whole joint action is scaled down so that the TCP keeps its direction. The gripper is binary,
+//! as in Isaac Lab's lift task: open below 0, closed from 0 up. (A continuous command between
+//! −1 and 1 leaves the fingers half closed, and an exploring policy then lands them on the cube.)
 
 use fairgrasp_env::tcp_action::{TcpCommand, joint_velocities};
 use fairgrasp_env::{Action, EnvConfig, Mount};
@@ -46,7 +48,7 @@ impl ActionMap {
         for i in 0..6 {
             out[i] = qd[i] / self.action_scale / over;
         }
-        out[6] = tcp.0[6].clamp(-1.0, 1.0);
+        out[6] = if tcp.0[6] < 0.0 { -1.0 } else { 1.0 };
         Action(out)
     }
 }

@@ -14,7 +14,7 @@ fn a_task_space_action_becomes_joint_actions_that_move_the_tcp_that_way() {
     let mut env = GraspEnv::new(config).unwrap();
     env.reset(0).unwrap();
     let start = env.tcp_in_base().xyz();
-    // Straight down and to the left, gripper half closed.
+    // Straight down and to the left; a positive gripper command closes it fully (binary).
     let tcp = Action([0.0, 0.6, -0.6, 0.0, 0.0, 0.0, 0.5]);
     for _ in 0..6 {
         let action = map.to_joint_action(&env.joints(), &tcp);
@@ -22,7 +22,12 @@ fn a_task_space_action_becomes_joint_actions_that_move_the_tcp_that_way() {
             action.0.iter().all(|v| v.abs() <= 1.0 + 1e-12),
             "{action:?}"
         );
-        assert_eq!(action.0[6], 0.5);
+        assert_eq!(action.0[6], 1.0);
+        assert_eq!(
+            map.to_joint_action(&env.joints(), &Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -0.1]))
+                .0[6],
+            -1.0
+        );
         env.step(&action).unwrap();
     }
     let end = env.tcp_in_base().xyz();
