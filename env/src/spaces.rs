@@ -4,7 +4,7 @@
 use fairgrasp_kinematics::ArmModel;
 use serde::Serialize;
 
-use crate::config::EnvConfig;
+use crate::config::{ActionSpace, EnvConfig};
 use crate::obs::{OBS_DIM, OBS_NAMES};
 
 /// Number of values in an action.
@@ -54,12 +54,39 @@ impl BoxSpace {
 /// The action space: 6 joint-velocity commands and the gripper command, each in [-1, 1]
 /// (joints move at `action · arm.action_scale` rad/s; the gripper −1 open … +1 closed).
 pub fn action_space() -> BoxSpace {
+    action_space_of(ActionSpace::Joint)
+}
+
+/// Names of a task-space action's entries (`arm.action_space = "tcp"`), in order.
+pub const TCP_ACT_NAMES: [&str; ACT_DIM] = [
+    "tcp_vx",
+    "tcp_vy",
+    "tcp_vz",
+    "tcp_yaw_rate",
+    "unused_4",
+    "unused_5",
+    "gripper",
+];
+
+/// The action space of `kind`: every entry in [-1, 1], named, with its unit.
+pub fn action_space_of(kind: ActionSpace) -> BoxSpace {
+    let (names, units) = match kind {
+        ActionSpace::Joint => (ACT_NAMES, ["action_scale·rad/s"; 6]),
+        ActionSpace::Tcp => (
+            TCP_ACT_NAMES,
+            [
+                "tcp_speed·m/s",
+                "tcp_speed·m/s",
+                "tcp_speed·m/s",
+                "tcp_yaw_rate·rad/s",
+                "unused",
+                "unused",
+            ],
+        ),
+    };
     BoxSpace {
-        names: ACT_NAMES.to_vec(),
-        units: vec!["action_scale·rad/s"; 6]
-            .into_iter()
-            .chain(["open(-1)…closed(+1)"])
-            .collect(),
+        names: names.to_vec(),
+        units: units.into_iter().chain(["open(-1)…closed(+1)"]).collect(),
         low: vec![-1.0; ACT_DIM],
         high: vec![1.0; ACT_DIM],
     }

@@ -25,6 +25,10 @@ fn the_spaces_name_every_entry_with_finite_bounds() {
     }
     let act = action_space();
     assert_eq!((act.len(), act.low[0], act.high[6]), (ACT_DIM, -1.0, 1.0));
+    let tcp = fairgrasp_env::spaces::action_space_of(fairgrasp_env::config::ActionSpace::Tcp);
+    assert_eq!(tcp.names[3], "tcp_yaw_rate");
+    assert_eq!(tcp.units[0], "tcp_speed·m/s");
+    assert_eq!((tcp.len(), tcp.names[6]), (ACT_DIM, "gripper"));
 }
 
 #[test]
