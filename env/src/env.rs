@@ -310,6 +310,8 @@ impl GraspEnv {
             object_rest_z: self.object_rest_z,
             tcp,
             pad_contact: contacts.pad_contact,
+            gripper_opening: self.robot.gripper_opening(),
+            object_size: self.config.scene.cube_size,
             table_height: self.config.scene.table_height,
             object_xy_from_table_centre: [object.x - base_xy[0], object.y - base_xy[1]],
             table_half_size: self.config.scene.table_size.map(|s| s / 2.0),

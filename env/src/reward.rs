@@ -14,7 +14,9 @@
 //!     / (reach + grasp + lift)                                      ∈ [0, 1]
 //! ```
 //!
-//! where `grasped` means both pads touch the cube. A success (which ends the episode) pays
+//! where `grasped` means both pads touch the cube with the cube between them (the pads at least
+//! half the cube's width apart: closed fingers pushing the cube with both pads on one side do
+//! not count — an exploring policy finds that loophole). A success (which ends the episode) pays
 //! `success` instead, a collision or protective stop `collision`. `success` must beat holding the
 //! per-step maximum of 1 forever: with discount γ that is worth `1/(1 − γ)`, 20 at γ = 0.95.
 //! The evaluation's success criterion does not depend on the reward.
@@ -72,7 +74,7 @@ pub fn staged_reward(
         return w.collision;
     }
     let reach = w.reach * (1.0 - (w.reach_sharpness * tcp_object_distance(s)).tanh());
-    let grasped = s.pad_contact[0] && s.pad_contact[1];
+    let grasped = s.pad_contact[0] && s.pad_contact[1] && s.gripper_opening >= 0.5 * s.object_size;
     let held = if grasped {
         let short = (lift_height - (s.object[2] - s.object_rest_z)).max(0.0);
         w.grasp + w.lift * (1.0 - (w.lift_sharpness * short).tanh())
@@ -92,6 +94,8 @@ mod tests {
             object_rest_z: 0.625,
             tcp: [0.4, 0.0, 0.625 + lift + distance],
             pad_contact: [pads, pads],
+            gripper_opening: 0.05,
+            object_size: 0.05,
             table_height: 0.6,
             object_xy_from_table_centre: [0.4, 0.0],
             table_half_size: [0.6, 0.6],
@@ -118,6 +122,15 @@ mod tests {
             staged_reward(&state(0.0, true, 0.0), false, true, 0.03, &w),
             -1.0
         );
+    }
+
+    #[test]
+    fn closed_fingers_touching_the_cube_from_one_side_are_not_a_grasp() {
+        let w = StagedReward::default();
+        let mut s = state(0.0, true, 0.0);
+        s.gripper_opening = 0.002;
+        let r = staged_reward(&s, false, false, 0.03, &w);
+        assert!((r - 1.0 / 3.0).abs() < 1e-12, "{r}");
     }
 
     #[test]

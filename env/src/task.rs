@@ -15,6 +15,10 @@ pub struct TaskState {
     pub tcp: [f64; 3],
     /// Left and right pads touching the object.
     pub pad_contact: [bool; 2],
+    /// Distance between the pads' inner faces [m].
+    pub gripper_opening: f64,
+    /// The object's edge length [m].
+    pub object_size: f64,
     /// Table top height.
     pub table_height: f64,
     /// Horizontal distance of the object from the table centre, per axis, and the half sizes.

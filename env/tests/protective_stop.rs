@@ -109,6 +109,8 @@ fn a_protective_stop_is_never_a_success_even_when_lifted_and_held() {
         object_rest_z: 0.625,
         tcp: [0.3, 0.0, 0.70],
         pad_contact: [true, true],
+        gripper_opening: 0.05,
+        object_size: 0.05,
         table_height: 0.6,
         object_xy_from_table_centre: [0.3, 0.0],
         table_half_size: [0.6, 0.6],

@@ -9,6 +9,8 @@ fn state(object_z: f64, pads: [bool; 2]) -> TaskState {
         object_rest_z: 0.625,
         tcp: [0.3, 0.0, object_z + 0.002],
         pad_contact: pads,
+        gripper_opening: 0.05,
+        object_size: 0.05,
         table_height: 0.6,
         object_xy_from_table_centre: [0.3, 0.0],
         table_half_size: [0.6, 0.6],
