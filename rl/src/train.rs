@@ -27,6 +27,9 @@ use crate::ppo::{Ppo, UpdateStats};
 use crate::train_config::io;
 pub use crate::train_config::{TrainConfig, TrainError};
 
+/// The bit every training episode's scenario seed has set (and no evaluation seed has).
+pub const TRAINING_SEEDS: u64 = 1 << 63;
+
 /// One row of `metrics.csv`.
 pub const METRICS_HEADER: &str = "update,timesteps,wall_time_s,episodes,episode_return,success_rate,episode_length,policy_loss,value_loss,entropy,approx_kl,clip_fraction,explained_variance,learning_rate,stage,eval_success_rate";
 
@@ -236,10 +239,14 @@ pub fn train(
         1,
     )
     .map_err(|e| TrainError::Config(format!("preset {}: {e}", config.preset)))?;
-    let episode_seed = config
-        .seed
-        .wrapping_mul(7_919)
-        .wrapping_add(meta.updates * 1_000);
+    // Training scenarios live in the upper half of the seed space; evaluation scenario sets
+    // (`scenario_set`, seeds `s · 1 000 003 + i`) stay in the lower half for any set seed below
+    // 9 · 10¹², so no evaluation ever replays a training scenario.
+    let episode_seed = TRAINING_SEEDS
+        | config
+            .seed
+            .wrapping_mul(7_919)
+            .wrapping_add(meta.updates * 1_000);
     let env = GraspVecEnv::new(
         &env_config,
         config.agent.clone(),
