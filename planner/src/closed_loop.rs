@@ -61,7 +61,6 @@ pub struct ClosedLoopGrasp {
     truth: Option<ObservedObject>,
     /// The cube estimate (centre in `base_link` [m], yaw [rad]) the current plan was made on.
     planned_on: Option<([f64; 3], f64)>,
-    last_phase: Phase,
     retries_left: usize,
     /// Env steps left of re-opening the gripper before the retry's plan.
     opening: usize,
@@ -83,7 +82,6 @@ impl ClosedLoopGrasp {
             source,
             truth: None,
             planned_on: None,
-            last_phase: Phase::Plan,
             opening: 0,
             replans: 0,
         }
@@ -99,6 +97,16 @@ impl ClosedLoopGrasp {
     pub fn observed(env: &EnvConfig) -> Self {
         let c = ClosedLoopConfig::default();
         Self::new(env, BaselineConfig::default(), c, CubeSource::Observed)
+    }
+
+    /// The script's phase.
+    pub fn phase(&self) -> Phase {
+        self.script.phase()
+    }
+
+    /// Missed grasps retried in this episode.
+    pub fn retried(&self) -> usize {
+        self.config.retries - self.retries_left
     }
 
     /// Plans made after the first one in this episode (re-plans and retries).
@@ -142,7 +150,6 @@ impl Policy for ClosedLoopGrasp {
         self.script.reset(seed);
         self.truth = None;
         self.planned_on = None;
-        self.last_phase = Phase::Plan;
         self.retries_left = self.config.retries;
         self.opening = 0;
         self.replans = 0;
@@ -158,28 +165,27 @@ impl Policy for ClosedLoopGrasp {
             self.opening -= 1;
             if self.opening == 0 {
                 self.replan(&obs);
-                self.last_phase = self.script.phase();
             }
             return Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]);
         }
         let phase = self.script.phase();
-        let missed = self.last_phase == Phase::Close
-            && phase == Phase::Lift
-            && !(obs.pad_contact[0] && obs.pad_contact[1]);
-        if missed && self.retries_left > 0 {
-            self.retries_left -= 1;
-            self.opening = self.config.open_steps.max(1);
-            self.last_phase = phase;
-            return Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]);
-        }
         if matches!(phase, Phase::Approach | Phase::Descend) && self.moved(&obs) {
             self.replan(&obs);
         }
+        let before = self.script.phase();
         let action = self.script.act(&obs);
         if self.planned_on.is_none() && self.script.targets().is_some() {
             self.planned_on = Some((obs.object_position(), obs.object_yaw));
         }
-        self.last_phase = self.script.phase();
+        // The close is over and the script would lift: a miss if the pads are not both on it.
+        let missed = before == Phase::Close
+            && self.script.phase() == Phase::Lift
+            && !(obs.pad_contact[0] && obs.pad_contact[1]);
+        if missed && self.retries_left > 0 {
+            self.retries_left -= 1;
+            self.opening = self.config.open_steps.max(1);
+            return Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]);
+        }
         action
     }
 

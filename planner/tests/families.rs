@@ -3,11 +3,14 @@
 //! miscalibration; every push made far from the gripper; reproducible episodes.
 
 use fairgrasp_env::nudge::NudgeEvent;
-use fairgrasp_env::policy::{EpisodeResult, EvalReport, Policy, run_episode};
+use fairgrasp_env::policy::{EpisodeResult, EvalReport, Outcome, Policy, run_episode};
 use fairgrasp_env::presets;
 use fairgrasp_env::randomize::scenario_set;
 use fairgrasp_env::{EnvConfig, GraspEnv};
-use fairgrasp_planner::{BaselineConfig, ClosedLoopGrasp, ScriptedGrasp};
+use fairgrasp_planner::grasp::{candidate_yaws, tcp_yaw};
+use fairgrasp_planner::{
+    BaselineConfig, ClosedLoopConfig, ClosedLoopGrasp, CubeSource, Phase, ScriptedGrasp,
+};
 
 const EPISODES: usize = 60;
 
@@ -118,5 +121,79 @@ fn the_same_seed_gives_the_same_family_episodes_for_every_script() {
                 assert_eq!(event, fresh.nudge_event(), "{name}");
             }
         }
+    }
+}
+
+/// Shows the closed loop a cube `shift` [m] (table frame) away from the truth until its gripper
+/// first closes, then the truth: the first grasp closes beside the cube.
+struct MisleadUntilClose {
+    inner: ClosedLoopGrasp,
+    mount: fairgrasp_env::Mount,
+    shift: [f64; 2],
+    closed: bool,
+}
+
+impl Policy for MisleadUntilClose {
+    fn reset(&mut self, seed: u64) {
+        self.inner.reset(seed);
+        self.closed = false;
+    }
+
+    fn act(&mut self, obs: &fairgrasp_env::Observation) -> fairgrasp_env::Action {
+        self.closed |= !matches!(
+            self.inner.phase(),
+            Phase::Plan | Phase::Approach | Phase::Descend
+        );
+        let mut seen = *obs;
+        if !self.closed {
+            let d = self
+                .mount
+                .table_in_base
+                .transform_vector([self.shift[0], self.shift[1], 0.0]);
+            seen.object_rel_tcp = [0, 1, 2].map(|i| obs.object_rel_tcp[i] + d[i]);
+        }
+        self.inner.act(&seen)
+    }
+}
+
+#[test]
+fn the_closed_loop_retries_a_missed_grasp_once_and_then_grasps() {
+    let config = presets::load("full").unwrap();
+    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let scenarios = scenario_set(&config, env.model(), env.base_in_world(), 2, 4).unwrap();
+    let model = env.model().clone();
+    let mount = *env.mount();
+    for s in &scenarios {
+        // 12 cm across the fingers (along their closing, for the grasp yaw the script will pick):
+        // the cube lies beyond the open finger, which closes beside it.
+        let yaw = candidate_yaws(s.object_yaw, tcp_yaw(&model, &mount, &s.start_joints))[0]
+            + std::f64::consts::FRAC_PI_2;
+        let shift = [0.12 * yaw.cos(), 0.12 * yaw.sin()];
+        let mut policy = MisleadUntilClose {
+            inner: ClosedLoopGrasp::observed(&config),
+            mount,
+            shift,
+            closed: false,
+        };
+        let result = run_episode(&mut env, &mut policy, s, None).unwrap();
+        assert_eq!(result.outcome, Outcome::Success, "seed {}", s.seed);
+        assert_eq!(policy.inner.retried(), 1, "seed {}: one retry", s.seed);
+        // Without the retry the same misleading view is a miss.
+        let mut once = MisleadUntilClose {
+            inner: ClosedLoopGrasp::new(
+                &config,
+                BaselineConfig::default(),
+                ClosedLoopConfig {
+                    retries: 0,
+                    ..ClosedLoopConfig::default()
+                },
+                CubeSource::Observed,
+            ),
+            mount,
+            shift,
+            closed: false,
+        };
+        let result = run_episode(&mut env, &mut once, s, None).unwrap();
+        assert_ne!(result.outcome, Outcome::Success, "seed {}", s.seed);
     }
 }
