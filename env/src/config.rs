@@ -261,6 +261,12 @@ pub struct RandomizationConfig {
     /// [rad] (standard deviations; 0 = exact). The physics is unaffected.
     pub observed_position_noise: f64,
     pub observed_yaw_noise: f64,
+    /// A miscalibrated camera: a fixed error on every observed cube pose (None = calibrated).
+    /// See [`crate::families::CameraOffset`].
+    pub camera_offset: Option<crate::families::CameraOffset>,
+    /// A push of the cube during the approach, drawn per scenario (None = never).
+    /// See [`crate::families::NudgeConfig`].
+    pub nudge: Option<crate::families::NudgeConfig>,
 }
 
 impl Default for RandomizationConfig {
@@ -276,6 +282,8 @@ impl Default for RandomizationConfig {
             joint_noise: 0.0,
             observed_position_noise: 0.0,
             observed_yaw_noise: 0.0,
+            camera_offset: None,
+            nudge: None,
         }
     }
 }

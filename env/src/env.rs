@@ -10,6 +10,7 @@ use crate::config::{ActionSpace, ArmModelKind, EnvConfig};
 use crate::contacts::ContactReport;
 use crate::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
 use crate::mount::Mount;
+use crate::nudge::{NudgeEvent, NudgeHook};
 use crate::obs::Observation;
 use crate::perception::observe_object;
 use crate::randomize::Scenario;
@@ -43,6 +44,8 @@ pub struct GraspEnv {
     steps: usize,
     done: bool,
     scenario: Option<Scenario>,
+    /// This episode's push of the cube (the `nudged` family).
+    nudge: NudgeHook,
 }
 
 impl GraspEnv {
@@ -64,6 +67,7 @@ impl GraspEnv {
             steps: 0,
             done: true,
             scenario: None,
+            nudge: NudgeHook::default(),
         })
     }
 
@@ -122,6 +126,12 @@ impl GraspEnv {
         self.scenario.as_ref()
     }
 
+    /// What became of this episode's push of the cube, if the scenario has one and its step has
+    /// come ([`crate::families::Nudge`]).
+    pub fn nudge_event(&self) -> Option<NudgeEvent> {
+        self.nudge.event()
+    }
+
     /// Soft reset to the scenario drawn from `seed`.
     pub fn reset(&mut self, seed: u64) -> Result<(Observation, Info), EnvError> {
         let scenario =
@@ -156,6 +166,7 @@ impl GraspEnv {
         self.steps = 0;
         self.done = false;
         self.scenario = Some(*scenario);
+        self.nudge.reset();
         let info = Info {
             scenario: Some(*scenario),
             simulated: true,
@@ -194,6 +205,9 @@ impl GraspEnv {
         if self.done {
             return Err(EnvError::EpisodeOver);
         }
+        let tcp = self.robot.tcp_in_world().xyz();
+        let (scenario, mount) = (self.scenario.as_ref(), &self.mount);
+        (self.nudge).before_step(self.steps, scenario, mount, &mut self.sim, tcp);
         let command = self.apply_action(action)?;
         let q_before = self.robot.q;
         let free = self.free_step(&command);

@@ -4,6 +4,10 @@
 //! only what this model reports. A new way of seeing (a miscalibrated camera, a wrist camera
 //! that improves up close) is a change here and in the scenario that draws its parameters, not
 //! in the env's step.
+//!
+//! Order: the camera's calibration error (a rigid transform of the table frame,
+//! [`crate::families::CameraOffset`]) moves the true pose first; the episode's perception noise
+//! is added to the result.
 
 use fairgrasp_kinematics::Pose;
 
@@ -20,17 +24,29 @@ pub struct ObservedObject {
 }
 
 /// What is observed of an object whose true pose in `base_link` is `truth`, in the episode
-/// `scenario` (its perception errors), on `mount`. With no scenario (before the first reset),
-/// the truth.
+/// `scenario` (its camera error and perception noise), on `mount`. With no scenario (before the
+/// first reset), the truth.
 pub fn observe_object(mount: &Mount, truth: &Pose, scenario: Option<&Scenario>) -> ObservedObject {
     let (position_error, yaw_error) = scenario.map_or(([0.0; 3], 0.0), |s| {
         (s.observed_position_error, s.observed_yaw_error)
     });
+    // The miscalibrated camera sees the pose moved by its error, in the table frame.
+    let seen = match scenario.and_then(|s| s.camera_offset) {
+        Some(offset) => {
+            mount.table_to_base(&offset.in_table().compose(&mount.base_to_table(truth)))
+        }
+        None => *truth,
+    };
     // Perception errors are drawn in the table frame (on the table plane).
     let error = mount.table_in_base.transform_vector(position_error);
-    let p = truth.xyz();
+    let p = seen.xyz();
     ObservedObject {
         position: [p[0] + error[0], p[1] + error[1], p[2] + error[2]],
-        yaw: mount.yaw_on_table(truth) + yaw_error,
+        yaw: mount.yaw_on_table(&seen) + yaw_error,
     }
+}
+
+/// The truth as an [`ObservedObject`]: what an oracle is given ([`crate::policy::Policy::observe_truth`]).
+pub fn true_object(mount: &Mount, truth: &Pose) -> ObservedObject {
+    observe_object(mount, truth, None)
 }

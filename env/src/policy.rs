@@ -4,6 +4,7 @@
 use crate::config::ArmModelKind;
 use crate::env::{Action, EnvError, GraspEnv};
 use crate::obs::Observation;
+use crate::perception::{ObservedObject, true_object};
 use crate::randomize::Scenario;
 use crate::task::Failure;
 use crate::trajectory::Trajectory;
@@ -26,6 +27,10 @@ pub trait Policy {
     fn reset(&mut self, seed: u64);
     /// The action for this observation.
     fn act(&mut self, obs: &Observation) -> Action;
+    /// The object's true pose, given by [`run_episode`] before every `act` (the env's truth, not
+    /// the perception model's report). Only an oracle uses it (the ceiling a controller could
+    /// reach); every other policy ignores it (the default).
+    fn observe_truth(&mut self, _truth: &ObservedObject) {}
     /// Set when the policy itself has given up (the baseline: no IK solution).
     fn gave_up(&self) -> Option<Outcome> {
         None
@@ -49,6 +54,7 @@ pub fn run_episode(
     let (mut held, mut lifted_while_held, mut closed_past_cube) = (false, false, false);
     let mut episode_return = 0.0;
     loop {
+        policy.observe_truth(&true_object(env.mount(), &env.object_in_base()));
         let action = policy.act(&obs);
         let step = env.step(&action)?;
         if let Some(t) = trajectory.as_deref_mut() {

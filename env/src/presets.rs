@@ -1,11 +1,12 @@
-//! Named configurations: `fixed`, `seed`, `wide`, `full`, `hard`, shipped as TOML files in
+//! Named configurations: `fixed`, `seed`, `wide`, `full`, `hard` and the scenario families
+//! `miscalibrated`, `miscalibrated_b`, `nudged` ([`crate::families`]), shipped as TOML files in
 //! `assets/configs/` and built into the binary, so `--preset NAME` works from any folder.
 
 use crate::config::EnvConfig;
 use crate::validate::ConfigError;
 
 /// Every preset: name, TOML text, one-line description.
-pub const PRESETS: [(&str, &str, &str); 5] = [
+pub const PRESETS: [(&str, &str, &str); 8] = [
     (
         "fixed",
         include_str!("../../assets/configs/fixed.toml"),
@@ -30,6 +31,21 @@ pub const PRESETS: [(&str, &str, &str); 5] = [
         "hard",
         include_str!("../../assets/configs/hard.toml"),
         "full + perception noise (1 cm, 10°) on the observed cube",
+    ),
+    (
+        "miscalibrated",
+        include_str!("../../assets/configs/miscalibrated.toml"),
+        "full seen through a miscalibrated camera (cell A: a fixed 2° and 1.1 cm error, 1.9 cm median)",
+    ),
+    (
+        "miscalibrated_b",
+        include_str!("../../assets/configs/miscalibrated_b.toml"),
+        "full seen through a miscalibrated camera (cell B: a fixed -2.5° and 0.9 cm error, 2.2 cm median)",
+    ),
+    (
+        "nudged",
+        include_str!("../../assets/configs/nudged.toml"),
+        "full + the cube pushed 1.5–3 cm once during the approach",
     ),
 ];
 

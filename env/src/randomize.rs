@@ -39,6 +39,11 @@ pub struct Scenario {
     pub observed_position_error: [f64; 3],
     /// Error added to the observed object yaw [rad] (perception noise).
     pub observed_yaw_error: f64,
+    /// The push the cube gets during the approach (the `nudged` family), if any.
+    pub nudge: Option<crate::families::Nudge>,
+    /// The cell's camera calibration error (`randomization.camera_offset`, the same for every
+    /// episode of a config), applied to what is observed.
+    pub camera_offset: Option<crate::families::CameraOffset>,
 }
 
 /// The object pose in `base_link` for a scenario: resting on the table top at `xy` in the table
@@ -177,6 +182,8 @@ impl Scenario {
             start_joints: config.arm.home_joints,
             observed_position_error: [0.0; 3],
             observed_yaw_error: 0.0,
+            nudge: None,
+            camera_offset: None,
         }
     }
 
@@ -231,6 +238,18 @@ impl Scenario {
             let observed_yaw_error = gauss(&mut rng, r.observed_yaw_noise);
             let pose = mount.resting_object_in_base(object_xy, object_yaw, config.scene.cube_size);
             if top_down_grasp(model, &mount, &pose, &start_joints).is_some() {
+                let nudge = r.nudge.as_ref().and_then(|n| {
+                    crate::families::draw_nudge(
+                        n,
+                        config,
+                        model,
+                        &mount,
+                        seed,
+                        object_xy,
+                        object_yaw,
+                        &start_joints,
+                    )
+                });
                 return Ok(Scenario {
                     seed,
                     object_xy,
@@ -240,6 +259,8 @@ impl Scenario {
                     start_joints,
                     observed_position_error,
                     observed_yaw_error,
+                    nudge,
+                    camera_offset: r.camera_offset,
                 });
             }
             if !r.position {

@@ -292,6 +292,62 @@ impl EnvConfig {
                 "must be a non-negative number",
             )?;
         }
+        self.validate_families()
+    }
+
+    /// The scenario families' fields ([`crate::families`]).
+    fn validate_families(&self) -> Result<(), ConfigError> {
+        use crate::families::{MAX_CAMERA_SHIFT, MAX_CAMERA_YAW, MAX_NUDGE, MIN_TCP_DISTANCE};
+        let r = &self.randomization;
+        if let Some(c) = &r.camera_offset {
+            check(
+                c.origin.iter().all(|v| v.is_finite() && v.abs() <= 2.0),
+                "randomization.camera_offset.origin",
+                c.origin,
+                "must be finite and within 2 m of the base [m]",
+            )?;
+            check(
+                c.xyz
+                    .iter()
+                    .all(|v| v.is_finite() && v.abs() <= MAX_CAMERA_SHIFT),
+                "randomization.camera_offset.xyz",
+                c.xyz,
+                "each component must be finite and within ±0.05 m",
+            )?;
+            check(
+                c.yaw.is_finite() && c.yaw.abs() <= MAX_CAMERA_YAW,
+                "randomization.camera_offset.yaw",
+                c.yaw,
+                "must be finite and within ±0.2618 rad (15°)",
+            )?;
+        }
+        if let Some(n) = &r.nudge {
+            check_range(&n.distance, "randomization.nudge.distance", 0.0)?;
+            check(
+                n.distance[0] > 0.0 && n.distance[1] <= MAX_NUDGE,
+                "randomization.nudge.distance",
+                n.distance,
+                "must lie in (0, 0.15] m",
+            )?;
+            check(
+                n.step[0] <= n.step[1] && n.step[1] < self.task.max_steps,
+                "randomization.nudge.step",
+                n.step,
+                "min must not exceed max, and max must be below task.max_steps",
+            )?;
+            check(
+                n.min_tcp_distance.is_finite() && n.min_tcp_distance >= MIN_TCP_DISTANCE,
+                "randomization.nudge.min_tcp_distance",
+                n.min_tcp_distance,
+                "must be at least 0.12 m (5 cm of gap plus the cube and the open fingers)",
+            )?;
+            check(
+                r.position,
+                "randomization.nudge",
+                "set",
+                "needs randomization.position = true (the push stays in its radius range)",
+            )?;
+        }
         Ok(())
     }
 }

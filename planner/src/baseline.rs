@@ -125,6 +125,47 @@ impl ScriptedGrasp {
         self.trajectory.as_ref()
     }
 
+    /// The grasp's joint targets for the object in `obs`, from its joints.
+    fn plan(&self, obs: &Observation) -> Option<GraspJoints> {
+        let c = &self.config;
+        let target = GraspTarget {
+            object: obs.object_position(),
+            object_yaw: obs.object_yaw,
+            mount: self.mount,
+        };
+        plan_grasp_joints(
+            &self.model,
+            &target,
+            &obs.joints,
+            c.pre_grasp_height,
+            c.lift_height,
+        )
+    }
+
+    /// Plans the grasp again for the object in `obs` and heads for its pre-grasp from where the
+    /// arm is, moving as it moves (the approach starts over: above the object, then down).
+    /// Returns false, keeping the current plan, if the new object admits no grasp.
+    pub fn replan(&mut self, obs: &Observation) -> bool {
+        let Some(t) = self.plan(obs) else {
+            return false;
+        };
+        self.targets = Some(t);
+        // Ruckig needs a start within its limits; the measured velocity may overshoot them a bit.
+        let qd0 = std::array::from_fn(|i| {
+            let v = self.limits.max_velocity[i];
+            obs.joint_velocities[i].clamp(-v, v)
+        });
+        self.phase = Phase::Approach;
+        self.steps_in_phase = 0;
+        self.trajectory = JointTrajectory::plan(&obs.joints, &qd0, &t.pre_grasp, &self.limits)
+            .or_else(|_| JointTrajectory::plan(&obs.joints, &[0.0; 6], &t.pre_grasp, &self.limits))
+            .ok();
+        if self.trajectory.is_none() {
+            self.fail(Outcome::Timeout);
+        }
+        true
+    }
+
     fn enter(&mut self, phase: Phase, obs: &Observation, target: Option<[f64; 6]>) {
         self.phase = phase;
         self.steps_in_phase = 0;
@@ -191,19 +232,7 @@ impl Policy for ScriptedGrasp {
 
     fn act(&mut self, obs: &Observation) -> Action {
         if self.phase == Phase::Plan {
-            let c = &self.config;
-            let target = GraspTarget {
-                object: obs.object_position(),
-                object_yaw: obs.object_yaw,
-                mount: self.mount,
-            };
-            match plan_grasp_joints(
-                &self.model,
-                &target,
-                &obs.joints,
-                c.pre_grasp_height,
-                c.lift_height,
-            ) {
+            match self.plan(obs) {
                 Some(t) => {
                     self.targets = Some(t);
                     self.enter(Phase::Approach, obs, Some(t.pre_grasp));

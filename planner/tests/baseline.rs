@@ -58,6 +58,8 @@ fn an_unreachable_object_is_an_ik_failure_not_a_panic() {
         start_joints: HOME_JOINTS,
         observed_position_error: [0.0; 3],
         observed_yaw_error: 0.0,
+        nudge: None,
+        camera_offset: None,
     };
     let mut policy = ScriptedGrasp::new(&config, BaselineConfig::default());
     let result = run_episode(&mut env, &mut policy, &far, None).unwrap();

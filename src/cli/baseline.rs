@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use fairgrasp_env::policy::{EvalReport, Policy, evaluate_seeded};
 use fairgrasp_env::presets::{self, PRESETS};
 use fairgrasp_env::{ArmModelKind, EnvConfig};
-use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+use fairgrasp_planner::{BaselineConfig, ClosedLoopGrasp, ScriptedGrasp};
 use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -69,10 +69,26 @@ pub struct ScenarioArgs {
     pub json: bool,
 }
 
+/// Which scripted grasp runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ScriptArg {
+    /// Plans once from the first observation (the baseline).
+    #[value(name = "open_loop")]
+    OpenLoop,
+    /// Re-plans when the observed cube moves, retries a missed grasp once.
+    #[value(name = "closed_loop")]
+    ClosedLoop,
+    /// The closed loop on the cube's true pose (the ceiling).
+    Oracle,
+}
+
 #[derive(Args, Debug)]
 pub struct BaselineArgs {
     #[command(flatten)]
     scenarios: ScenarioArgs,
+    /// Which script: open_loop (the baseline), closed_loop or oracle.
+    #[arg(long, value_enum, default_value = "open_loop")]
+    script: ScriptArg,
 }
 
 /// Runs a fresh policy from `make` on the scenario set of `a`, and prints the report (text, or
@@ -180,6 +196,19 @@ pub fn print_report(method: &str, preset: &str, arm: ArmArg, seed: u64, r: &Eval
 }
 
 pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
-    let make = |config: &EnvConfig| ScriptedGrasp::new(config, BaselineConfig::default());
-    evaluate_and_print(&a.scenarios, "baseline", &make, serde_json::json!({}))
+    let none = serde_json::json!({});
+    match a.script {
+        ScriptArg::OpenLoop => {
+            let make = |config: &EnvConfig| ScriptedGrasp::new(config, BaselineConfig::default());
+            evaluate_and_print(&a.scenarios, "baseline", &make, none)
+        }
+        ScriptArg::ClosedLoop => {
+            let make = |config: &EnvConfig| ClosedLoopGrasp::observed(config);
+            evaluate_and_print(&a.scenarios, "closed_loop", &make, none)
+        }
+        ScriptArg::Oracle => {
+            let make = |config: &EnvConfig| ClosedLoopGrasp::oracle(config);
+            evaluate_and_print(&a.scenarios, "oracle", &make, none)
+        }
+    }
 }

@@ -1,0 +1,263 @@
+//! The scenario families (`miscalibrated`, `miscalibrated_b`, `nudged`): presets that load and
+//! validate, bad values refused by name, the camera error applied exactly, the push carried out
+//! once, by the drawn amount, onto the table, at rest, never near the gripper; reproducible.
+
+use fairgrasp_env::families::CameraOffset;
+use fairgrasp_env::nudge::NudgeEvent;
+use fairgrasp_env::randomize::scenario_set;
+use fairgrasp_env::{Action, EnvConfig, GraspEnv, presets};
+use fairgrasp_kinematics::Pose;
+
+const FAMILIES: [&str; 3] = ["miscalibrated", "miscalibrated_b", "nudged"];
+
+#[test]
+fn the_family_presets_load_validate_and_draw_the_full_presets_scenarios() {
+    let full = presets::load("full").unwrap();
+    let env = GraspEnv::new(full.clone()).unwrap();
+    let base = *env.base_in_world();
+    let reference = scenario_set(&full, env.model(), &base, 0, 20).unwrap();
+    for name in FAMILIES {
+        let config = presets::load(name).unwrap();
+        config.validate().unwrap();
+        let file = format!(
+            "{}/../assets/configs/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        assert_eq!(EnvConfig::from_toml_file(file).unwrap(), config, "{name}");
+        // Only the family's own field differs from `full`.
+        let mut plain = config.randomization.clone();
+        plain.camera_offset = None;
+        plain.nudge = None;
+        assert_eq!(plain, full.randomization, "{name}");
+        let scenarios = scenario_set(&config, env.model(), &base, 0, 20).unwrap();
+        for (s, r) in scenarios.iter().zip(&reference) {
+            assert_eq!(
+                (s.object_xy, s.object_yaw, s.start_joints),
+                (r.object_xy, r.object_yaw, r.start_joints)
+            );
+        }
+    }
+}
+
+fn refused(toml: &str, field: &str) {
+    let text = format!("[randomization]\nposition = true\nradius = [0.25, 0.45]\n{toml}\n");
+    let err = EnvConfig::from_toml_str(&text).unwrap_err().to_string();
+    assert!(err.contains(field), "{toml}: {err}");
+}
+
+#[test]
+fn bad_family_values_are_refused_naming_the_field() {
+    let c = "camera_offset = { origin = [0.35, 0.0], xyz = [0.01, 0.0, 0.0], yaw";
+    refused(&format!("{c} = 0.5 }}"), "randomization.camera_offset.yaw");
+    refused(
+        "camera_offset = { origin = [0.35, 0.0], xyz = [0.2, 0.0, 0.0], yaw = 0.0 }",
+        "randomization.camera_offset.xyz",
+    );
+    refused("camera_offset = { origin = [0.35, 0.0], yaw = 0.0 }", "xyz");
+    let n = |d: &str, s: &str, m: &str| {
+        format!("nudge = {{ distance = {d}, step = {s}, min_tcp_distance = {m} }}")
+    };
+    refused(
+        &n("[0.0, 0.03]", "[4, 20]", "0.15"),
+        "randomization.nudge.distance",
+    );
+    refused(
+        &n("[0.02, 0.3]", "[4, 20]", "0.15"),
+        "randomization.nudge.distance",
+    );
+    refused(
+        &n("[0.02, 0.03]", "[20, 4]", "0.15"),
+        "randomization.nudge.step",
+    );
+    refused(
+        &n("[0.02, 0.03]", "[4, 500]", "0.15"),
+        "randomization.nudge.step",
+    );
+    refused(
+        &n("[0.02, 0.03]", "[4, 20]", "0.05"),
+        "randomization.nudge.min_tcp_distance",
+    );
+}
+
+/// The observed cube in the table frame: centre [m] and yaw [rad].
+fn observed_in_table(env: &GraspEnv, obs: &fairgrasp_env::Observation) -> [f64; 3] {
+    env.mount()
+        .table_in_base
+        .inverse()
+        .transform_point(obs.object_position())
+}
+
+#[test]
+fn the_miscalibration_moves_the_observed_pose_by_exactly_the_configured_transform() {
+    for name in ["miscalibrated", "miscalibrated_b"] {
+        let config = presets::load(name).unwrap();
+        let CameraOffset { origin, xyz, yaw } = config.randomization.camera_offset.unwrap();
+        let mut env = GraspEnv::new(config).unwrap();
+        for seed in 0..8 {
+            let (obs, _) = env.reset(seed).unwrap();
+            let truth = env.mount().base_to_table(&env.object_in_base());
+            let p = truth.xyz();
+            let (dx, dy) = (p[0] - origin[0], p[1] - origin[1]);
+            let expected = [
+                origin[0] + yaw.cos() * dx - yaw.sin() * dy + xyz[0],
+                origin[1] + yaw.sin() * dx + yaw.cos() * dy + xyz[1],
+                p[2] + xyz[2],
+            ];
+            let seen = observed_in_table(&env, &obs);
+            for i in 0..3 {
+                assert!(
+                    (seen[i] - expected[i]).abs() < 1e-9,
+                    "{name} {seed}: {seen:?} vs {expected:?}"
+                );
+            }
+            let true_yaw = env.mount().yaw_on_table(&env.object_in_base());
+            let turn = (obs.object_yaw - true_yaw - yaw + std::f64::consts::PI)
+                .rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI;
+            assert!(turn.abs() < 1e-9, "{name} {seed}: yaw off by {turn}");
+            // The error is the cell's: up to 4 cm over the sector, and never nothing.
+            let off = ((seen[0] - p[0]).powi(2) + (seen[1] - p[1]).powi(2)).sqrt();
+            assert!((0.002..0.04).contains(&off), "{name} {seed}: {off} m");
+        }
+    }
+}
+
+fn world_xyz(pose: &Pose) -> [f64; 3] {
+    pose.xyz()
+}
+
+/// Steps `env` with the arm still and the gripper open for `n` steps; returns the cube (base
+/// frame) after each.
+fn hold_still(env: &mut GraspEnv, n: usize) -> Vec<Pose> {
+    (0..n)
+        .map(|_| {
+            env.step(&Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]))
+                .unwrap();
+            env.object_in_base()
+        })
+        .collect()
+}
+
+#[test]
+fn a_nudge_happens_once_by_the_drawn_amount_and_leaves_the_cube_at_rest_on_the_table() {
+    let config = presets::load("nudged").unwrap();
+    let table_top = config.scene.table_height;
+    let half = config.scene.cube_size / 2.0;
+    let nudge = config.randomization.nudge.unwrap();
+    let mut env = GraspEnv::new(config).unwrap();
+    for seed in 0..12 {
+        env.reset(seed).unwrap();
+        let drawn = env
+            .scenario()
+            .unwrap()
+            .nudge
+            .expect("every scenario is pushed");
+        assert!((nudge.step[0]..=nudge.step[1]).contains(&drawn.step));
+        let length = drawn.offset_xy[0].hypot(drawn.offset_xy[1]);
+        assert!(
+            (nudge.distance[0]..=nudge.distance[1]).contains(&length),
+            "{length}"
+        );
+        let before = env.object_in_base();
+        let poses = hold_still(&mut env, drawn.step + 12);
+        // Untouched until the drawn step, moved in it, still afterwards.
+        let moved = |p: &Pose| {
+            let (a, b) = (p.xyz(), before.xyz());
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
+        };
+        for (k, p) in poses.iter().enumerate() {
+            let d = moved(p);
+            if k < drawn.step {
+                assert!(d < 1e-4, "{seed}: moved {d} m at step {k}, before the push");
+            } else {
+                assert!(
+                    (d - length).abs() < 1e-3,
+                    "{seed} step {k}: {d} m, drawn {length}"
+                );
+            }
+        }
+        let Some(NudgeEvent::Pushed {
+            step,
+            from,
+            to,
+            tcp_distance,
+        }) = env.nudge_event()
+        else {
+            panic!("{seed}: {:?}", env.nudge_event());
+        };
+        assert_eq!(step, drawn.step);
+        assert!(tcp_distance >= nudge.min_tcp_distance);
+        // Along the drawn direction (table frame), height kept: on the table top.
+        let d = env.mount().table_in_world.inverse().transform_vector([
+            to[0] - from[0],
+            to[1] - from[1],
+            to[2] - from[2],
+        ]);
+        assert!(
+            (d[0] - drawn.offset_xy[0]).abs() < 1e-9 && (d[1] - drawn.offset_xy[1]).abs() < 1e-9
+        );
+        let last = env.base_in_world().compose(poses.last().unwrap());
+        assert!(
+            (world_xyz(&last)[2] - table_top - half).abs() < 1e-3,
+            "{seed}: not on the table"
+        );
+        // Not turned: the cube's up axis stays up, its yaw unchanged.
+        let up = last.transform_vector([0.0, 0.0, 1.0]);
+        assert!(up[2] > 0.9999, "{seed}: tilted {up:?}");
+        let yaw = |p: &Pose| env.mount().yaw_on_table(p);
+        assert!((yaw(poses.last().unwrap()) - yaw(&before)).abs() < 1e-3);
+        // At rest: the last steps moved it by less than 0.1 mm.
+        let n = poses.len();
+        let (a, b) = (poses[n - 1].xyz(), poses[n - 6].xyz());
+        assert!(
+            (0..3).all(|i| (a[i] - b[i]).abs() < 1e-4),
+            "{seed}: still moving"
+        );
+    }
+}
+
+#[test]
+fn no_nudge_while_the_gripper_is_near() {
+    let config = presets::load("nudged").unwrap();
+    let mut env = GraspEnv::new(config).unwrap();
+    let (_, info) = env.reset(3).unwrap();
+    let mut scenario = info.scenario.unwrap();
+    let mut drawn = scenario.nudge.unwrap();
+    // The TCP starts ≥ 0.2 m from any cube; demand more than that.
+    drawn.min_tcp_distance = 5.0;
+    scenario.nudge = Some(drawn);
+    env.reset_to(&scenario);
+    let before = env.object_in_base().xyz();
+    let poses = hold_still(&mut env, drawn.step + 3);
+    let after = poses.last().unwrap().xyz();
+    assert!(
+        (0..3).all(|i| (after[i] - before[i]).abs() < 1e-4),
+        "{before:?} → {after:?}"
+    );
+    let Some(NudgeEvent::Skipped { step, tcp_distance }) = env.nudge_event() else {
+        panic!("{:?}", env.nudge_event());
+    };
+    assert_eq!(step, drawn.step);
+    assert!(tcp_distance < 5.0);
+}
+
+#[test]
+fn the_same_seed_gives_the_same_nudged_episode() {
+    let config = presets::load("nudged").unwrap();
+    let run = |env: &mut GraspEnv| {
+        env.reset(7).unwrap();
+        let poses = hold_still(env, 30);
+        (
+            env.scenario().copied(),
+            env.nudge_event(),
+            poses.iter().map(|p| p.xyz()).collect::<Vec<_>>(),
+        )
+    };
+    let mut a = GraspEnv::new(config.clone()).unwrap();
+    let first = run(&mut a);
+    let again = run(&mut a);
+    let fresh = run(&mut GraspEnv::new(config).unwrap());
+    assert_eq!(first, again);
+    assert_eq!(first, fresh);
+    assert!(matches!(first.1, Some(NudgeEvent::Pushed { .. })));
+}
