@@ -67,6 +67,9 @@ fn bad_training_env_settings_and_a_task_space_residual_are_refused_by_name() {
     let unknown = config("preset = \"seed\"\n[env.task]\nrewrd = \"staged\"\n");
     let message = unknown.validate().unwrap_err();
     assert!(message.contains("rewrd"), "{message}");
+    let env_action = config("preset = \"seed\"\n[env.arm]\naction_space = \"tcp\"\n");
+    let message = env_action.validate().unwrap_err();
+    assert!(message.contains("[agent] action_space"), "{message}");
     let residual = config("preset = \"seed\"\n[agent]\naction_space = \"tcp\"\n");
     let message = residual.validate().unwrap_err();
     assert!(message.contains("agent.mode = \"pure\""), "{message}");
