@@ -3,12 +3,19 @@
 //! Each motion phase follows a Ruckig trajectory between IK joint targets; each env step emits
 //! the joint velocity that moves along the reference over the coming step plus a small feedback
 //! term, `q̇ = (q_ref(t+Δ) − q_ref(t))/Δ + K·(q_ref(t) − q)`, scaled into the action range.
+//!
+//! A residual may correct the script ([`crate::residual`]): the reference then follows a task-space
+//! [`TaskCorrection`] (`q_ref + J⁺·c`, so the feedback term holds the correction instead of
+//! erasing it), a phase is complete when the joints reach the *corrected* target, and
+//! [`CloseTiming`] may close the gripper during the descent or hold it open a little longer.
+//! With no correction and [`CloseTiming::Script`] the script is exactly the open-loop baseline.
 
 use fairgrasp_env::policy::{Outcome, Policy};
 use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 use fairgrasp_kinematics::{ArmKind, ArmModel};
 use serde::Serialize;
 
+use crate::correction::{TaskCorrection, corrected, joint_offset};
 use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
 use crate::motion::{JointTrajectory, MotionLimits};
 
@@ -32,6 +39,9 @@ pub struct BaselineConfig {
     pub close_steps: usize,
     /// Extra env steps a motion phase may take beyond its trajectory before it times out.
     pub phase_slack_steps: usize,
+    /// Env steps a residual may hold the gripper open after the descent arrived
+    /// ([`CloseTiming::Wait`]).
+    pub max_close_delay_steps: usize,
 }
 
 impl Default for BaselineConfig {
@@ -45,6 +55,7 @@ impl Default for BaselineConfig {
             feedback_gain: 4.0,
             close_steps: 8,
             phase_slack_steps: 24,
+            max_close_delay_steps: 12,
         }
     }
 }
@@ -63,6 +74,29 @@ pub enum Phase {
     Failed,
 }
 
+/// When the gripper closes, as a residual may shift it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CloseTiming {
+    /// When the descent arrives (the script's own timing).
+    #[default]
+    Script,
+    /// Now, if the script is descending (advance the close).
+    Now,
+    /// Not yet: hold open after the descent arrived, up to
+    /// [`BaselineConfig::max_close_delay_steps`] (delay the close).
+    Wait,
+}
+
+/// The object pose a plan was made on, `base_link`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PlannedObject {
+    /// Object centre [m].
+    pub position: [f64; 3],
+    /// Object yaw about the world vertical, relative to the base's heading [rad].
+    pub yaw: f64,
+}
+
 /// The scripted top-down grasp, as a [`Policy`].
 pub struct ScriptedGrasp {
     config: BaselineConfig,
@@ -78,6 +112,14 @@ pub struct ScriptedGrasp {
     targets: Option<GraspJoints>,
     trajectory: Option<JointTrajectory>,
     gave_up: Option<Outcome>,
+    planned_on: Option<PlannedObject>,
+    /// The correction the reference follows from this step on.
+    correction: TaskCorrection,
+    /// The correction the previous step's reference used.
+    applied: TaskCorrection,
+    close_timing: CloseTiming,
+    /// Steps the close has been delayed in this descent.
+    close_delay: usize,
 }
 
 impl ScriptedGrasp {
@@ -102,7 +144,44 @@ impl ScriptedGrasp {
             targets: None,
             trajectory: None,
             gave_up: None,
+            planned_on: None,
+            correction: TaskCorrection::ZERO,
+            applied: TaskCorrection::ZERO,
+            close_timing: CloseTiming::Script,
+            close_delay: 0,
         }
+    }
+
+    /// The object pose the current plan was made on (None before planning).
+    pub fn planned_on(&self) -> Option<PlannedObject> {
+        self.planned_on
+    }
+
+    /// The correction the reference follows from the next step on.
+    pub fn set_correction(&mut self, c: TaskCorrection) {
+        self.correction = c;
+    }
+
+    /// The correction in force.
+    pub fn correction(&self) -> TaskCorrection {
+        self.correction
+    }
+
+    /// When the gripper closes, for the next step.
+    pub fn set_close_timing(&mut self, timing: CloseTiming) {
+        self.close_timing = timing;
+    }
+
+    /// `q` with the correction `c` added (first order, through the Jacobian).
+    fn with(&self, q: &[f64; 6], c: &TaskCorrection) -> [f64; 6] {
+        corrected(&self.model, &self.mount.table_in_base, q, c)
+    }
+
+    /// The measured joints with the applied correction taken out: where the uncorrected
+    /// reference is, for planning a trajectory that starts where the arm is.
+    fn uncorrected(&self, q: &[f64; 6]) -> [f64; 6] {
+        let dq = joint_offset(&self.model, &self.mount.table_in_base, q, &self.applied);
+        std::array::from_fn(|i| q[i] - dq[i])
     }
 
     /// The current phase.
@@ -126,7 +205,17 @@ impl ScriptedGrasp {
     }
 
     /// The grasp's joint targets for the object in `obs`, from its joints.
-    fn plan(&self, obs: &Observation) -> Option<GraspJoints> {
+    /// Remembers the object it was made on ([`ScriptedGrasp::planned_on`]) when it succeeds.
+    fn plan(&mut self, obs: &Observation) -> Option<GraspJoints> {
+        let joints = self.plan_joints(obs)?;
+        self.planned_on = Some(PlannedObject {
+            position: obs.object_position(),
+            yaw: obs.object_yaw,
+        });
+        Some(joints)
+    }
+
+    fn plan_joints(&self, obs: &Observation) -> Option<GraspJoints> {
         let c = &self.config;
         let target = GraspTarget {
             object: obs.object_position(),
@@ -157,8 +246,9 @@ impl ScriptedGrasp {
         });
         self.phase = Phase::Approach;
         self.steps_in_phase = 0;
-        self.trajectory = JointTrajectory::plan(&obs.joints, &qd0, &t.pre_grasp, &self.limits)
-            .or_else(|_| JointTrajectory::plan(&obs.joints, &[0.0; 6], &t.pre_grasp, &self.limits))
+        let start = self.uncorrected(&obs.joints);
+        self.trajectory = JointTrajectory::plan(&start, &qd0, &t.pre_grasp, &self.limits)
+            .or_else(|_| JointTrajectory::plan(&start, &[0.0; 6], &t.pre_grasp, &self.limits))
             .ok();
         if self.trajectory.is_none() {
             self.fail(Outcome::Timeout);
@@ -169,8 +259,10 @@ impl ScriptedGrasp {
     fn enter(&mut self, phase: Phase, obs: &Observation, target: Option<[f64; 6]>) {
         self.phase = phase;
         self.steps_in_phase = 0;
-        self.trajectory = target
-            .and_then(|t| JointTrajectory::plan(&obs.joints, &[0.0; 6], &t, &self.limits).ok());
+        self.close_delay = 0;
+        let start = self.uncorrected(&obs.joints);
+        self.trajectory =
+            target.and_then(|t| JointTrajectory::plan(&start, &[0.0; 6], &t, &self.limits).ok());
         if target.is_some() && self.trajectory.is_none() {
             self.fail(Outcome::Timeout);
         }
@@ -182,16 +274,25 @@ impl ScriptedGrasp {
         self.trajectory = None;
     }
 
-    /// Velocity action following the current trajectory from the measured joints.
+    /// Velocity action following the current trajectory, corrected, from the measured joints.
+    /// Without a trajectory (closing, holding) the arm stays, but follows a changed correction.
     fn follow(&self, obs: &Observation, gripper: f64) -> Action {
         let mut a = [0.0; 7];
         a[6] = gripper;
         let Some(traj) = &self.trajectory else {
+            if self.correction != self.applied {
+                let before = self.with(&obs.joints, &self.applied);
+                let after = self.with(&obs.joints, &self.correction);
+                for i in 0..6 {
+                    let v = (after[i] - before[i]) / self.step_dt;
+                    a[i] = (v / self.action_scale).clamp(-1.0, 1.0);
+                }
+            }
             return Action(a);
         };
         let t = self.steps_in_phase as f64 * self.step_dt;
-        let (q_now, _, _) = traj.sample(t);
-        let (q_next, _, _) = traj.sample(t + self.step_dt);
+        let q_now = self.with(&traj.sample(t).0, &self.applied);
+        let q_next = self.with(&traj.sample(t + self.step_dt).0, &self.correction);
         for i in 0..6 {
             let feedforward = (q_next[i] - q_now[i]) / self.step_dt;
             let feedback = self.config.feedback_gain * (q_now[i] - obs.joints[i]);
@@ -206,8 +307,8 @@ impl ScriptedGrasp {
             return true;
         };
         let elapsed = self.steps_in_phase as f64 * self.step_dt;
-        let error = traj
-            .target()
+        let error = self
+            .with(&traj.target(), &self.correction)
             .iter()
             .zip(&obs.joints)
             .map(|(a, b)| (a - b).abs())
@@ -228,6 +329,11 @@ impl Policy for ScriptedGrasp {
         self.targets = None;
         self.trajectory = None;
         self.gave_up = None;
+        self.planned_on = None;
+        self.correction = TaskCorrection::ZERO;
+        self.applied = TaskCorrection::ZERO;
+        self.close_timing = CloseTiming::Script;
+        self.close_delay = 0;
     }
 
     fn act(&mut self, obs: &Observation) -> Action {
@@ -241,7 +347,21 @@ impl Policy for ScriptedGrasp {
             }
         }
         let targets = self.targets;
-        let advance = self.arrived(obs);
+        let mut advance = self.arrived(obs);
+        let mut waiting = false;
+        if self.phase == Phase::Descend {
+            match self.close_timing {
+                CloseTiming::Script => {}
+                CloseTiming::Now => advance = true,
+                CloseTiming::Wait => {
+                    if advance && self.close_delay < self.config.max_close_delay_steps {
+                        self.close_delay += 1;
+                        advance = false;
+                        waiting = true;
+                    }
+                }
+            }
+        }
         let (next, gripper) = match (self.phase, targets) {
             (Phase::Approach, Some(t)) if advance => (Some((Phase::Descend, Some(t.grasp))), -1.0),
             (Phase::Descend, Some(_)) if advance => (Some((Phase::Close, None)), 1.0),
@@ -255,7 +375,8 @@ impl Policy for ScriptedGrasp {
         };
         if let Some((phase, target)) = next {
             self.enter(phase, obs, target);
-        } else if matches!(self.phase, Phase::Approach | Phase::Descend | Phase::Lift)
+        } else if !waiting
+            && matches!(self.phase, Phase::Approach | Phase::Descend | Phase::Lift)
             && self.timed_out()
         {
             self.fail(Outcome::Timeout);
@@ -264,6 +385,7 @@ impl Policy for ScriptedGrasp {
             Phase::Failed | Phase::Plan => Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, gripper]),
             _ => self.follow(obs, gripper),
         };
+        self.applied = self.correction;
         self.steps_in_phase += 1;
         action
     }

@@ -7,11 +7,18 @@
 //!   close → lift → hold, each phase with a timeout.
 //! - [`closed_loop`]: [`ClosedLoopGrasp`], the closed-loop script (re-plans, retries once) and
 //!   the oracle (the same on the true cube pose).
+//! - [`correction`]: a task-space correction of the grasp and its map to joints (Jacobian).
+//! - [`residual`]: [`ResidualScript`], what a residual policy corrects the script through, and
+//!   [`OracleResidual`], the hand-written residual that uses the true pose through it.
 
 pub mod baseline;
 pub mod closed_loop;
+pub mod correction;
 pub mod grasp;
 pub mod motion;
+pub mod residual;
 
-pub use baseline::{BaselineConfig, Phase, ScriptedGrasp};
+pub use baseline::{BaselineConfig, CloseTiming, Phase, PlannedObject, ScriptedGrasp};
 pub use closed_loop::{ClosedLoopConfig, ClosedLoopGrasp, CubeSource};
+pub use correction::{CorrectionLimits, TaskCorrection};
+pub use residual::{OracleResidual, ResidualScript};

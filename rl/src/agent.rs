@@ -1,17 +1,23 @@
 //! The grasping agent: residual corrections on top of the scripted baseline, or pure PPO.
 //!
-//! Residual mode: the policy sees the observation and the baseline's action,
-//! `input = obs ⊕ a_base`, and the env receives `clip(a_base + scale · a_policy)`. The actor's
-//! output layer starts at zero, so an untrained agent *is* the baseline. With
-//! `gripper = "learned"` the gripper command is the policy's own output, not a correction.
-//! Pure mode (the seed's setup): `input = obs`, the env receives `clip(a_policy)`.
+//! Residual mode, `action_space = "joint"` (the first residual): the policy sees the observation
+//! and the baseline's action, `input = obs ⊕ a_base`, and the env receives
+//! `clip(a_base + scale · a_policy)`. With `gripper = "learned"` the gripper command is the
+//! policy's own output, not a correction.
+//! Residual mode, `action_space = "tcp"` (the residual with authority): the policy sees
+//! `obs ⊕ script features` and its output is the rate of a task-space correction of the script
+//! plus the close's timing ([`crate::script`], [`fairgrasp_planner::residual`]).
+//! Either way the actor's output layer can start at zero, so an untrained agent *is* the script.
+//! Pure mode (the seed's setup): `input = obs`, the env receives `clip(a_policy)`, or in `tcp`
+//! mode the TCP velocity it commands ([`crate::action_map`]).
 
 use fairgrasp_env::config::ActionSpace;
 use fairgrasp_env::policy::Policy;
 use fairgrasp_env::{Action, EnvConfig, Observation};
 
 use crate::action_map::ActionMap;
-use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+use crate::script::Script;
+use fairgrasp_planner::residual::FEATURE_DIM;
 use serde::{Deserialize, Serialize};
 
 /// Residual or pure.
@@ -64,8 +70,10 @@ pub struct AgentConfig {
     /// Scale of the residual (action units per policy unit).
     pub residual_scale: f32,
     pub gripper: GripperMode,
-    /// What the policy's output commands: `joint` velocities (the seed's) or the TCP's velocity
-    /// and yaw rate (`tcp`, pure mode only; [`crate::action_map`]).
+    /// What the policy's output commands: `joint` velocities (the seed's; in residual mode, a
+    /// correction of the baseline's), or in task space (`tcp`): the TCP's velocity and yaw rate
+    /// in pure mode ([`crate::action_map`]), the rate of a correction of the script's grasp in
+    /// residual mode ([`crate::script`]).
     pub action_space: ActionSpace,
 }
 
@@ -88,34 +96,54 @@ pub const ACT_DIM: usize = 7;
 impl AgentConfig {
     /// The policy's input size.
     pub fn input_dim(&self) -> usize {
-        match self.mode {
-            Mode::Residual => OBS_DIM + ACT_DIM,
-            Mode::Pure => OBS_DIM,
+        match (self.mode, self.action_space) {
+            (Mode::Residual, ActionSpace::Joint) => OBS_DIM + ACT_DIM,
+            (Mode::Residual, ActionSpace::Tcp) => OBS_DIM + FEATURE_DIM,
+            (Mode::Pure, _) => OBS_DIM,
         }
     }
 
-    /// Writes the policy input for a typed observation and (residual mode) the baseline's
-    /// action into `out` (`input_dim` values: the observation's flat view in the order of
-    /// `fairgrasp_env::obs::OBS_NAMES`, then the baseline's 7 action values, 0 if none).
+    /// Whether the residual corrects the script in task space.
+    fn task_residual(&self) -> bool {
+        self.mode == Mode::Residual && self.action_space == ActionSpace::Tcp
+    }
+
+    /// Writes the policy input for a typed observation into `out` (`input_dim` values: the
+    /// observation's flat view in the order of `fairgrasp_env::obs::OBS_NAMES`, then in residual
+    /// mode the script's part ([`Script::write_input`]: the baseline's 7 action values, 0 if
+    /// none, or the task script's features)).
     ///
     /// The one place a policy input is built: training, episode ends and evaluation all call it
     /// with the environment's own `Observation`.
-    pub fn write_input(&self, obs: &Observation, base: Option<&Action>, out: &mut [f32]) {
-        let obs = obs.to_array();
-        let base = base.map_or([0.0; ACT_DIM], |b| b.0.map(|v| v as f32));
-        let extra: &[f32] = match self.mode {
-            Mode::Residual => &base,
-            Mode::Pure => &[],
-        };
-        for (slot, v) in out.iter_mut().zip(obs.iter().chain(extra)) {
-            *slot = *v;
+    pub fn write_input(
+        &self,
+        obs: &Observation,
+        script: Option<&Script>,
+        base: Option<&Action>,
+        out: &mut [f32],
+    ) {
+        let flat = obs.to_array();
+        for (slot, v) in out.iter_mut().zip(flat) {
+            *slot = v;
+        }
+        if self.mode == Mode::Residual {
+            let rest = &mut out[OBS_DIM..];
+            match script {
+                Some(s) => s.write_input(obs, base, rest),
+                None => rest.fill(0.0),
+            }
         }
     }
 
     /// [`AgentConfig::write_input`] into a new vector.
-    pub fn input(&self, obs: &Observation, base: Option<&Action>) -> Vec<f32> {
+    pub fn input(
+        &self,
+        obs: &Observation,
+        script: Option<&Script>,
+        base: Option<&Action>,
+    ) -> Vec<f32> {
         let mut x = vec![0.0; self.input_dim()];
-        self.write_input(obs, base, &mut x);
+        self.write_input(obs, script, base, &mut x);
         x
     }
 
@@ -132,20 +160,26 @@ impl AgentConfig {
         }))
     }
 
-    /// The map from the policy's task-space output to joint actions (`tcp` mode only).
+    /// The map from the policy's task-space output to joint actions (pure `tcp` mode only).
     pub fn action_map(&self, env: &EnvConfig) -> Option<ActionMap> {
-        (self.action_space == ActionSpace::Tcp).then(|| ActionMap::new(env))
+        (self.mode == Mode::Pure && self.action_space == ActionSpace::Tcp)
+            .then(|| ActionMap::new(env))
     }
 
-    /// The env action for the policy's output at observation `obs`: [`AgentConfig::compose`],
-    /// then, in `tcp` mode, through `map` to joint velocities.
+    /// The env action for the policy's output at observation `obs`: the task script's action
+    /// for a task-space residual; otherwise [`AgentConfig::compose`], then, in pure `tcp` mode,
+    /// through `map` to joint velocities.
     pub fn env_action(
         &self,
         obs: &Observation,
+        script: Option<&mut Script>,
         base: Option<&Action>,
         policy: &[f32],
         map: Option<&ActionMap>,
     ) -> Action {
+        if let Some(action) = script.and_then(|s| s.act_on(obs, policy)) {
+            return action;
+        }
         let action = self.compose(base, policy);
         match map {
             Some(map) => map.to_joint_action(&obs.joints, &action),
@@ -153,9 +187,13 @@ impl AgentConfig {
         }
     }
 
-    /// A baseline for residual mode.
-    pub fn baseline(&self, env: &EnvConfig) -> Option<ScriptedGrasp> {
-        (self.mode == Mode::Residual).then(|| ScriptedGrasp::new(env, BaselineConfig::default()))
+    /// The script for residual mode (None in pure mode).
+    pub fn script(&self, env: &EnvConfig) -> Option<Script> {
+        match self.mode {
+            Mode::Pure => None,
+            Mode::Residual if self.task_residual() => Some(Script::task(env)),
+            Mode::Residual => Some(Script::joint(env)),
+        }
     }
 }
 
@@ -165,7 +203,7 @@ pub type MeanAction = Box<dyn Fn(&[f32]) -> Vec<f32> + Send>;
 /// A trained (or fresh) agent as a [`Policy`]: deterministic, mean actions.
 pub struct GraspAgent {
     pub agent: AgentConfig,
-    baseline: Option<ScriptedGrasp>,
+    script: Option<Script>,
     action_map: Option<ActionMap>,
     mean_action: MeanAction,
 }
@@ -174,7 +212,7 @@ impl GraspAgent {
     /// `mean_action` maps a raw policy input to the mean policy output.
     pub fn new(agent: AgentConfig, env: &EnvConfig, mean_action: MeanAction) -> Self {
         Self {
-            baseline: agent.baseline(env),
+            script: agent.script(env),
             action_map: agent.action_map(env),
             agent,
             mean_action,
@@ -184,20 +222,25 @@ impl GraspAgent {
 
 impl Policy for GraspAgent {
     fn reset(&mut self, seed: u64) {
-        if let Some(b) = &mut self.baseline {
-            b.reset(seed);
+        if let Some(s) = &mut self.script {
+            s.reset(seed);
         }
     }
 
     fn act(&mut self, obs: &Observation) -> Action {
-        let base = self.baseline.as_mut().map(|b| b.act(obs));
-        let input = self.agent.input(obs, base.as_ref());
+        let base = self.script.as_mut().and_then(|s| s.prepare(obs));
+        let input = self.agent.input(obs, self.script.as_ref(), base.as_ref());
         let out = (self.mean_action)(&input);
-        self.agent
-            .env_action(obs, base.as_ref(), &out, self.action_map.as_ref())
+        self.agent.env_action(
+            obs,
+            self.script.as_mut(),
+            base.as_ref(),
+            &out,
+            self.action_map.as_ref(),
+        )
     }
 
     fn gave_up(&self) -> Option<fairgrasp_env::policy::Outcome> {
-        self.baseline.as_ref().and_then(|b| b.gave_up())
+        self.script.as_ref().and_then(|s| s.gave_up())
     }
 }

@@ -1,28 +1,29 @@
-//! The grasping environment as PPO sees it: vectorised, with the baseline's action appended to
-//! each observation and the policy's output composed with it (residual mode).
+//! The grasping environment as PPO sees it: vectorised, with each env's script ([`Script`]) in
+//! residual mode: the baseline's action appended to each observation and the policy's output
+//! composed with it, or the task script's features appended and the policy's output correcting
+//! it.
 //!
-//! The baseline acts on the environments' own typed [`Observation`]s (f64, `base_link`), at
+//! The script acts on the environments' own typed [`Observation`]s (f64, `base_link`), at
 //! every step and at episode ends, exactly as in evaluation; the policy input is built from the
 //! same observation by [`AgentConfig::write_input`]. Every buffer is sized in `new` and refilled in
 //! place: a step allocates nothing here.
 
-use fairgrasp_env::policy::Policy;
 use fairgrasp_env::vec_env::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, EnvError, Observation};
-use fairgrasp_planner::ScriptedGrasp;
 
 use crate::action_map::ActionMap;
 use crate::agent::{ACT_DIM, AgentConfig};
+use crate::script::Script;
 use crate::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 
-/// Vectorised grasp envs plus one baseline per env.
+/// Vectorised grasp envs plus one script per env (residual mode).
 pub struct GraspVecEnv {
     inner: VecEnv,
     agent: AgentConfig,
     /// Task-space to joint actions (`agent.action_space = "tcp"`).
     action_map: Option<ActionMap>,
-    baselines: Vec<Option<ScriptedGrasp>>,
-    /// The baselines' actions for the current observations (residual mode).
+    scripts: Vec<Option<Script>>,
+    /// The joint baselines' actions for the current observations (joint residual mode).
     base_actions: Vec<Option<Action>>,
     /// The composed actions handed to the envs.
     env_actions: Vec<Action>,
@@ -31,15 +32,15 @@ pub struct GraspVecEnv {
     batch: StepBatch,
 }
 
-/// The baseline's action for `obs` (if any) and the policy input built from both.
+/// The joint baseline's action for `obs` (if any) and the policy input built from both.
 fn act_and_write(
     agent: &AgentConfig,
-    baseline: &mut Option<ScriptedGrasp>,
+    script: &mut Option<Script>,
     obs: &Observation,
     out: &mut [f32],
 ) -> Option<Action> {
-    let base = baseline.as_mut().map(|b| b.act(obs));
-    agent.write_input(obs, base.as_ref(), out);
+    let base = script.as_mut().and_then(|s| s.prepare(obs));
+    agent.write_input(obs, script.as_ref(), base.as_ref(), out);
     base
 }
 
@@ -56,7 +57,7 @@ impl GraspVecEnv {
         let n = inner.len();
         Ok(Self {
             inner,
-            baselines: (0..n).map(|_| agent.baseline(config)).collect(),
+            scripts: (0..n).map(|_| agent.script(config)).collect(),
             base_actions: vec![None; n],
             env_actions: vec![Action::hold_open(); n],
             returns: vec![0.0; n],
@@ -72,8 +73,8 @@ impl GraspVecEnv {
         &mut self.inner
     }
 
-    /// The baselines' actions for the current observations, per env (None in pure mode): what
-    /// the next step composes the policy's output with.
+    /// The joint baselines' actions for the current observations, per env (None in pure mode
+    /// and for a task-space residual): what the next step composes the policy's output with.
     pub fn baseline_actions(&self) -> &[Option<Action>] {
         &self.base_actions
     }
@@ -86,7 +87,7 @@ impl GraspVecEnv {
 
 impl VecEnvironment for GraspVecEnv {
     fn n_envs(&self) -> usize {
-        self.baselines.len()
+        self.scripts.len()
     }
     fn obs_dim(&self) -> usize {
         self.agent.input_dim()
@@ -98,14 +99,14 @@ impl VecEnvironment for GraspVecEnv {
     fn reset(&mut self) -> Result<&[f32], VecEnvError> {
         self.inner.reset()?;
         let now = self.inner.batch();
-        for e in 0..self.baselines.len() {
+        for e in 0..self.scripts.len() {
             let row = self.row(e);
-            if let Some(b) = &mut self.baselines[e] {
-                b.reset(now.seeds[e]);
+            if let Some(s) = &mut self.scripts[e] {
+                s.reset(now.seeds[e]);
             }
             self.base_actions[e] = act_and_write(
                 &self.agent,
-                &mut self.baselines[e],
+                &mut self.scripts[e],
                 &now.obs[e],
                 &mut self.batch.obs[row],
             );
@@ -120,7 +121,7 @@ impl VecEnvironment for GraspVecEnv {
     }
 
     fn step(&mut self, actions: &[f32]) -> Result<&StepBatch, VecEnvError> {
-        let n = self.baselines.len();
+        let n = self.scripts.len();
         if actions.len() != n * ACT_DIM {
             return Err(VecEnvError::ActionShape {
                 n_envs: n,
@@ -130,16 +131,21 @@ impl VecEnvironment for GraspVecEnv {
         }
         check_finite(actions, ACT_DIM, "action")?;
         let now = &self.inner.batch().obs;
-        for (((slot, base), policy), obs) in self
+        for ((((slot, base), policy), obs), script) in self
             .env_actions
             .iter_mut()
             .zip(&self.base_actions)
             .zip(actions.chunks(ACT_DIM))
             .zip(now)
+            .zip(&mut self.scripts)
         {
-            *slot = self
-                .agent
-                .env_action(obs, base.as_ref(), policy, self.action_map.as_ref());
+            *slot = self.agent.env_action(
+                obs,
+                script.as_mut(),
+                base.as_ref(),
+                policy,
+                self.action_map.as_ref(),
+            );
         }
         let step = self.inner.step(&self.env_actions)?;
         for e in 0..n {
@@ -152,11 +158,11 @@ impl VecEnvironment for GraspVecEnv {
             self.batch.truncated[e] = step.truncated[e];
             self.batch.finished[e] = None;
             if step.terminated[e] || step.truncated[e] {
-                // The final observation with the baseline action the policy would have seen.
+                // The final observation with the script's part the policy would have seen.
                 if let Some(last) = &step.final_obs[e] {
                     act_and_write(
                         &self.agent,
-                        &mut self.baselines[e],
+                        &mut self.scripts[e],
                         last,
                         &mut self.batch.final_obs[row.clone()],
                     );
@@ -168,13 +174,13 @@ impl VecEnvironment for GraspVecEnv {
                 });
                 self.returns[e] = 0.0;
                 self.lengths[e] = 0;
-                if let Some(b) = &mut self.baselines[e] {
-                    b.reset(step.seeds[e]);
+                if let Some(s) = &mut self.scripts[e] {
+                    s.reset(step.seeds[e]);
                 }
             }
             self.base_actions[e] = act_and_write(
                 &self.agent,
-                &mut self.baselines[e],
+                &mut self.scripts[e],
                 &step.obs[e],
                 &mut self.batch.obs[row],
             );

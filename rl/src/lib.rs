@@ -27,6 +27,7 @@ pub mod point_mass;
 pub mod ppo;
 pub mod ppo_config;
 pub mod rollout;
+pub mod script;
 pub mod shipped;
 pub mod train;
 pub mod train_config;

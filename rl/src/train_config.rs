@@ -161,14 +161,6 @@ impl TrainConfig {
         self.ppo
             .validate(self.n_envs)
             .map_err(|e| format!("ppo: {e}"))?;
-        if self.agent.action_space == fairgrasp_env::config::ActionSpace::Tcp
-            && self.agent.mode == crate::agent::Mode::Residual
-        {
-            return Err(
-                "agent.action_space = \"tcp\" needs agent.mode = \"pure\" (the baseline's actions are joint velocities)"
-                    .into(),
-            );
-        }
         let env = self.training_env_config().map_err(|e| e.to_string())?;
         if env.arm.action_space != fairgrasp_env::config::ActionSpace::Joint {
             return Err(

@@ -60,7 +60,7 @@ fn env_settings_of_a_training_config_apply_to_training_only() {
 }
 
 #[test]
-fn bad_training_env_settings_and_a_task_space_residual_are_refused_by_name() {
+fn bad_training_env_settings_are_refused_by_name() {
     let bad = config("preset = \"seed\"\n[env.task]\nmax_steps = 0\n");
     let message = bad.validate().unwrap_err();
     assert!(message.contains("task.max_steps"), "{message}");
@@ -70,7 +70,4 @@ fn bad_training_env_settings_and_a_task_space_residual_are_refused_by_name() {
     let env_action = config("preset = \"seed\"\n[env.arm]\naction_space = \"tcp\"\n");
     let message = env_action.validate().unwrap_err();
     assert!(message.contains("[agent] action_space"), "{message}");
-    let residual = config("preset = \"seed\"\n[agent]\naction_space = \"tcp\"\n");
-    let message = residual.validate().unwrap_err();
-    assert!(message.contains("agent.mode = \"pure\""), "{message}");
 }

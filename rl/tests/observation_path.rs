@@ -8,6 +8,7 @@ use fairgrasp_env::{Action, EnvConfig, GraspEnv, presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::{ACT_DIM, AgentConfig};
 use fairgrasp_rl::grasp_env::GraspVecEnv;
+use fairgrasp_rl::script::Script;
 use fairgrasp_rl::vec_api::VecEnvironment;
 
 const N_ENVS: usize = 2;
@@ -69,6 +70,8 @@ fn training_path(config: &EnvConfig, agent: &AgentConfig) -> Vec<Trace> {
 fn evaluation_path(config: &EnvConfig, agent: &AgentConfig, e: usize) -> Trace {
     let mut env = GraspEnv::new(config.clone()).unwrap();
     let mut baseline = ScriptedGrasp::new(config, BaselineConfig::default());
+    // The input's baseline part comes from the action passed in; this one never acts.
+    let joint = Script::joint(config);
     let mut trace = Trace::default();
     let mut episode = 0;
     let start = |env: &mut GraspEnv, baseline: &mut ScriptedGrasp, episode: &mut u64| {
@@ -81,7 +84,9 @@ fn evaluation_path(config: &EnvConfig, agent: &AgentConfig, e: usize) -> Trace {
     for _ in 0..=STEPS {
         let action = baseline.act(&obs);
         trace.actions.push(action);
-        trace.inputs.push(agent.input(&obs, Some(&action)));
+        trace
+            .inputs
+            .push(agent.input(&obs, Some(&joint), Some(&action)));
         if trace.actions.len() > STEPS {
             break;
         }
@@ -93,7 +98,9 @@ fn evaluation_path(config: &EnvConfig, agent: &AgentConfig, e: usize) -> Trace {
             trace
                 .final_actions
                 .push(Action(last.0.map(|v| v as f32 as f64)));
-            trace.final_inputs.push(agent.input(&step.obs, Some(&last)));
+            trace
+                .final_inputs
+                .push(agent.input(&step.obs, Some(&joint), Some(&last)));
             obs = start(&mut env, &mut baseline, &mut episode);
         }
     }

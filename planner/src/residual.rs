@@ -1,0 +1,219 @@
+//! The interface a residual policy corrects the script through (`agent.action_space = "tcp"` in
+//! residual mode), and the hand-written oracle residual that proves the interface can express
+//! the fix.
+//!
+//! Each step the policy's action (7 values in [-1, 1]) is read as:
+//! - entries 0–3: the *rate* of a task-space [`TaskCorrection`] (TCP offset along the table
+//!   frame's x, y, z, and yaw about its vertical; × [`CorrectionLimits::speed`] and
+//!   [`CorrectionLimits::yaw_rate`]). The correction is integrated and kept, so it persists
+//!   without the policy holding an output, and exploration noise on a rate becomes a random walk
+//!   of the grasp point (time-correlated exploration by construction). It is frozen once the
+//!   gripper closes: it places the grasp, the script lifts from there.
+//! - entries 4–5: unused.
+//! - entry 6: the close's timing: above 0.5 close now (during the descent), below −0.5 hold
+//!   open a little longer ([`CloseTiming`]), between them the script's timing.
+//!
+//! The script's joint reference follows the correction ([`ScriptedGrasp::set_correction`]).
+//! An all-zero action is the open-loop script exactly.
+//!
+//! The policy sees, besides the observation, [`FEATURE_DIM`] values ([`FEATURE_NAMES`]): the
+//! script's phase, how far the observed cube now is from the one the plan was made on (a push
+//! shows here), and the correction so far.
+
+use fairgrasp_env::perception::ObservedObject;
+use fairgrasp_env::policy::{Outcome, Policy};
+use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
+use std::f64::consts::FRAC_PI_2;
+
+use crate::baseline::{BaselineConfig, CloseTiming, Phase, ScriptedGrasp};
+use crate::correction::{CorrectionLimits, TaskCorrection};
+
+/// Values the script adds to the policy input.
+pub const FEATURE_DIM: usize = 13;
+
+/// Names of the added values, in order.
+pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
+    "phase_approach",
+    "phase_descend",
+    "phase_close",
+    "phase_lift",
+    "phase_hold",
+    "cube_moved_x",
+    "cube_moved_y",
+    "cube_moved_z",
+    "cube_turned",
+    "correction_x",
+    "correction_y",
+    "correction_z",
+    "correction_yaw",
+];
+
+/// Above this the gripper entry closes now; below its negative it waits.
+pub const CLOSE_THRESHOLD: f64 = 0.5;
+
+/// `angle` wrapped into [−45°, 45°): a cube's yaw means nothing more.
+pub fn wrap_quarter(angle: f64) -> f64 {
+    angle - FRAC_PI_2 * (angle / FRAC_PI_2).round()
+}
+
+/// The script under a residual's correction.
+pub struct ResidualScript {
+    script: ScriptedGrasp,
+    limits: CorrectionLimits,
+    mount: Mount,
+    /// Duration of one env step [s].
+    step_dt: f64,
+}
+
+impl ResidualScript {
+    /// The default script and limits for the env configured by `env`.
+    pub fn new(env: &EnvConfig) -> Self {
+        Self::with(env, BaselineConfig::default(), CorrectionLimits::default())
+    }
+
+    pub fn with(env: &EnvConfig, baseline: BaselineConfig, limits: CorrectionLimits) -> Self {
+        Self {
+            script: ScriptedGrasp::new(env, baseline),
+            limits,
+            mount: Mount::from_config(env),
+            step_dt: env.physics.dt * env.physics.substeps as f64,
+        }
+    }
+
+    /// The script inside.
+    pub fn script(&self) -> &ScriptedGrasp {
+        &self.script
+    }
+
+    pub fn limits(&self) -> &CorrectionLimits {
+        &self.limits
+    }
+
+    /// Duration of one env step [s].
+    pub fn step_dt(&self) -> f64 {
+        self.step_dt
+    }
+
+    /// Whether the correction may still change (the gripper has not closed).
+    pub fn correcting(&self) -> bool {
+        matches!(
+            self.script.phase(),
+            Phase::Plan | Phase::Approach | Phase::Descend
+        )
+    }
+
+    pub fn reset(&mut self, seed: u64) {
+        self.script.reset(seed);
+    }
+
+    /// The env action for the policy's `action` at `obs` (see the module doc).
+    pub fn act(&mut self, obs: &Observation, action: &[f64; 7]) -> Action {
+        if self.correcting() {
+            let c = self
+                .limits
+                .integrate(&self.script.correction(), action, self.step_dt);
+            self.script.set_correction(c);
+        }
+        let timing = if action[6] > CLOSE_THRESHOLD {
+            CloseTiming::Now
+        } else if action[6] < -CLOSE_THRESHOLD {
+            CloseTiming::Wait
+        } else {
+            CloseTiming::Script
+        };
+        self.script.set_close_timing(timing);
+        self.script.act(obs)
+    }
+
+    /// Writes the [`FEATURE_NAMES`] values for the next decision at `obs` into `out`.
+    pub fn write_features(&self, obs: &Observation, out: &mut [f64; FEATURE_DIM]) {
+        *out = [0.0; FEATURE_DIM];
+        let slot = match self.script.phase() {
+            Phase::Approach => Some(0),
+            Phase::Descend => Some(1),
+            Phase::Close => Some(2),
+            Phase::Lift => Some(3),
+            Phase::Hold => Some(4),
+            Phase::Plan | Phase::Failed => None,
+        };
+        if let Some(i) = slot {
+            out[i] = 1.0;
+        }
+        if let Some(p) = self.script.planned_on() {
+            let now = obs.object_position();
+            let moved = [0, 1, 2].map(|i| now[i] - p.position[i]);
+            let moved = self.mount.table_in_base.inverse().transform_vector(moved);
+            for i in 0..3 {
+                out[5 + i] = moved[i] / self.limits.max_offset;
+            }
+            out[8] = wrap_quarter(obs.object_yaw - p.yaw) / self.limits.max_yaw;
+        }
+        let c = self.limits.normalized(&self.script.correction());
+        out[9..13].copy_from_slice(&c);
+    }
+}
+
+/// The hand-written oracle residual: it steers the correction toward the true cube's offset
+/// from the one the script planned on, through the same [`ResidualScript`] interface a learned
+/// residual uses. If it cannot reach the oracle script's success, the interface cannot express
+/// the fix.
+pub struct OracleResidual {
+    residual: ResidualScript,
+    truth: Option<ObservedObject>,
+}
+
+impl OracleResidual {
+    pub fn new(env: &EnvConfig) -> Self {
+        Self {
+            residual: ResidualScript::new(env),
+            truth: None,
+        }
+    }
+
+    /// The action that moves the correction toward the truth as fast as the limits allow.
+    fn action(&self) -> [f64; 7] {
+        let mut a = [0.0; 7];
+        let (Some(truth), Some(planned)) = (self.truth, self.residual.script().planned_on()) else {
+            return a;
+        };
+        let moved = [0, 1, 2].map(|i| truth.position[i] - planned.position[i]);
+        let moved = self
+            .residual
+            .mount
+            .table_in_base
+            .inverse()
+            .transform_vector(moved);
+        let want = TaskCorrection {
+            offset: moved,
+            yaw: wrap_quarter(truth.yaw - planned.yaw),
+        };
+        let c = self.residual.script().correction();
+        let l = self.residual.limits();
+        let dt = self.residual.step_dt();
+        for (slot, (w, now)) in a.iter_mut().zip(want.offset.iter().zip(&c.offset)) {
+            *slot = (w - now) / (l.speed * dt);
+        }
+        a[3] = (want.yaw - c.yaw) / (l.yaw_rate * dt);
+        a.map(|v| v.clamp(-1.0, 1.0))
+    }
+}
+
+impl Policy for OracleResidual {
+    fn reset(&mut self, seed: u64) {
+        self.residual.reset(seed);
+        self.truth = None;
+    }
+
+    fn observe_truth(&mut self, truth: &ObservedObject) {
+        self.truth = Some(*truth);
+    }
+
+    fn act(&mut self, obs: &Observation) -> Action {
+        let a = self.action();
+        self.residual.act(obs, &a)
+    }
+
+    fn gave_up(&self) -> Option<Outcome> {
+        self.residual.script().gave_up()
+    }
+}

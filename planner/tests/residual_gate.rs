@@ -1,0 +1,212 @@
+//! The residual interface ([`ResidualScript`]) before any training: a zero residual is the
+//! open-loop script exactly; a held correction moves the grasp by that much; the close can be
+//! advanced and delayed; and the gate of issue 13 — a hand-written residual that knows the true
+//! pose reaches ≥ 97 % on each family through the same interface.
+
+use fairgrasp_env::policy::{EvalReport, Outcome, Policy, run_episode};
+use fairgrasp_env::presets;
+use fairgrasp_env::randomize::scenario_set;
+use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
+use fairgrasp_planner::residual::{FEATURE_DIM, ResidualScript};
+use fairgrasp_planner::{BaselineConfig, OracleResidual, Phase, ScriptedGrasp};
+
+const EPISODES: usize = 60;
+
+/// A residual policy that outputs the same action every step (after `from_step`).
+struct Constant {
+    residual: ResidualScript,
+    action: [f64; 7],
+    from_step: usize,
+    step: usize,
+    /// Phase seen at each step, and the TCP when the close began.
+    phases: Vec<Phase>,
+    tcp_at_close: Option<[f64; 3]>,
+}
+
+impl Constant {
+    fn new(config: &EnvConfig, action: [f64; 7], from_step: usize) -> Self {
+        Self {
+            residual: ResidualScript::new(config),
+            action,
+            from_step,
+            step: 0,
+            phases: Vec::new(),
+            tcp_at_close: None,
+        }
+    }
+}
+
+impl Policy for Constant {
+    fn reset(&mut self, seed: u64) {
+        self.residual.reset(seed);
+        self.step = 0;
+        self.phases.clear();
+        self.tcp_at_close = None;
+    }
+
+    fn act(&mut self, obs: &Observation) -> Action {
+        let a = if self.step >= self.from_step {
+            self.action
+        } else {
+            [0.0; 7]
+        };
+        self.step += 1;
+        let phase = self.residual.script().phase();
+        if phase == Phase::Close && self.tcp_at_close.is_none() {
+            self.tcp_at_close = Some(obs.tcp_position);
+        }
+        self.phases.push(phase);
+        self.residual.act(obs, &a)
+    }
+}
+
+#[test]
+fn a_zero_residual_is_the_open_loop_script_exactly() {
+    let config = presets::load("miscalibrated").unwrap();
+    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let scenarios = scenario_set(&config, env.model(), env.base_in_world(), 3, 4).unwrap();
+    let mut script = ScriptedGrasp::new(&config, BaselineConfig::default());
+    let mut zero = Constant::new(&config, [0.0; 7], 0);
+    for s in &scenarios {
+        let a = run_episode(&mut env, &mut script, s, None).unwrap();
+        let b = run_episode(&mut env, &mut zero, s, None).unwrap();
+        assert_eq!(a, b, "seed {}", s.seed);
+    }
+}
+
+#[test]
+fn a_held_correction_moves_the_grasp_by_that_much_and_is_frozen_once_closed() {
+    let config = presets::load("fixed").unwrap();
+    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let s = &scenario_set(&config, env.model(), env.base_in_world(), 0, 1).unwrap()[0];
+    let mut plain = Constant::new(&config, [0.0; 7], 0);
+    run_episode(&mut env, &mut plain, s, None).unwrap();
+    // +x at full rate for 3 steps: 3 × 0.1 m/s × step_dt.
+    let mut shifted = Constant::new(&config, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], 0);
+    shifted.from_step = 0;
+    let dt = shifted.residual.step_dt();
+    let expected = 0.1 * dt * 3.0;
+    let mut three = ThreeSteps(shifted);
+    run_episode(&mut env, &mut three, s, None).unwrap();
+    let (a, b) = (plain.tcp_at_close.unwrap(), three.0.tcp_at_close.unwrap());
+    // base_link is the table frame on the level `fixed` mount.
+    assert!(
+        (b[0] - a[0] - expected).abs() < 0.002,
+        "{a:?} → {b:?}, want +{expected}"
+    );
+    assert!(
+        (b[1] - a[1]).abs() < 0.002 && (b[2] - a[2]).abs() < 0.002,
+        "{a:?} → {b:?}"
+    );
+    let c = three.0.residual.script().correction();
+    assert!((c.offset[0] - expected).abs() < 1e-9, "{c:?}");
+    // A rate held all episode stops counting once the gripper closes.
+    let mut held = Constant::new(&config, [0.05, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], 0);
+    run_episode(&mut env, &mut held, s, None).unwrap();
+    let closing_step = held.phases.iter().position(|p| *p == Phase::Close).unwrap();
+    let per_step = 0.05 * 0.1 * dt;
+    let c = held.residual.script().correction();
+    assert!(
+        (c.offset[0] - per_step * closing_step as f64).abs() < 1e-9,
+        "{c:?} after {closing_step} correcting steps"
+    );
+    assert!(
+        held.phases.len() > closing_step + 10,
+        "the episode went on after the close"
+    );
+}
+
+/// [`Constant`], acting only for its first three steps.
+struct ThreeSteps(Constant);
+
+impl Policy for ThreeSteps {
+    fn reset(&mut self, seed: u64) {
+        self.0.reset(seed);
+    }
+    fn act(&mut self, obs: &Observation) -> Action {
+        if self.0.step == 3 {
+            self.0.action = [0.0; 7];
+        }
+        self.0.act(obs)
+    }
+}
+
+#[test]
+fn the_close_can_be_advanced_or_delayed() {
+    let config = presets::load("fixed").unwrap();
+    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let s = &scenario_set(&config, env.model(), env.base_in_world(), 0, 1).unwrap()[0];
+    let count = |p: &Constant, phase: Phase| p.phases.iter().filter(|x| **x == phase).count();
+    let mut plain = Constant::new(&config, [0.0; 7], 0);
+    assert_eq!(
+        run_episode(&mut env, &mut plain, s, None).unwrap().outcome,
+        Outcome::Success
+    );
+    let descend = count(&plain, Phase::Descend);
+    // Wait: the descent lasts up to max_close_delay_steps longer and the grasp still succeeds.
+    let mut wait = Constant::new(&config, [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0], 0);
+    let r = run_episode(&mut env, &mut wait, s, None).unwrap();
+    assert_eq!(r.outcome, Outcome::Success);
+    let delay = BaselineConfig::default().max_close_delay_steps;
+    assert_eq!(count(&wait, Phase::Descend), descend + delay);
+    // Now, from the first descent step: the fingers close high above the cube and miss it.
+    let first_descent = plain
+        .phases
+        .iter()
+        .position(|p| *p == Phase::Descend)
+        .unwrap();
+    let mut now = Constant::new(&config, [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0], first_descent);
+    let r = run_episode(&mut env, &mut now, s, None).unwrap();
+    assert_eq!(count(&now, Phase::Descend), 1);
+    assert_ne!(r.outcome, Outcome::Success);
+}
+
+#[test]
+fn the_features_show_a_push_and_the_correction() {
+    let config = presets::load("nudged").unwrap();
+    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let s = &scenario_set(&config, env.model(), env.base_in_world(), 1, 1).unwrap()[0];
+    let (mut obs, _) = env.reset_to(s);
+    let mut residual = ResidualScript::new(&config);
+    residual.reset(s.seed);
+    let mut f = [0.0; FEATURE_DIM];
+    let mut moved_seen = 0.0f64;
+    let action = [0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    for _ in 0..40 {
+        let a = residual.act(&obs, &action);
+        obs = env.step(&a).unwrap().obs;
+        residual.write_features(&obs, &mut f);
+        moved_seen = moved_seen.max(f[5].hypot(f[6]));
+    }
+    let nudge = s.nudge.expect("nudged scenario");
+    let pushed = nudge.offset_xy[0].hypot(nudge.offset_xy[1]);
+    let limits = *residual.limits();
+    assert!(
+        (moved_seen * limits.max_offset - pushed).abs() < 0.01,
+        "seen {} m, pushed {pushed} m",
+        moved_seen * limits.max_offset
+    );
+    // The correction feature is the integrated x rate until the close.
+    assert!(f[9] > 0.0 && f[10] == 0.0, "{f:?}");
+}
+
+#[test]
+fn the_oracle_residual_reaches_97_percent_on_each_family_through_the_interface() {
+    for name in ["miscalibrated", "miscalibrated_b", "nudged"] {
+        let config = presets::load(name).unwrap();
+        let mut env = GraspEnv::new(config.clone()).unwrap();
+        let scenarios =
+            scenario_set(&config, env.model(), env.base_in_world(), 0, EPISODES).unwrap();
+        let mut oracle = OracleResidual::new(&config);
+        let results = scenarios
+            .iter()
+            .map(|s| run_episode(&mut env, &mut oracle, s, None).unwrap())
+            .collect();
+        let report = EvalReport::from_results(results);
+        eprintln!(
+            "{name}: oracle residual {:.3} {:?}",
+            report.success_rate, report.outcomes
+        );
+        assert!(report.success_rate >= 0.97, "{name}: {:?}", report.outcomes);
+    }
+}

@@ -1,0 +1,91 @@
+//! The script a residual agent works on top of, one per env.
+//!
+//! - [`Script::Joint`] (`action_space = "joint"`, the first residual): the baseline acts first;
+//!   its joint-velocity action is appended to the policy input and the policy's output is added
+//!   to it (`clip(a_base + scale · a_policy)`).
+//! - [`Script::Task`] (`action_space = "tcp"`, the residual with authority): the policy's output
+//!   is the rate of a task-space correction the script's reference follows, and the close's
+//!   timing ([`fairgrasp_planner::residual`]); the script's phase, the cube's motion since the
+//!   plan and the correction so far are appended to the policy input.
+
+use fairgrasp_env::policy::Outcome;
+use fairgrasp_env::policy::Policy;
+use fairgrasp_env::{Action, EnvConfig, Observation};
+use fairgrasp_planner::residual::{FEATURE_DIM, ResidualScript};
+use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+
+/// One env's script.
+pub enum Script {
+    Joint(Box<ScriptedGrasp>),
+    Task(Box<ResidualScript>),
+}
+
+impl Script {
+    /// The joint-space baseline.
+    pub fn joint(env: &EnvConfig) -> Script {
+        Script::Joint(Box::new(ScriptedGrasp::new(env, BaselineConfig::default())))
+    }
+
+    /// The task-space residual interface.
+    pub fn task(env: &EnvConfig) -> Script {
+        Script::Task(Box::new(ResidualScript::new(env)))
+    }
+
+    pub fn reset(&mut self, seed: u64) {
+        match self {
+            Script::Joint(b) => b.reset(seed),
+            Script::Task(r) => r.reset(seed),
+        }
+    }
+
+    /// What the script does before the policy decides at `obs`: the joint baseline acts (its
+    /// action is part of the policy input and of the env action); the task script waits for the
+    /// policy's correction.
+    pub fn prepare(&mut self, obs: &Observation) -> Option<Action> {
+        match self {
+            Script::Joint(b) => Some(b.act(obs)),
+            Script::Task(_) => None,
+        }
+    }
+
+    /// Appends the script's part of the policy input at `obs` (`base` is what `prepare`
+    /// returned) to `out`: the baseline's 7 action values, or the task script's features.
+    pub fn write_input(&self, obs: &Observation, base: Option<&Action>, out: &mut [f32]) {
+        match self {
+            Script::Joint(_) => {
+                let base = base.map_or([0.0; 7], |b| b.0.map(|v| v as f32));
+                for (slot, v) in out.iter_mut().zip(base) {
+                    *slot = v;
+                }
+            }
+            Script::Task(r) => {
+                let mut f = [0.0; FEATURE_DIM];
+                r.write_features(obs, &mut f);
+                for (slot, v) in out.iter_mut().zip(f) {
+                    *slot = v as f32;
+                }
+            }
+        }
+    }
+
+    /// The task script's env action for the policy's output (None for the joint baseline,
+    /// whose action is composed by the agent).
+    pub fn act_on(&mut self, obs: &Observation, policy: &[f32]) -> Option<Action> {
+        match self {
+            Script::Joint(_) => None,
+            Script::Task(r) => {
+                let a: [f64; 7] =
+                    std::array::from_fn(|i| policy.get(i).copied().unwrap_or(0.0) as f64);
+                Some(r.act(obs, &a))
+            }
+        }
+    }
+
+    /// Set when the script has given up (no IK solution).
+    pub fn gave_up(&self) -> Option<Outcome> {
+        match self {
+            Script::Joint(b) => b.gave_up(),
+            Script::Task(r) => r.script().gave_up(),
+        }
+    }
+}
