@@ -1,5 +1,6 @@
-//! A curriculum over the randomisation: fixed → position → +yaw → +friction/mass, advancing when
-//! the rolling success rate passes a threshold.
+//! A curriculum over the randomisation: fixed → position (optionally through sectors narrowed
+//! around the fixed cube position first) → +yaw → +friction/mass, advancing when the rolling
+//! success rate passes a threshold.
 
 use std::collections::VecDeque;
 
@@ -15,6 +16,11 @@ pub struct CurriculumConfig {
     pub threshold: f64,
     /// Episodes in the rolling window.
     pub window: usize,
+    /// Stages between `fixed` and `position` whose cube positions come from the sector narrowed
+    /// around the fixed position: each value (in (0, 1), increasing) is the fraction of the way
+    /// from the fixed position to the full sector's radius and angle ranges. Empty: straight
+    /// from `fixed` to the whole sector.
+    pub position_steps: Vec<f64>,
 }
 
 impl Default for CurriculumConfig {
@@ -22,41 +28,80 @@ impl Default for CurriculumConfig {
         Self {
             threshold: 0.6,
             window: 50,
+            position_steps: Vec::new(),
         }
     }
 }
 
-/// The stages, in order.
-pub const STAGES: [&str; 4] = [
-    "fixed",
-    "position",
-    "position+yaw",
-    "position+yaw+friction/mass",
-];
+impl CurriculumConfig {
+    /// Checks the settings; the message names the field.
+    pub fn validate(&self) -> Result<(), String> {
+        if !(self.threshold > 0.0 && self.threshold <= 1.0) {
+            return Err(format!(
+                "curriculum.threshold = {}: must be in (0, 1]",
+                self.threshold
+            ));
+        }
+        if self.window == 0 {
+            return Err("curriculum.window = 0: must be at least 1 episode".into());
+        }
+        let ok = self.position_steps.iter().all(|f| *f > 0.0 && *f < 1.0)
+            && self.position_steps.windows(2).all(|w| w[0] < w[1]);
+        if !ok {
+            return Err(format!(
+                "curriculum.position_steps = {:?}: give increasing fractions inside (0, 1)",
+                self.position_steps
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The stages after `fixed` and the narrowed sectors, in order.
+const LATER_STAGES: [&str; 3] = ["position", "position+yaw", "position+yaw+friction/mass"];
 
 /// Curriculum state: the stage and the recent outcomes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curriculum {
     config: CurriculumConfig,
     target: RandomizationConfig,
+    /// The cube position of the `fixed` stage, table frame [m] (`scene.cube_xy`).
+    fixed_xy: [f64; 2],
     stage: usize,
     recent: VecDeque<bool>,
 }
 
 impl Curriculum {
-    /// Starts at stage 0; `target` is the randomisation of the last stage.
-    pub fn new(config: CurriculumConfig, target: RandomizationConfig) -> Self {
+    /// Starts at stage 0; `target` is the randomisation of the last stage, `fixed_xy` the cube
+    /// position [m] of the first (`scene.cube_xy`).
+    pub fn new(config: CurriculumConfig, target: RandomizationConfig, fixed_xy: [f64; 2]) -> Self {
         Self {
             config,
             target,
+            fixed_xy,
             stage: 0,
             recent: VecDeque::new(),
         }
     }
 
-    /// The current stage index (0 … 3).
+    /// The current stage index (0 … `stage_count() − 1`).
     pub fn stage(&self) -> usize {
         self.stage
+    }
+
+    /// Number of stages: fixed, the narrowed sectors, position, +yaw, +friction/mass.
+    pub fn stage_count(&self) -> usize {
+        1 + self.config.position_steps.len() + LATER_STAGES.len()
+    }
+
+    /// The name of stage `i` (e.g. `fixed`, `position 25 %`, `position+yaw`).
+    pub fn stage_name(&self, i: usize) -> String {
+        let steps = &self.config.position_steps;
+        match i {
+            0 => "fixed".into(),
+            i if i <= steps.len() => format!("position {:.0} %", steps[i - 1] * 100.0),
+            i => LATER_STAGES[(i - 1 - steps.len()).min(LATER_STAGES.len() - 1)].into(),
+        }
     }
 
     /// Success rate over the window so far (0 when empty).
@@ -76,7 +121,10 @@ impl Curriculum {
             self.recent.pop_front();
         }
         let full = self.recent.len() == self.config.window;
-        if full && self.success_rate() >= self.config.threshold && self.stage + 1 < STAGES.len() {
+        if full
+            && self.success_rate() >= self.config.threshold
+            && self.stage + 1 < self.stage_count()
+        {
             self.stage += 1;
             self.recent.clear();
             return true;
@@ -92,20 +140,31 @@ impl Curriculum {
             angle: t.angle,
             ..RandomizationConfig::default()
         };
+        let narrowed = self.config.position_steps.len();
+        let position = RandomizationConfig {
+            position: t.position,
+            joint_noise: t.joint_noise,
+            ..none.clone()
+        };
         match self.stage {
             0 => none,
-            1 => RandomizationConfig {
-                position: t.position,
-                joint_noise: t.joint_noise,
-                ..none
-            },
-            2 => RandomizationConfig {
-                yaw: t.yaw,
-                ..RandomizationConfig {
-                    position: t.position,
-                    joint_noise: t.joint_noise,
-                    ..none
+            i if i <= narrowed => {
+                let f = self.config.position_steps[i - 1];
+                let [x, y] = self.fixed_xy;
+                let (r0, a0) = (x.hypot(y), y.atan2(x));
+                let toward = |from: f64, range: [f64; 2]| {
+                    [from + f * (range[0] - from), from + f * (range[1] - from)]
+                };
+                RandomizationConfig {
+                    radius: toward(r0, t.radius),
+                    angle: toward(a0, t.angle),
+                    ..position
                 }
+            }
+            i if i == narrowed + 1 => position,
+            i if i == narrowed + 2 => RandomizationConfig {
+                yaw: t.yaw,
+                ..position
             },
             _ => t.clone(),
         }

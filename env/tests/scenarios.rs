@@ -192,8 +192,9 @@ fn the_curriculum_advances_only_past_the_threshold_over_a_full_window() {
     let config = CurriculumConfig {
         threshold: 0.6,
         window: 10,
+        ..CurriculumConfig::default()
     };
-    let mut c = Curriculum::new(config, RandomizationConfig::full());
+    let mut c = Curriculum::new(config, RandomizationConfig::full(), [0.4, 0.0]);
     assert_eq!(c.stage(), 0);
     assert!(!c.randomization().position);
     for i in 0..10 {
@@ -215,6 +216,66 @@ fn the_curriculum_advances_only_past_the_threshold_over_a_full_window() {
     for _ in 0..20 {
         assert!(!c.record(true), "no stage after the last");
     }
+}
+
+#[test]
+fn narrowed_position_stages_widen_from_the_fixed_cube_to_the_whole_sector() {
+    let config = CurriculumConfig {
+        threshold: 0.5,
+        window: 2,
+        position_steps: vec![0.25, 0.5],
+    };
+    assert!(config.validate().is_ok());
+    let full = RandomizationConfig::full();
+    let fixed = [0.35, 0.0];
+    let mut c = Curriculum::new(config, full.clone(), fixed);
+    assert_eq!(c.stage_count(), 6);
+    let names: Vec<String> = (0..6).map(|i| c.stage_name(i)).collect();
+    assert_eq!(
+        names,
+        [
+            "fixed",
+            "position 25 %",
+            "position 50 %",
+            "position",
+            "position+yaw",
+            "position+yaw+friction/mass"
+        ]
+    );
+    let (r0, a0) = (fixed[0].hypot(fixed[1]), fixed[1].atan2(fixed[0]));
+    let mut widths = Vec::new();
+    for stage in 1..=3 {
+        c.record(true);
+        c.record(true);
+        assert_eq!(c.stage(), stage);
+        let r = c.randomization();
+        assert!(r.position && !r.yaw, "stage {stage}: {r:?}");
+        assert!(
+            r.radius[0] <= r0 + 1e-12 && r0 <= r.radius[1] + 1e-12,
+            "{r:?}"
+        );
+        assert!(
+            r.angle[0] <= a0 + 1e-12 && a0 <= r.angle[1] + 1e-12,
+            "{r:?}"
+        );
+        widths.push((r.radius[1] - r.radius[0], r.angle[1] - r.angle[0]));
+    }
+    let whole = (
+        full.radius[1] - full.radius[0],
+        full.angle[1] - full.angle[0],
+    );
+    assert!((widths[0].0 - 0.25 * whole.0).abs() < 1e-12, "{widths:?}");
+    assert!((widths[1].1 - 0.5 * whole.1).abs() < 1e-12, "{widths:?}");
+    assert_eq!(widths[2], whole);
+    let bad = CurriculumConfig {
+        position_steps: vec![0.5, 0.25],
+        ..CurriculumConfig::default()
+    };
+    assert!(
+        bad.validate()
+            .unwrap_err()
+            .contains("curriculum.position_steps")
+    );
 }
 
 #[test]

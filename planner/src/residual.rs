@@ -3,22 +3,26 @@
 //! the fix.
 //!
 //! Each step the policy's action (7 values in [-1, 1]) is read as:
-//! - entries 0–3: the *rate* of a task-space [`TaskCorrection`] (TCP offset along the table
-//!   frame's x, y, z, and yaw about its vertical; × [`CorrectionLimits::speed`] and
-//!   [`CorrectionLimits::yaw_rate`]). The correction is integrated and kept, so it persists
-//!   without the policy holding an output, and exploration noise on a rate becomes a random walk
-//!   of the grasp point (time-correlated exploration by construction). It is frozen once the
-//!   gripper closes: it places the grasp, the script lifts from there.
+//! - entries 0–3: a command for the task-space [`TaskCorrection`] (TCP offset along the table
+//!   frame's x, y, z, and yaw about its vertical; × [`CorrectionLimits::max_offset`] (x, y),
+//!   [`CorrectionLimits::max_height`] (z) and
+//!   [`CorrectionLimits::max_yaw`]). The correction follows the command through a first-order
+//!   filter with a rate limit ([`CorrectionLimits::follow`]): it persists between steps, and
+//!   per-step exploration noise becomes a slowly varying, bounded offset of the grasp
+//!   (time-correlated exploration). It is frozen once the gripper closes: it places the grasp,
+//!   the script lifts from there.
 //! - entries 4–5: unused.
-//! - entry 6: the close's timing: above 0.5 close now (during the descent), below −0.5 hold
-//!   open a little longer ([`CloseTiming`]), between them the script's timing.
+//! - entry 6: the close's timing, through the same filter: above 0.5 close now (during the
+//!   descent), below −0.5 hold open a little longer ([`CloseTiming`]), between them the
+//!   script's timing. (Unfiltered, σ = 0.3 exploration noise alone would close early on one
+//!   descent step in ten.)
 //!
 //! The script's joint reference follows the correction ([`ScriptedGrasp::set_correction`]).
 //! An all-zero action is the open-loop script exactly.
 //!
 //! The policy sees, besides the observation, [`FEATURE_DIM`] values ([`FEATURE_NAMES`]): the
 //! script's phase, how far the observed cube now is from the one the plan was made on (a push
-//! shows here), and the correction so far.
+//! shows here), the correction so far and the filtered close command.
 
 use fairgrasp_env::perception::ObservedObject;
 use fairgrasp_env::policy::{Outcome, Policy};
@@ -29,7 +33,7 @@ use crate::baseline::{BaselineConfig, CloseTiming, Phase, ScriptedGrasp};
 use crate::correction::{CorrectionLimits, TaskCorrection};
 
 /// Values the script adds to the policy input.
-pub const FEATURE_DIM: usize = 13;
+pub const FEATURE_DIM: usize = 14;
 
 /// Names of the added values, in order.
 pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
@@ -46,6 +50,7 @@ pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
     "correction_y",
     "correction_z",
     "correction_yaw",
+    "close_signal",
 ];
 
 /// Above this the gripper entry closes now; below its negative it waits.
@@ -63,6 +68,8 @@ pub struct ResidualScript {
     mount: Mount,
     /// Duration of one env step [s].
     step_dt: f64,
+    /// The filtered close-timing command.
+    close_signal: f64,
 }
 
 impl ResidualScript {
@@ -77,6 +84,7 @@ impl ResidualScript {
             limits,
             mount: Mount::from_config(env),
             step_dt: env.physics.dt * env.physics.substeps as f64,
+            close_signal: 0.0,
         }
     }
 
@@ -104,6 +112,12 @@ impl ResidualScript {
 
     pub fn reset(&mut self, seed: u64) {
         self.script.reset(seed);
+        self.close_signal = 0.0;
+    }
+
+    /// The filtered close-timing command (in [-1, 1]).
+    pub fn close_signal(&self) -> f64 {
+        self.close_signal
     }
 
     /// The env action for the policy's `action` at `obs` (see the module doc).
@@ -111,12 +125,14 @@ impl ResidualScript {
         if self.correcting() {
             let c = self
                 .limits
-                .integrate(&self.script.correction(), action, self.step_dt);
+                .follow(&self.script.correction(), action, self.step_dt);
             self.script.set_correction(c);
         }
-        let timing = if action[6] > CLOSE_THRESHOLD {
+        let alpha = self.limits.gain(self.step_dt);
+        self.close_signal += (action[6].clamp(-1.0, 1.0) - self.close_signal) * alpha;
+        let timing = if self.close_signal > CLOSE_THRESHOLD {
             CloseTiming::Now
-        } else if action[6] < -CLOSE_THRESHOLD {
+        } else if self.close_signal < -CLOSE_THRESHOLD {
             CloseTiming::Wait
         } else {
             CloseTiming::Script
@@ -150,6 +166,7 @@ impl ResidualScript {
         }
         let c = self.limits.normalized(&self.script.correction());
         out[9..13].copy_from_slice(&c);
+        out[13] = self.close_signal;
     }
 }
 
@@ -170,7 +187,7 @@ impl OracleResidual {
         }
     }
 
-    /// The action that moves the correction toward the truth as fast as the limits allow.
+    /// The command for the correction that puts the grasp on the true cube.
     fn action(&self) -> [f64; 7] {
         let mut a = [0.0; 7];
         let (Some(truth), Some(planned)) = (self.truth, self.residual.script().planned_on()) else {
@@ -187,13 +204,8 @@ impl OracleResidual {
             offset: moved,
             yaw: wrap_quarter(truth.yaw - planned.yaw),
         };
-        let c = self.residual.script().correction();
-        let l = self.residual.limits();
-        let dt = self.residual.step_dt();
-        for (slot, (w, now)) in a.iter_mut().zip(want.offset.iter().zip(&c.offset)) {
-            *slot = (w - now) / (l.speed * dt);
-        }
-        a[3] = (want.yaw - c.yaw) / (l.yaw_rate * dt);
+        let n = self.residual.limits().normalized(&want);
+        a[..4].copy_from_slice(&n);
         a.map(|v| v.clamp(-1.0, 1.0))
     }
 }

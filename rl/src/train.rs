@@ -267,10 +267,13 @@ pub fn train(
     let mut run = Run {
         config,
         run_dir: run_dir.to_path_buf(),
-        curriculum: config
-            .curriculum
-            .clone()
-            .map(|c| Curriculum::new(c, env_config.randomization.clone())),
+        curriculum: config.curriculum.clone().map(|c| {
+            Curriculum::new(
+                c,
+                env_config.randomization.clone(),
+                env_config.scene.cube_xy,
+            )
+        }),
         best: meta.eval_success_rate.unwrap_or(-1.0),
         last_report: None,
         start: Instant::now(),

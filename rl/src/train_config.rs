@@ -37,7 +37,8 @@ pub struct TrainConfig {
     pub eval_episodes: usize,
     /// Updates at the start that train only the critic (the actor is frozen).
     pub critic_warmup_updates: u64,
-    /// Stage the randomisation with the curriculum (fixed → position → yaw → friction/mass).
+    /// Stage the randomisation with the curriculum (fixed → [narrowed sectors →] position → yaw →
+    /// friction/mass).
     pub curriculum: Option<CurriculumConfig>,
     pub agent: AgentConfig,
     pub model: ModelConfig,
@@ -161,6 +162,9 @@ impl TrainConfig {
         self.ppo
             .validate(self.n_envs)
             .map_err(|e| format!("ppo: {e}"))?;
+        if let Some(c) = &self.curriculum {
+            c.validate()?;
+        }
         let env = self.training_env_config().map_err(|e| e.to_string())?;
         if env.arm.action_space != fairgrasp_env::config::ActionSpace::Joint {
             return Err(
