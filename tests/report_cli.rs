@@ -51,9 +51,62 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
         serde_json::from_str(&std::fs::read_to_string(out_dir.join("compare.json")).unwrap())
             .unwrap();
     let results = json["results"].as_array().unwrap();
-    // Baseline and the two shipped policies on two presets.
-    assert_eq!(results.len(), 6);
-    assert_eq!(json["methods"].as_array().unwrap().len(), 3);
+    // The three scripts, then every shipped policy, on two presets.
+    let methods: Vec<&str> = json["methods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        methods[..3],
+        ["scripted baseline", "closed-loop script", "oracle script"]
+    );
+    let learned = results.iter().filter(|r| !r["policy"].is_null()).count() / 2;
+    assert!(learned >= 2, "{methods:?}");
+    assert_eq!(methods.len(), 3 + learned);
+    assert_eq!(results.len(), 2 * methods.len());
+    // The paired tests: every learned method against every script on each preset, with the
+    // discordant counts of the two result lists.
+    let paired: Vec<&str> = stdout
+        .lines()
+        .skip_while(|l| !l.starts_with("Paired tests"))
+        .take_while(|l| !l.is_empty())
+        .collect();
+    let outcome_list = |method: &str, preset: &str| -> Vec<bool> {
+        let r = results
+            .iter()
+            .find(|r| r["method"] == method && r["preset"] == preset)
+            .unwrap();
+        r["results"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|e| e["outcome"] == "success")
+            .collect()
+    };
+    let mut pairs = 0;
+    for preset in ["fixed", "hard"] {
+        for l in &methods[3..] {
+            for s in &methods[..3] {
+                let (a, b) = (outcome_list(l, preset), outcome_list(s, preset));
+                let only_a = a.iter().zip(&b).filter(|(x, y)| **x && !**y).count();
+                let only_b = a.iter().zip(&b).filter(|(x, y)| !**x && **y).count();
+                let line = paired
+                    .iter()
+                    .find(|line| line.starts_with(preset) && line.contains(l) && line.contains(s))
+                    .unwrap_or_else(|| panic!("no paired line {l} vs {s} on {preset}:\n{stdout}"));
+                let cells: Vec<&str> = line
+                    .split("  ")
+                    .map(str::trim)
+                    .filter(|c| !c.is_empty())
+                    .collect();
+                assert_eq!(cells[4], format!("{only_a} / {only_b}"), "{line}");
+                pairs += 1;
+            }
+        }
+    }
+    assert_eq!(paired.len(), 3 + pairs, "{stdout}");
 
     let csv = std::fs::read_to_string(out_dir.join("compare.csv")).unwrap();
     let mut lines = csv.lines();
@@ -132,11 +185,15 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
             "{expected} missing: {names:?}"
         );
     }
+    // One recorded episode (chart and replay) per method.
     assert_eq!(
         names.iter().filter(|n| n.starts_with("episode_")).count(),
-        3
+        methods.len()
     );
-    assert_eq!(names.iter().filter(|n| n.ends_with(".gif")).count(), 3);
+    assert_eq!(
+        names.iter().filter(|n| n.ends_with(".gif")).count(),
+        methods.len()
+    );
     assert!(!names.iter().any(|n| n.contains(".tmp")), "{names:?}");
 
     // `report` redraws the same report from the folder alone.

@@ -4,6 +4,7 @@
 use std::path::Path;
 
 pub use fairgrasp_types::{Comparison, EpisodeResult, MethodResult, Outcome, RecordedEpisode};
+use fairgrasp_types::{PairedTest, learned_vs_scripts};
 
 use crate::error::{ReportError, read_text};
 
@@ -156,4 +157,78 @@ pub fn markdown_table(c: &Comparison) -> String {
         out += &format!("| {} |\n", cells(r).join(" | "));
     }
     out
+}
+
+/// A p-value as a report shows it (`< 0.0001` below that).
+fn p_text(p: f64) -> String {
+    if p < 1e-4 {
+        "< 0.0001".into()
+    } else {
+        format!("{p:.4}")
+    }
+}
+
+const PAIRED_HEADER: [&str; 6] = [
+    "preset",
+    "learned",
+    "script",
+    "successes (learned / script)",
+    "only learned / only script",
+    "McNemar p",
+];
+
+fn paired_cells(t: &PairedTest) -> [String; 6] {
+    [
+        t.preset.clone(),
+        t.a.clone(),
+        t.b.clone(),
+        format!("{} / {} of {}", t.successes_a, t.successes_b, t.episodes),
+        format!("{} / {}", t.only_a, t.only_b),
+        p_text(t.p_value),
+    ]
+}
+
+/// The paired tests (every learned method against every script on each preset) as Markdown;
+/// empty when the comparison has no learned method or no script. A result list that cannot be
+/// paired (another seed, another length) is a malformed comparison.
+pub fn paired_markdown(c: &Comparison) -> Result<String, fairgrasp_types::PairingError> {
+    let tests = learned_vs_scripts(c)?;
+    if tests.is_empty() {
+        return Ok(String::new());
+    }
+    let mut out = format!("| {} |\n", PAIRED_HEADER.join(" | "));
+    out += &format!("|{}\n", "---|".repeat(PAIRED_HEADER.len()));
+    for t in &tests {
+        out += &format!("| {} |\n", paired_cells(t).join(" | "));
+    }
+    Ok(out)
+}
+
+/// The paired tests as aligned text (empty without a pair).
+pub fn paired_text(c: &Comparison) -> Result<String, fairgrasp_types::PairingError> {
+    let tests = learned_vs_scripts(c)?;
+    if tests.is_empty() {
+        return Ok(String::new());
+    }
+    let rows: Vec<[String; 6]> = tests.iter().map(paired_cells).collect();
+    let mut widths = PAIRED_HEADER.map(|h| h.chars().count());
+    for row in &rows {
+        for (w, cell) in widths.iter_mut().zip(row) {
+            *w = (*w).max(cell.chars().count());
+        }
+    }
+    let line = |cells: &[String]| {
+        let padded: Vec<String> = cells
+            .iter()
+            .zip(widths)
+            .map(|(c, w)| format!("{c}{}", " ".repeat(w - c.chars().count())))
+            .collect();
+        padded.join("  ").trim_end().to_string() + "\n"
+    };
+    let mut out = line(&PAIRED_HEADER.map(String::from));
+    out += &line(&widths.map(|w| "-".repeat(w)));
+    for row in &rows {
+        out += &line(row);
+    }
+    Ok(out)
 }

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::charts::{curves, episode, replay, success, workspace};
-use crate::compare::{Comparison, markdown_table};
+use crate::compare::{Comparison, markdown_table, paired_markdown};
 use crate::document::{Document, toml_block};
 use crate::error::{ReportError, write_file};
 use crate::notebook::to_notebook;
@@ -161,6 +161,16 @@ fn comparison_section(
         c.command
     ));
     doc.markdown(markdown_table(c));
+    let paired = paired_markdown(c)
+        .map_err(|e| ReportError::malformed(&out.join("compare.json"), e.to_string()))?;
+    if !paired.is_empty() {
+        doc.markdown(format!(
+            "### Paired tests\n\nEvery learned method against every script on the same \
+             scenarios: McNemar's exact test counts the scenarios only one of the two solved; \
+             p is the two-sided probability of a split at least this uneven if both were \
+             equally good.\n\n{paired}"
+        ));
+    }
     let file = format!("{prefix}success_rate.png");
     success::success_chart(c, &out.join(&file))?;
     written.push(out.join(&file));

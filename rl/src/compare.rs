@@ -1,6 +1,8 @@
-//! The comparison experiment: the scripted baseline and learned policies on identical seeded
-//! scenario sets, one scenario recorded for every method, and the typed result that
-//! `compare.json` holds ([`fairgrasp_types::Comparison`]).
+//! The comparison experiment: the scripts (open-loop baseline, closed-loop script, oracle) and
+//! learned policies on identical seeded scenario sets, one scenario recorded for every method,
+//! and the typed result that `compare.json` holds ([`fairgrasp_types::Comparison`]). Scripts are
+//! the results without a policy folder; the report pairs every learned method with every script
+//! (McNemar, [`fairgrasp_types::paired`]).
 //!
 //! The CLI (`fairgrasp compare`) parses arguments, calls [`run_comparison`], writes the files and
 //! prints; tests call [`run_comparison`] directly.
@@ -12,7 +14,7 @@ use fairgrasp_env::policy::{EvalReport, Policy, evaluate, run_episode};
 use fairgrasp_env::randomize::{Scenario, scenario_set};
 use fairgrasp_env::trajectory::Trajectory;
 use fairgrasp_env::{EnvConfig, EnvError, GraspEnv};
-use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+use fairgrasp_planner::{BaselineConfig, ClosedLoopGrasp, ScriptedGrasp};
 use fairgrasp_types::fs::slug;
 use fairgrasp_types::{ArmSimulation, Comparison, MethodResult, RecordedEpisode};
 
@@ -20,8 +22,13 @@ use crate::checkpoint::{self, CheckpointError, CheckpointMeta};
 use crate::evaluate::agent_policy;
 use crate::model::ActorCritic;
 
-/// The name of the scripted baseline in every comparison.
+/// The name of the scripted baseline (the open-loop script) in every comparison.
 pub const BASELINE: &str = "scripted baseline";
+
+/// The scripts every comparison runs first, in order: the open-loop baseline, the closed-loop
+/// script (re-plans on the observed cube, retries once) and the oracle (the closed loop on the
+/// true pose: the ceiling).
+pub const SCRIPTS: [&str; 3] = [BASELINE, "closed-loop script", "oracle script"];
 
 /// Why a comparison could not run.
 #[derive(Debug, thiserror::Error)]
@@ -193,11 +200,16 @@ impl CompareOutput {
     }
 }
 
-/// A fresh policy of method `i` (0 = the baseline, then `learned` in order) for `config`.
+/// A fresh policy of method `i` (the [`SCRIPTS`], then `learned` in order) for `config`.
 fn make_policy(i: usize, learned: &[LearnedPolicy], config: &EnvConfig) -> Box<dyn Policy> {
-    match i.checked_sub(1) {
-        None => Box::new(ScriptedGrasp::new(config, BaselineConfig::default())),
-        Some(j) => Box::new(agent_policy(&learned[j].meta, &learned[j].model, config)),
+    match i {
+        0 => Box::new(ScriptedGrasp::new(config, BaselineConfig::default())),
+        1 => Box::new(ClosedLoopGrasp::observed(config)),
+        2 => Box::new(ClosedLoopGrasp::oracle(config)),
+        i => {
+            let l = &learned[i - SCRIPTS.len()];
+            Box::new(agent_policy(&l.meta, &l.model, config))
+        }
     }
 }
 
@@ -210,6 +222,9 @@ impl Policy for Boxed {
     }
     fn act(&mut self, obs: &fairgrasp_env::Observation) -> fairgrasp_env::Action {
         self.0.act(obs)
+    }
+    fn observe_truth(&mut self, truth: &fairgrasp_env::perception::ObservedObject) {
+        self.0.observe_truth(truth);
     }
     fn gave_up(&self) -> Option<fairgrasp_env::policy::Outcome> {
         self.0.gave_up()
@@ -232,7 +247,7 @@ fn scenarios_of(preset: &ComparePreset, spec: &CompareSpec) -> Result<Vec<Scenar
     })
 }
 
-/// Runs the baseline and every learned policy on every preset's scenario set, then records one
+/// Runs the scripts and every learned policy on every preset's scenario set, then records one
 /// scenario of the last preset for every method.
 pub fn run_comparison(
     spec: &CompareSpec,
@@ -240,7 +255,7 @@ pub fn run_comparison(
     progress: &(dyn Fn(CompareEvent<'_>) + Sync),
 ) -> Result<CompareOutput, CompareError> {
     spec.check()?;
-    let mut methods = vec![BASELINE.to_string()];
+    let mut methods: Vec<String> = SCRIPTS.iter().map(|s| s.to_string()).collect();
     methods.extend(learned.iter().map(|l| l.name.clone()));
     let mut results = Vec::new();
     let mut last_scenarios = Vec::new();
@@ -266,7 +281,7 @@ pub fn run_comparison(
                 arm: ArmSimulation::from(preset.config.arm.model),
                 seed: spec.seed,
                 policy: i
-                    .checked_sub(1)
+                    .checked_sub(SCRIPTS.len())
                     .map(|j| learned[j].dir.display().to_string()),
                 report,
             });
@@ -329,11 +344,11 @@ pub fn run_comparison(
     })
 }
 
-/// The first scenario where the first two methods end differently.
+/// The first scenario where the baseline and the first learned method (without one, the
+/// closed-loop script) end differently.
 fn first_disagreement(on_last: &[&MethodResult]) -> Option<usize> {
-    let [a, b, ..] = on_last else {
-        return None;
-    };
+    let a = on_last.first()?;
+    let b = on_last.get(SCRIPTS.len()).or_else(|| on_last.get(1))?;
     a.report
         .results
         .iter()

@@ -91,7 +91,8 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     }
     let learned = LearnedPolicy::load_all(&policy_paths)
         .context("loading the policy (pass --policy DIR to choose one)")?;
-    let total = (spec.presets.len() * (1 + learned.len())) as u64 * u64::from(a.episodes);
+    let methods = fairgrasp_rl::compare::SCRIPTS.len() + learned.len();
+    let total = (spec.presets.len() * methods) as u64 * u64::from(a.episodes);
     let bar = progress_bar(total, a.json, "compare");
     let output = run_comparison(&spec, &learned, &|event| match event {
         CompareEvent::Method { preset, method } => bar.set_message(format!("{preset}: {method}")),
@@ -113,6 +114,11 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
         println!("{}", comparison.to_json());
     } else {
         print!("{}", compare::text_table(comparison));
+        let paired = compare::paired_text(comparison)?;
+        if !paired.is_empty() {
+            println!("\nPaired tests (McNemar, exact, two-sided), learned method vs script:");
+            print!("{paired}");
+        }
         println!(
             "\n{} episodes per preset from seed {}, {} arm; 95 % Wilson intervals.",
             a.episodes,
