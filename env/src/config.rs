@@ -267,6 +267,9 @@ pub struct RandomizationConfig {
     /// A push of the cube during the approach, drawn per scenario (None = never).
     /// See [`crate::families::NudgeConfig`].
     pub nudge: Option<crate::families::NudgeConfig>,
+    /// A wrist camera that sees the cube exactly once the TCP is near it (None = no wrist
+    /// camera). See [`crate::families::WristCamera`].
+    pub wrist_camera: Option<crate::families::WristCamera>,
 }
 
 impl Default for RandomizationConfig {
@@ -284,6 +287,7 @@ impl Default for RandomizationConfig {
             observed_yaw_noise: 0.0,
             camera_offset: None,
             nudge: None,
+            wrist_camera: None,
         }
     }
 }

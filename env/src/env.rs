@@ -12,7 +12,7 @@ use crate::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
 use crate::mount::Mount;
 use crate::nudge::{NudgeEvent, NudgeHook};
 use crate::obs::Observation;
-use crate::perception::observe_object;
+use crate::perception::{observe_object, true_object};
 use crate::randomize::Scenario;
 use crate::robot::Robot;
 use crate::sim::Sim;
@@ -336,7 +336,19 @@ impl GraspEnv {
     /// in `base_link`.
     fn observe(&self, joint_velocities: [f64; 6], contacts: &ContactReport) -> Observation {
         let tcp = self.robot.tcp_in_base().xyz();
-        let seen = observe_object(&self.mount, &self.object_in_base(), self.scenario.as_ref());
+        let truth = self.object_in_base();
+        let seen = observe_object(&self.mount, &truth, self.scenario.as_ref());
+        let centre = truth.xyz();
+        let near = |range: f64| {
+            let d = (0..3).map(|i| (centre[i] - tcp[i]).powi(2)).sum::<f64>();
+            d.sqrt() <= range
+        };
+        let wrist_camera = self
+            .config
+            .randomization
+            .wrist_camera
+            .filter(|w| near(w.range))
+            .map(|_| true_object(&self.mount, &truth));
         Observation {
             joints: self.robot.q,
             joint_velocities,
@@ -345,6 +357,7 @@ impl GraspEnv {
             object_yaw: seen.yaw,
             tcp_position: tcp,
             pad_contact: contacts.pad_contact,
+            wrist_camera,
         }
     }
 

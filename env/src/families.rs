@@ -69,6 +69,19 @@ pub struct NudgeConfig {
 
 /// Longest accepted push [m].
 pub const MAX_NUDGE: f64 = 0.15;
+
+/// A wrist camera (`[randomization] wrist_camera = { range }`): once the TCP is within `range`
+/// [m] of the cube's centre, the observation also carries the cube's pose as the wrist camera
+/// sees it, exactly ([`crate::Observation::wrist_camera`]); farther away, nothing. The fixed
+/// camera's view (the observation's cube) keeps its error.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WristCamera {
+    pub range: f64,
+}
+
+/// The longest wrist-camera range accepted [m].
+pub const MAX_WRIST_RANGE: f64 = 0.5;
 /// Smallest accepted `min_tcp_distance` [m].
 pub const MIN_TCP_DISTANCE: f64 = 0.12;
 

@@ -4,6 +4,8 @@
 
 use serde::Serialize;
 
+use crate::perception::ObservedObject;
+
 /// Number of values in the flat observation.
 pub const OBS_DIM: usize = 23;
 
@@ -53,6 +55,11 @@ pub struct Observation {
     pub tcp_position: [f64; 3],
     /// Left and right pads touching the object.
     pub pad_contact: [bool; 2],
+    /// The cube as the wrist camera sees it (exactly; `base_link`), when the preset has one and
+    /// the TCP is within its range of the cube; otherwise None. Not part of the flat view
+    /// ([`OBS_NAMES`]): the task-space residual's features carry it
+    /// (`fairgrasp_planner::residual`).
+    pub wrist_camera: Option<ObservedObject>,
 }
 
 impl Observation {
@@ -78,6 +85,7 @@ impl Observation {
             object_yaw: f(16).atan2(f(17)) / 4.0,
             tcp_position: [f(18), f(19), f(20)],
             pad_contact: [a[21] > 0.5, a[22] > 0.5],
+            wrist_camera: None,
         }
     }
 

@@ -15,7 +15,7 @@ use crate::mount::Mount;
 use crate::randomize::Scenario;
 
 /// The object as a policy observes it.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct ObservedObject {
     /// Object centre in `base_link` [m].
     pub position: [f64; 3],

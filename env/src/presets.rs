@@ -6,7 +6,7 @@ use crate::config::EnvConfig;
 use crate::validate::ConfigError;
 
 /// Every preset: name, TOML text, one-line description.
-pub const PRESETS: [(&str, &str, &str); 8] = [
+pub const PRESETS: [(&str, &str, &str); 9] = [
     (
         "fixed",
         include_str!("../../assets/configs/fixed.toml"),
@@ -41,6 +41,11 @@ pub const PRESETS: [(&str, &str, &str); 8] = [
         "miscalibrated_b",
         include_str!("../../assets/configs/miscalibrated_b.toml"),
         "full seen through a miscalibrated camera (cell B: a fixed -2.5° and 0.9 cm error, 2.2 cm median)",
+    ),
+    (
+        "wrist_camera",
+        include_str!("../../assets/configs/wrist_camera.toml"),
+        "full seen by a fixed camera off by N(0, 2 cm) and N(0, 10°) per episode, plus a wrist camera exact within 15 cm",
     ),
     (
         "nudged",

@@ -297,8 +297,18 @@ impl EnvConfig {
 
     /// The scenario families' fields ([`crate::families`]).
     fn validate_families(&self) -> Result<(), ConfigError> {
-        use crate::families::{MAX_CAMERA_SHIFT, MAX_CAMERA_YAW, MAX_NUDGE, MIN_TCP_DISTANCE};
+        use crate::families::{
+            MAX_CAMERA_SHIFT, MAX_CAMERA_YAW, MAX_NUDGE, MAX_WRIST_RANGE, MIN_TCP_DISTANCE,
+        };
         let r = &self.randomization;
+        if let Some(w) = &r.wrist_camera {
+            check(
+                w.range.is_finite() && w.range > 0.0 && w.range <= MAX_WRIST_RANGE,
+                "randomization.wrist_camera.range",
+                w.range,
+                "must be in (0, 0.5] m",
+            )?;
+        }
         if let Some(c) = &r.camera_offset {
             check(
                 c.origin.iter().all(|v| v.is_finite() && v.abs() <= 2.0),

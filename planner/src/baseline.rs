@@ -74,6 +74,10 @@ pub enum Phase {
     Failed,
 }
 
+/// Distances [m] across the table, nearest first, at which [`ScriptedGrasp`] looks for a
+/// graspable pose when the observed cube admits none (8 directions each).
+pub const NEAREST_GRASP_SEARCH: [f64; 5] = [0.005, 0.01, 0.015, 0.02, 0.03];
+
 /// When the gripper closes, as a residual may shift it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -204,21 +208,39 @@ impl ScriptedGrasp {
         self.trajectory.as_ref()
     }
 
-    /// The grasp's joint targets for the object in `obs`, from its joints.
-    /// Remembers the object it was made on ([`ScriptedGrasp::planned_on`]) when it succeeds.
+    /// The grasp's joint targets for the object in `obs`, from its joints. Remembers the object
+    /// pose it was made on ([`ScriptedGrasp::planned_on`]) when it succeeds.
+    ///
+    /// If the observed cube admits no grasp (an observation error can put it beyond reach or
+    /// against the base), the nearest pose that does is planned for instead: the observed one
+    /// moved up to [`NEAREST_GRASP_SEARCH`] across the table, nearest first. A cube that is
+    /// really there lies within the observation's error of such a pose.
     fn plan(&mut self, obs: &Observation) -> Option<GraspJoints> {
-        let joints = self.plan_joints(obs)?;
-        self.planned_on = Some(PlannedObject {
-            position: obs.object_position(),
-            yaw: obs.object_yaw,
-        });
-        Some(joints)
+        let observed = obs.object_position();
+        let shifts = std::iter::once([0.0, 0.0]).chain(NEAREST_GRASP_SEARCH.iter().flat_map(|r| {
+            (0..8).map(move |k| {
+                let a = k as f64 * std::f64::consts::FRAC_PI_4;
+                [r * a.cos(), r * a.sin()]
+            })
+        }));
+        for [dx, dy] in shifts {
+            let d = self.mount.table_in_base.transform_vector([dx, dy, 0.0]);
+            let position = [0, 1, 2].map(|i| observed[i] + d[i]);
+            if let Some(joints) = self.plan_joints(obs, position) {
+                self.planned_on = Some(PlannedObject {
+                    position,
+                    yaw: obs.object_yaw,
+                });
+                return Some(joints);
+            }
+        }
+        None
     }
 
-    fn plan_joints(&self, obs: &Observation) -> Option<GraspJoints> {
+    fn plan_joints(&self, obs: &Observation, object: [f64; 3]) -> Option<GraspJoints> {
         let c = &self.config;
         let target = GraspTarget {
-            object: obs.object_position(),
+            object,
             object_yaw: obs.object_yaw,
             mount: self.mount,
         };

@@ -6,7 +6,8 @@
 //!   [`ClosedLoopConfig::replan_distance`] or turns more than [`ClosedLoopConfig::replan_yaw`]
 //!   from the one its plan was made on, during the approach and the descent; after a missed
 //!   grasp (the gripper closed without both pads on the cube) it opens, rises to the pre-grasp
-//!   of a new plan and descends again, [`ClosedLoopConfig::retries`] times at most;
+//!   of a new plan and descends again, [`ClosedLoopConfig::retries`] times at most; when the
+//!   preset has a wrist camera and it sees the cube, its (exact) view is the estimate;
 //! - the **oracle** is the same closed loop fed the cube's true pose
 //!   ([`Policy::observe_truth`]) instead of the observed one: the ceiling.
 
@@ -114,14 +115,18 @@ impl ClosedLoopGrasp {
         self.replans
     }
 
-    /// The observation with the cube replaced by the estimate this script works on.
+    /// The observation with the cube replaced by the estimate this script works on: the truth
+    /// for the oracle; for the closed loop the wrist camera's view when it has one (it is
+    /// exact), else the observed cube.
     fn estimate(&self, obs: &Observation) -> Observation {
-        match (self.source, self.truth) {
-            (CubeSource::Truth, Some(t)) => Observation {
-                object_rel_tcp: [0, 1, 2].map(|i| t.position[i] - obs.tcp_position[i]),
-                object_yaw: t.yaw,
-                ..*obs
-            },
+        let replaced = |t: &ObservedObject| Observation {
+            object_rel_tcp: [0, 1, 2].map(|i| t.position[i] - obs.tcp_position[i]),
+            object_yaw: t.yaw,
+            ..*obs
+        };
+        match (self.source, self.truth, obs.wrist_camera) {
+            (CubeSource::Truth, Some(t), _) => replaced(&t),
+            (CubeSource::Observed, _, Some(w)) => replaced(&w),
             _ => *obs,
         }
     }

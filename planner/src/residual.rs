@@ -22,7 +22,9 @@
 //!
 //! The policy sees, besides the observation, [`FEATURE_DIM`] values ([`FEATURE_NAMES`]): the
 //! script's phase, how far the observed cube now is from the one the plan was made on (a push
-//! shows here), the correction so far and the filtered close command.
+//! shows here), the correction so far, the filtered close command, and, when the wrist camera
+//! sees the cube ([`Observation::wrist_camera`]), how far its view is from the planned-on cube
+//! (all zero without a wrist view).
 
 use fairgrasp_env::perception::ObservedObject;
 use fairgrasp_env::policy::{Outcome, Policy};
@@ -33,7 +35,7 @@ use crate::baseline::{BaselineConfig, CloseTiming, Phase, ScriptedGrasp};
 use crate::correction::{CorrectionLimits, TaskCorrection};
 
 /// Values the script adds to the policy input.
-pub const FEATURE_DIM: usize = 14;
+pub const FEATURE_DIM: usize = 19;
 
 /// Names of the added values, in order.
 pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
@@ -51,6 +53,11 @@ pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
     "correction_z",
     "correction_yaw",
     "close_signal",
+    "wrist_valid",
+    "wrist_offset_x",
+    "wrist_offset_y",
+    "wrist_offset_z",
+    "wrist_turn",
 ];
 
 /// Above this the gripper entry closes now; below its negative it waits.
@@ -167,6 +174,15 @@ impl ResidualScript {
         let c = self.limits.normalized(&self.script.correction());
         out[9..13].copy_from_slice(&c);
         out[13] = self.close_signal;
+        if let (Some(w), Some(p)) = (obs.wrist_camera, self.script.planned_on()) {
+            let offset = [0, 1, 2].map(|i| w.position[i] - p.position[i]);
+            let offset = self.mount.table_in_base.inverse().transform_vector(offset);
+            out[14] = 1.0;
+            for i in 0..3 {
+                out[15 + i] = offset[i] / self.limits.max_offset;
+            }
+            out[18] = wrap_quarter(w.yaw - p.yaw) / self.limits.max_yaw;
+        }
     }
 }
 

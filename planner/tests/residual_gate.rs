@@ -175,7 +175,7 @@ fn the_features_show_a_push_and_the_correction() {
 
 #[test]
 fn the_oracle_residual_reaches_97_percent_on_each_family_through_the_interface() {
-    for name in ["miscalibrated", "miscalibrated_b", "nudged"] {
+    for name in ["miscalibrated", "miscalibrated_b", "nudged", "wrist_camera"] {
         let config = presets::load(name).unwrap();
         let mut env = GraspEnv::new(config.clone()).unwrap();
         let scenarios =
@@ -192,4 +192,45 @@ fn the_oracle_residual_reaches_97_percent_on_each_family_through_the_interface()
         );
         assert!(report.success_rate >= 0.97, "{name}: {:?}", report.outcomes);
     }
+}
+
+#[test]
+fn the_wrist_view_enters_the_features_only_when_the_camera_sees_the_cube() {
+    let config = presets::load("wrist_camera").unwrap();
+    let range = config.randomization.wrist_camera.unwrap().range;
+    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let s = &scenario_set(&config, env.model(), env.base_in_world(), 2, 1).unwrap()[0];
+    let (mut obs, _) = env.reset_to(s);
+    let mut residual = ResidualScript::new(&config);
+    residual.reset(s.seed);
+    let mut f = [0.0; FEATURE_DIM];
+    let (mut seen, mut unseen) = (0, 0);
+    for _ in 0..80 {
+        let a = residual.act(&obs, &[0.0; 7]);
+        obs = env.step(&a).unwrap().obs;
+        residual.write_features(&obs, &mut f);
+        let truth = env.object_in_base().xyz();
+        let d = (0..3)
+            .map(|i| (truth[i] - obs.tcp_position[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        match obs.wrist_camera {
+            Some(w) => {
+                assert!(d <= range + 1e-9, "seen from {d} m");
+                // Exact: the truth, not the fixed camera's erroneous view.
+                assert!((0..3).all(|i| (w.position[i] - truth[i]).abs() < 1e-9));
+                assert_eq!(f[14], 1.0);
+                let planned = residual.script().planned_on().unwrap();
+                let dx = (w.position[0] - planned.position[0]) / residual.limits().max_offset;
+                assert!((f[15] - dx).abs() < 1e-9, "{f:?}");
+                seen += 1;
+            }
+            None => {
+                assert!(d > range, "not seen from {d} m");
+                assert!(f[14..].iter().all(|v| *v == 0.0), "{f:?}");
+                unseen += 1;
+            }
+        }
+    }
+    assert!(seen > 0 && unseen > 0, "seen {seen}, unseen {unseen}");
 }
