@@ -135,6 +135,46 @@ impl AgentConfig {
         }
     }
 
+    /// The names of the policy input's entries, in order: the observation's
+    /// ([`fairgrasp_env::obs::OBS_NAMES`]), then the script's part (`baseline_action_0` … `_6`,
+    /// or [`fairgrasp_planner::residual::FEATURE_NAMES`]).
+    pub fn input_names(&self) -> Vec<String> {
+        let mut names: Vec<String> = fairgrasp_env::obs::OBS_NAMES
+            .iter()
+            .map(|n| n.to_string())
+            .collect();
+        match (self.mode, self.action_space) {
+            (Mode::Pure, _) => {}
+            (Mode::Residual, ActionSpace::Joint) => {
+                names.extend((0..ACT_DIM).map(|i| format!("baseline_action_{i}")));
+            }
+            (Mode::Residual, ActionSpace::Tcp) => {
+                names.extend(
+                    fairgrasp_planner::residual::FEATURE_NAMES
+                        .iter()
+                        .map(|n| n.to_string()),
+                );
+            }
+        }
+        names
+    }
+
+    /// The input entries whose names start with `prefix` (an ablation masks them), or an error
+    /// listing the names.
+    pub fn input_indices(&self, prefix: &str) -> Result<Vec<usize>, String> {
+        let names = self.input_names();
+        let found: Vec<usize> = (0..names.len())
+            .filter(|&i| !prefix.is_empty() && names[i].starts_with(prefix))
+            .collect();
+        if found.is_empty() {
+            return Err(format!(
+                "no policy input starts with `{prefix}`; the inputs are: {}",
+                names.join(", ")
+            ));
+        }
+        Ok(found)
+    }
+
     /// [`AgentConfig::write_input`] into a new vector.
     pub fn input(
         &self,
@@ -206,6 +246,8 @@ pub struct GraspAgent {
     script: Option<Script>,
     action_map: Option<ActionMap>,
     mean_action: MeanAction,
+    /// Input entries set to 0 before the policy sees them (an ablation).
+    masked: Vec<usize>,
 }
 
 impl GraspAgent {
@@ -216,7 +258,17 @@ impl GraspAgent {
             action_map: agent.action_map(env),
             agent,
             mean_action,
+            masked: Vec::new(),
         }
+    }
+
+    /// The same agent with the input entries `masked` (indices, see
+    /// [`AgentConfig::input_indices`]) set to 0 — for a residual's features, what it sees when
+    /// they carry no information (no push, no wrist view). An ablation: what is the policy
+    /// worth without them?
+    pub fn with_masked_inputs(mut self, masked: Vec<usize>) -> Self {
+        self.masked = masked;
+        self
     }
 }
 
@@ -229,7 +281,12 @@ impl Policy for GraspAgent {
 
     fn act(&mut self, obs: &Observation) -> Action {
         let base = self.script.as_mut().and_then(|s| s.prepare(obs));
-        let input = self.agent.input(obs, self.script.as_ref(), base.as_ref());
+        let mut input = self.agent.input(obs, self.script.as_ref(), base.as_ref());
+        for &i in &self.masked {
+            if let Some(v) = input.get_mut(i) {
+                *v = 0.0;
+            }
+        }
         let out = (self.mean_action)(&input);
         self.agent.env_action(
             obs,

@@ -3,7 +3,7 @@
 
 use burn::tensor::Device;
 use fairgrasp_env::config::ActionSpace;
-use fairgrasp_env::policy::run_episode;
+use fairgrasp_env::policy::{Policy, run_episode};
 use fairgrasp_env::randomize::scenario_set;
 use fairgrasp_env::{GraspEnv, presets};
 use fairgrasp_planner::residual::FEATURE_DIM;
@@ -118,4 +118,59 @@ fn a_task_residual_trains_and_its_checkpoint_reloads() {
     assert_eq!(meta.input_dim, OBS_DIM + FEATURE_DIM);
     assert_eq!(meta.timesteps, 64);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn input_names_match_the_input_and_a_mask_prefix_must_name_some() {
+    for agent in [
+        task_residual(),
+        AgentConfig::default(),
+        AgentConfig {
+            mode: Mode::Pure,
+            ..AgentConfig::default()
+        },
+    ] {
+        assert_eq!(agent.input_names().len(), agent.input_dim(), "{agent:?}");
+    }
+    let agent = task_residual();
+    let wrist = agent.input_indices("wrist").unwrap();
+    assert_eq!(wrist, (OBS_DIM + 14..OBS_DIM + FEATURE_DIM).collect::<Vec<_>>());
+    let e = agent.input_indices("wirst").unwrap_err();
+    assert!(e.contains("wirst") && e.contains("wrist_valid"), "{e}");
+    assert!(AgentConfig::default().input_indices("wrist").is_err());
+}
+
+#[test]
+fn masking_the_wrist_view_changes_nothing_before_the_wrist_camera_sees_the_cube() {
+    // A random (non-zero) actor, so the features matter; the wrist camera preset.
+    let config = presets::load("wrist_camera").unwrap();
+    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let s = &scenario_set(&config, env.model(), env.base_in_world(), 3, 1).unwrap()[0];
+    let (meta, model) = fresh(task_residual(), false);
+    let wrist = meta.agent.input_indices("wrist").unwrap();
+    let mut plain = agent_policy(&meta, &model, &config);
+    let mut masked = agent_policy(&meta, &model, &config).with_masked_inputs(wrist);
+    let (mut obs, _) = env.reset_to(s);
+    plain.reset(s.seed);
+    masked.reset(s.seed);
+    // Until the first wrist view both agents see the same input; from then on the masked one
+    // acts on a different input (and its correction drifts from what the env does).
+    let (mut same_unseen, mut differ_seen, mut viewed) = (true, false, false);
+    for _ in 0..120 {
+        let a = plain.act(&obs);
+        let b = masked.act(&obs);
+        viewed |= obs.wrist_camera.is_some();
+        if viewed {
+            differ_seen |= a != b;
+        } else {
+            same_unseen &= a == b;
+        }
+        let step = env.step(&a).unwrap();
+        if step.terminated || step.truncated {
+            break;
+        }
+        obs = step.obs;
+    }
+    assert!(same_unseen, "masking changed an action without a wrist view");
+    assert!(differ_seen, "masking never mattered");
 }

@@ -110,6 +110,11 @@ pub struct EvalArgs {
     /// residual policy (built into the binary; assets/policies/residual_hard in the sources).
     #[arg(long, value_name = "DIR")]
     policy: Option<PathBuf>,
+    /// Ablation: set every policy input whose name starts with NAME to 0 (e.g. `wrist` for the
+    /// wrist camera's features of a task-space residual, `cube_moved` for the push). Repeat for
+    /// several. An unknown name is refused with the list of input names.
+    #[arg(long = "mask-input", value_name = "NAME")]
+    mask_input: Vec<String>,
     #[command(flatten)]
     scenarios: ScenarioArgs,
 }
@@ -123,8 +128,20 @@ pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
     };
     let (meta, model) = checkpoint::load_model(&policy, &Device::flex())
         .context("loading the policy (pass --policy DIR to choose one)")?;
-    let method = format!("{} agent ({})", meta.agent.mode, policy.display());
-    let make = |config: &EnvConfig| agent_policy(&meta, &model, config);
-    let extra = serde_json::json!({"policy": policy.display().to_string(), "trained_timesteps": meta.timesteps});
+    let mut masked = Vec::new();
+    for prefix in &a.mask_input {
+        let found = meta
+            .agent
+            .input_indices(prefix)
+            .map_err(|e| anyhow::anyhow!("--mask-input {prefix}: {e}"))?;
+        masked.extend(found);
+    }
+    let mut method = format!("{} agent ({})", meta.agent.mode, policy.display());
+    if !a.mask_input.is_empty() {
+        method += &format!(", inputs masked: {}", a.mask_input.join(", "));
+    }
+    let make =
+        |config: &EnvConfig| agent_policy(&meta, &model, config).with_masked_inputs(masked.clone());
+    let extra = serde_json::json!({"policy": policy.display().to_string(), "trained_timesteps": meta.timesteps, "masked_inputs": a.mask_input});
     evaluate_and_print(&a.scenarios, &method, &make, extra)
 }
