@@ -50,19 +50,29 @@ fn a_copied_binary_run_elsewhere_compares_the_built_in_policies_on_a_built_in_pr
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
     let v: Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(
-        v["methods"],
-        serde_json::json!([
-            "scripted baseline",
-            "residual PPO: residual_hard",
-            "pure PPO: pure_hard"
-        ])
-    );
+    let names = [
+        "residual_miscalibrated",
+        "residual_miscalibrated_b",
+        "residual_nudged",
+        "residual_wrist_camera",
+        "pure_full",
+        "residual_hard",
+    ];
+    let mut methods = vec![
+        "scripted baseline".to_string(),
+        "closed-loop script".into(),
+        "oracle script".into(),
+    ];
+    methods.extend(names.iter().map(|n| {
+        let mode = n.split('_').next().unwrap();
+        format!("{mode} PPO: {n}")
+    }));
+    assert_eq!(v["methods"], serde_json::json!(methods));
 
     // The learned policies are the shipped bytes, unpacked under TMPDIR: nothing is read from
     // the source tree the binary was built in.
-    for (i, name) in ["residual_hard", "pure_hard"].iter().enumerate() {
-        let policy = PathBuf::from(v["results"][i + 1]["policy"].as_str().unwrap());
+    for (i, name) in names.iter().enumerate() {
+        let policy = PathBuf::from(v["results"][i + 3]["policy"].as_str().unwrap());
         assert!(
             policy.starts_with(&tmp) && !policy.starts_with(repo().join("assets")),
             "{}",

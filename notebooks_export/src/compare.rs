@@ -126,9 +126,14 @@ const HEADER: [&str; 7] = [
 
 /// The table as aligned text, one line per method and preset.
 pub fn text_table(c: &Comparison) -> String {
-    let rows: Vec<[String; 7]> = c.results.iter().map(cells).collect();
-    let mut widths = HEADER.map(|h| h.chars().count());
-    for row in &rows {
+    let rows: Vec<Vec<String>> = c.results.iter().map(|r| cells(r).to_vec()).collect();
+    aligned(&HEADER, &rows)
+}
+
+/// A header and rows as columns padded to their widest cell, two spaces apart.
+fn aligned(header: &[&str], rows: &[Vec<String>]) -> String {
+    let mut widths: Vec<usize> = header.iter().map(|h| h.chars().count()).collect();
+    for row in rows {
         for (w, cell) in widths.iter_mut().zip(row) {
             *w = (*w).max(cell.chars().count());
         }
@@ -136,14 +141,15 @@ pub fn text_table(c: &Comparison) -> String {
     let line = |cells: &[String]| {
         let padded: Vec<String> = cells
             .iter()
-            .zip(widths)
+            .zip(&widths)
             .map(|(c, w)| format!("{c}{}", " ".repeat(w - c.chars().count())))
             .collect();
         padded.join("  ").trim_end().to_string() + "\n"
     };
-    let mut out = line(&HEADER.map(String::from));
-    out += &line(&widths.map(|w| "-".repeat(w)));
-    for row in &rows {
+    let head: Vec<String> = header.iter().map(|h| h.to_string()).collect();
+    let mut out = line(&head);
+    out += &line(&widths.iter().map(|w| "-".repeat(*w)).collect::<Vec<_>>());
+    for row in rows {
         out += &line(row);
     }
     out
@@ -210,25 +216,6 @@ pub fn paired_text(c: &Comparison) -> Result<String, fairgrasp_types::PairingErr
     if tests.is_empty() {
         return Ok(String::new());
     }
-    let rows: Vec<[String; 6]> = tests.iter().map(paired_cells).collect();
-    let mut widths = PAIRED_HEADER.map(|h| h.chars().count());
-    for row in &rows {
-        for (w, cell) in widths.iter_mut().zip(row) {
-            *w = (*w).max(cell.chars().count());
-        }
-    }
-    let line = |cells: &[String]| {
-        let padded: Vec<String> = cells
-            .iter()
-            .zip(widths)
-            .map(|(c, w)| format!("{c}{}", " ".repeat(w - c.chars().count())))
-            .collect();
-        padded.join("  ").trim_end().to_string() + "\n"
-    };
-    let mut out = line(&PAIRED_HEADER.map(String::from));
-    out += &line(&widths.map(|w| "-".repeat(w)));
-    for row in &rows {
-        out += &line(row);
-    }
-    Ok(out)
+    let rows: Vec<Vec<String>> = tests.iter().map(|t| paired_cells(t).to_vec()).collect();
+    Ok(aligned(&PAIRED_HEADER, &rows))
 }

@@ -15,7 +15,9 @@ use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 use fairgrasp_kinematics::{ArmKind, ArmModel};
 use serde::Serialize;
 
+pub use crate::correction::CloseTiming;
 use crate::correction::{TaskCorrection, corrected, joint_offset};
+pub use crate::grasp::PlannedObject;
 use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
 use crate::motion::{JointTrajectory, MotionLimits};
 
@@ -77,29 +79,6 @@ pub enum Phase {
 /// Distances [m] across the table, nearest first, at which [`ScriptedGrasp`] looks for a
 /// graspable pose when the observed cube admits none (8 directions each).
 pub const NEAREST_GRASP_SEARCH: [f64; 5] = [0.005, 0.01, 0.015, 0.02, 0.03];
-
-/// When the gripper closes, as a residual may shift it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum CloseTiming {
-    /// When the descent arrives (the script's own timing).
-    #[default]
-    Script,
-    /// Now, if the script is descending (advance the close).
-    Now,
-    /// Not yet: hold open after the descent arrived, up to
-    /// [`BaselineConfig::max_close_delay_steps`] (delay the close).
-    Wait,
-}
-
-/// The object pose a plan was made on, `base_link`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct PlannedObject {
-    /// Object centre [m].
-    pub position: [f64; 3],
-    /// Object yaw about the world vertical, relative to the base's heading [rad].
-    pub yaw: f64,
-}
 
 /// The scripted top-down grasp, as a [`Policy`].
 pub struct ScriptedGrasp {
@@ -176,7 +155,7 @@ impl ScriptedGrasp {
         self.close_timing = timing;
     }
 
-    /// `q` with the correction `c` added (first order, through the Jacobian).
+    /// `q` with the correction `c` added (Newton steps through the Jacobian).
     fn with(&self, q: &[f64; 6], c: &TaskCorrection) -> [f64; 6] {
         corrected(&self.model, &self.mount.table_in_base, q, c)
     }

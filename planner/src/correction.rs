@@ -36,6 +36,20 @@ impl TaskCorrection {
     }
 }
 
+/// When the gripper closes, as a residual may shift it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CloseTiming {
+    /// When the descent arrives (the script's own timing).
+    #[default]
+    Script,
+    /// Now, if the script is descending (advance the close).
+    Now,
+    /// Not yet: hold open after the descent arrived, up to
+    /// [`crate::BaselineConfig::max_close_delay_steps`] (delay the close).
+    Wait,
+}
+
 /// How far and how fast a learned correction may go, and how it follows the policy.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct CorrectionLimits {

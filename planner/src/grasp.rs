@@ -25,6 +25,15 @@ pub struct GraspPoses {
     pub lift: Pose,
 }
 
+/// The object pose a plan was made on, `base_link`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PlannedObject {
+    /// Object centre [m].
+    pub position: [f64; 3],
+    /// Object yaw about the world vertical, relative to the base's heading [rad].
+    pub yaw: f64,
+}
+
 /// Joint targets for the three poses, one IK branch for all.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct GraspJoints {

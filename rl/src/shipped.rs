@@ -15,10 +15,21 @@ use fairgrasp_types::write_atomic;
 /// A policy shipped with fairgrasp.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ShippedPolicy {
-    /// Residual PPO on the `hard` preset (corrections on top of the scripted baseline).
+    /// The first residual (joint-space corrections of the baseline's action) on `hard`: the
+    /// documented negative result (the perception error it would have to fix is unobservable).
     ResidualHard,
-    /// Pure PPO on the `hard` preset (no baseline).
+    /// Pure PPO with the seed recipe's reward on `hard`: the guide's pitfall 2 (it hovers).
     PureHard,
+    /// Pure PPO that grasps: task-space action, staged reward, curriculum, trained on `full`.
+    PureFull,
+    /// The residual with authority (task-space correction) in the miscalibrated cell A.
+    ResidualMiscalibrated,
+    /// The same recipe in cell B (`miscalibrated_b`).
+    ResidualMiscalibratedB,
+    /// The same recipe on `nudged` (the cube pushed during the approach).
+    ResidualNudged,
+    /// The same recipe on `wrist_camera` (a coarse fixed camera and an exact wrist camera).
+    ResidualWristCamera,
 }
 
 /// A file of a shipped policy: its path inside the policy folder, and its bytes.
@@ -62,6 +73,11 @@ macro_rules! policy_files {
 
 const RESIDUAL_HARD: &[File] = policy_files!("residual_hard");
 const PURE_HARD: &[File] = policy_files!("pure_hard");
+const PURE_FULL: &[File] = policy_files!("pure_full");
+const RESIDUAL_MISCALIBRATED: &[File] = policy_files!("residual_miscalibrated");
+const RESIDUAL_MISCALIBRATED_B: &[File] = policy_files!("residual_miscalibrated_b");
+const RESIDUAL_NUDGED: &[File] = policy_files!("residual_nudged");
+const RESIDUAL_WRIST_CAMERA: &[File] = policy_files!("residual_wrist_camera");
 
 /// A shipped policy that could not be unpacked.
 #[derive(Debug, thiserror::Error)]
@@ -73,14 +89,38 @@ pub struct ShippedError {
 }
 
 impl ShippedPolicy {
-    /// Every shipped policy; `fairgrasp compare` compares these by default.
-    pub const ALL: [ShippedPolicy; 2] = [ShippedPolicy::ResidualHard, ShippedPolicy::PureHard];
+    /// Every shipped policy.
+    pub const ALL: [ShippedPolicy; 7] = [
+        ShippedPolicy::ResidualMiscalibrated,
+        ShippedPolicy::ResidualMiscalibratedB,
+        ShippedPolicy::ResidualNudged,
+        ShippedPolicy::ResidualWristCamera,
+        ShippedPolicy::PureFull,
+        ShippedPolicy::ResidualHard,
+        ShippedPolicy::PureHard,
+    ];
+
+    /// What `fairgrasp compare` compares by default: every shipped policy but the pitfall
+    /// exhibit `pure_hard` (0 % everywhere; the guide's pitfall 2 evaluates it).
+    pub const COMPARED: [ShippedPolicy; 6] = [
+        ShippedPolicy::ResidualMiscalibrated,
+        ShippedPolicy::ResidualMiscalibratedB,
+        ShippedPolicy::ResidualNudged,
+        ShippedPolicy::ResidualWristCamera,
+        ShippedPolicy::PureFull,
+        ShippedPolicy::ResidualHard,
+    ];
 
     /// The folder name under `assets/policies/` (also the run-folder label in comparisons).
     pub fn name(self) -> &'static str {
         match self {
             ShippedPolicy::ResidualHard => "residual_hard",
             ShippedPolicy::PureHard => "pure_hard",
+            ShippedPolicy::PureFull => "pure_full",
+            ShippedPolicy::ResidualMiscalibrated => "residual_miscalibrated",
+            ShippedPolicy::ResidualMiscalibratedB => "residual_miscalibrated_b",
+            ShippedPolicy::ResidualNudged => "residual_nudged",
+            ShippedPolicy::ResidualWristCamera => "residual_wrist_camera",
         }
     }
 
@@ -88,6 +128,11 @@ impl ShippedPolicy {
         match self {
             ShippedPolicy::ResidualHard => RESIDUAL_HARD,
             ShippedPolicy::PureHard => PURE_HARD,
+            ShippedPolicy::PureFull => PURE_FULL,
+            ShippedPolicy::ResidualMiscalibrated => RESIDUAL_MISCALIBRATED,
+            ShippedPolicy::ResidualMiscalibratedB => RESIDUAL_MISCALIBRATED_B,
+            ShippedPolicy::ResidualNudged => RESIDUAL_NUDGED,
+            ShippedPolicy::ResidualWristCamera => RESIDUAL_WRIST_CAMERA,
         }
     }
 
@@ -120,9 +165,10 @@ pub fn default_policy() -> Result<PathBuf, ShippedError> {
     ShippedPolicy::ResidualHard.checkpoint_dir()
 }
 
-/// Every shipped policy's checkpoint folder: the default of `fairgrasp compare`.
+/// The compared shipped policies' checkpoint folders ([`ShippedPolicy::COMPARED`]): the
+/// default of `fairgrasp compare`.
 pub fn default_compare_policies() -> Result<Vec<PathBuf>, ShippedError> {
-    ShippedPolicy::ALL
+    ShippedPolicy::COMPARED
         .iter()
         .map(|p| p.checkpoint_dir())
         .collect()

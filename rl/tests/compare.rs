@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use fairgrasp_env::presets;
 use fairgrasp_rl::compare::{
-    BASELINE, CompareError, CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, run_comparison,
+    CompareError, CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, SCRIPTS, run_comparison,
 };
 use fairgrasp_rl::shipped::ShippedPolicy;
 use fairgrasp_types::ArmSimulation;
@@ -52,21 +52,23 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
     })
     .unwrap();
     let c = &out.comparison;
-    assert_eq!(c.methods, vec![BASELINE, "residual PPO: residual_hard"]);
+    let agent_name = "residual PPO: residual_hard";
+    let mut methods: Vec<&str> = SCRIPTS.to_vec();
+    methods.push(agent_name);
+    assert_eq!(c.methods, methods);
     assert_eq!(c.presets, vec!["fixed", "seed"]);
-    assert_eq!(episodes_done.load(Ordering::Relaxed), 2 * 2 * 3);
-    assert_eq!(
-        *started.lock().unwrap(),
-        vec![
-            "fixed/scripted baseline",
-            "fixed/residual PPO: residual_hard",
-            "seed/scripted baseline",
-            "seed/residual PPO: residual_hard",
-        ]
-    );
-    assert_eq!(c.results.len(), 4);
+    assert_eq!(episodes_done.load(Ordering::Relaxed), 2 * 4 * 3);
+    let expected: Vec<String> = ["fixed", "seed"]
+        .iter()
+        .flat_map(|p| methods.iter().map(move |m| format!("{p}/{m}")))
+        .collect();
+    assert_eq!(*started.lock().unwrap(), expected);
+    assert_eq!(c.results.len(), 8);
     for p in &c.presets {
-        let [a, b] = [0, 1].map(|i| c.get(&c.methods[i], p).unwrap());
+        for script in SCRIPTS {
+            assert!(c.get(script, p).unwrap().policy.is_none(), "{script}");
+        }
+        let [a, b] = [0, 3].map(|i| c.get(&c.methods[i], p).unwrap());
         let seeds = |r: &fairgrasp_types::MethodResult| {
             r.report
                 .results
@@ -87,12 +89,13 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
         c.run_folders
     );
 
-    // The recorded scenario: the first where the two methods end differently, else 0.
-    let [base, agent] = [0, 1].map(|i| &c.get(&c.methods[i], "seed").unwrap().report.results);
+    // The recorded scenario: the first where the baseline and the learned policy end
+    // differently, else 0; one recording per method.
+    let [base, agent] = [0, 3].map(|i| &c.get(&c.methods[i], "seed").unwrap().report.results);
     let k = (0..3)
         .find(|&i| base[i].outcome != agent[i].outcome)
         .unwrap_or(0);
-    assert_eq!(c.recorded.len(), 2);
+    assert_eq!(c.recorded.len(), 4);
     for (i, (rec, traj)) in c.recorded.iter().zip(&out.episodes).enumerate() {
         let evaluated = &c.get(&c.methods[i], "seed").unwrap().report.results[k];
         assert_eq!((rec.preset.as_str(), rec.episode), ("seed", k));

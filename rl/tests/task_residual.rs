@@ -134,7 +134,10 @@ fn input_names_match_the_input_and_a_mask_prefix_must_name_some() {
     }
     let agent = task_residual();
     let wrist = agent.input_indices("wrist").unwrap();
-    assert_eq!(wrist, (OBS_DIM + 14..OBS_DIM + FEATURE_DIM).collect::<Vec<_>>());
+    assert_eq!(
+        wrist,
+        (OBS_DIM + 14..OBS_DIM + FEATURE_DIM).collect::<Vec<_>>()
+    );
     let e = agent.input_indices("wirst").unwrap_err();
     assert!(e.contains("wirst") && e.contains("wrist_valid"), "{e}");
     assert!(AgentConfig::default().input_indices("wrist").is_err());
@@ -171,6 +174,9 @@ fn masking_the_wrist_view_changes_nothing_before_the_wrist_camera_sees_the_cube(
         }
         obs = step.obs;
     }
-    assert!(same_unseen, "masking changed an action without a wrist view");
+    assert!(
+        same_unseen,
+        "masking changed an action without a wrist view"
+    );
     assert!(differ_seen, "masking never mattered");
 }

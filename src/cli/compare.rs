@@ -19,14 +19,17 @@ use super::baseline::{ArmArg, preset_config, progress_bar};
 #[derive(Args, Debug)]
 pub struct CompareArgs {
     /// Presets (or .toml env configs) to compare on; repeat the flag for several.
-    /// Default: seed, full and hard.
+    /// Default: seed, full, hard and the four scenario families (miscalibrated,
+    /// miscalibrated_b, nudged, wrist_camera).
     #[arg(long = "preset", value_name = "NAME")]
     presets: Vec<String>,
     /// Episodes (scenarios) per preset; every method gets the same ones.
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
     episodes: u32,
-    /// Learned policies (checkpoint folders); repeat for several. Default: the shipped residual
-    /// and pure-PPO policies (assets/policies/, built into the binary).
+    /// Learned policies (checkpoint folders); repeat for several. Default: the shipped policies
+    /// (assets/policies/, built into the binary; all but the pitfall exhibit pure_hard). Every
+    /// comparison also runs the three scripts: the open-loop baseline, the closed-loop script
+    /// and the oracle.
     #[arg(long = "policy", value_name = "DIR")]
     policies: Vec<PathBuf>,
     /// Seed of the scenario sets.
@@ -52,7 +55,17 @@ pub struct CompareArgs {
 
 pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     let names = if a.presets.is_empty() {
-        vec!["seed".to_string(), "full".into(), "hard".into()]
+        [
+            "seed",
+            "full",
+            "hard",
+            "miscalibrated",
+            "miscalibrated_b",
+            "nudged",
+            "wrist_camera",
+        ]
+        .map(String::from)
+        .to_vec()
     } else {
         a.presets.clone()
     };

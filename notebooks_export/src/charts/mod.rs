@@ -58,8 +58,9 @@ pub(crate) fn line_mark(color: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(
     move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
 }
 
-/// Tableau 10: readable on white, distinguishable in greyscale print by lightness.
-pub const PALETTE: [RGBColor; 8] = [
+/// Tableau 10: readable on white, distinguishable in greyscale print by lightness; ten methods
+/// (three scripts and seven policies) get ten colours before any repeats.
+pub const PALETTE: [RGBColor; 10] = [
     RGBColor(78, 121, 167),
     RGBColor(242, 142, 43),
     RGBColor(89, 161, 79),
@@ -68,6 +69,8 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(118, 183, 178),
     RGBColor(156, 117, 95),
     RGBColor(237, 201, 72),
+    RGBColor(255, 157, 167),
+    RGBColor(186, 176, 172),
 ];
 
 /// The colour of the `i`-th method or run (the same in every chart).

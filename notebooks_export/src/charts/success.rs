@@ -13,35 +13,49 @@ use crate::raster::{FONT, de, render_png};
 /// Pixel size of the success-rate chart.
 pub const SIZE: (u32, u32) = (1000, 560);
 
-/// Draws `success_rate.png`: one group per preset, one bar per method, value on top.
+/// The narrowest bar [px] that carries its value on top ("100.0" at 14 px is ~34 px wide).
+const VALUE_LABEL_MIN_PIXELS: f64 = 34.0;
+
+/// Draws `success_rate.png`: one group per preset, one bar per method, value on top where it
+/// fits, the legend wrapped into as many rows as the methods need.
 pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
     let presets = &c.presets;
     let methods = &c.methods;
     let n = presets.len().max(1) as f64;
     let bar_width = 0.8 / methods.len().max(1) as f64;
+    // Plot area ≈ the image width less the axis label area and margins.
+    let bar_pixels = (SIZE.0 as f64 - 92.0) / n * bar_width;
     let episodes = c.results.first().map_or(0, |r| r.report.episodes);
     render_png(path, SIZE, |root| {
-        let (head, body) = root.split_vertically(80);
+        // The legend in rows under the title, wrapped at the chart's width, clear of the bars.
+        let style = TextStyle::from((FONT, 15).into_font());
+        let mut entries = Vec::new();
+        let (mut x, mut row) = (80, 0);
+        for (m, method) in methods.iter().enumerate() {
+            let (w, _) = root.estimate_text_size(method, &style).map_err(de)?;
+            let width = 22 + w as i32;
+            if x > 80 && x + width > SIZE.0 as i32 - 20 {
+                x = 80;
+                row += 1;
+            }
+            entries.push((m, method, x, 52 + 24 * row));
+            x += width + 30;
+        }
+        let (head, body) = root.split_vertically(80 + 24 * row as u32);
         head.draw(&Text::new(
             format!("Grasp success rate ({episodes} seeded episodes per preset, 95 % CI)"),
             ((SIZE.0 / 2) as i32, 12),
             TextStyle::from((FONT, 24).into_font()).pos(Pos::new(HPos::Center, VPos::Top)),
         ))
         .map_err(de)?;
-        // The legend as one row under the title, clear of the bars.
-        let mut x = 80;
-        for (m, method) in methods.iter().enumerate() {
+        for (m, method, x, y) in entries {
             head.draw(&Rectangle::new(
-                [(x, 52), (x + 16, 68)],
+                [(x, y), (x + 16, y + 16)],
                 series_color(m).filled(),
             ))
             .map_err(de)?;
-            head.draw(&Text::new(method.clone(), (x + 22, 52), (FONT, 15)))
+            head.draw(&Text::new(method.clone(), (x + 22, y), (FONT, 15)))
                 .map_err(de)?;
-            let (w, _) = head
-                .estimate_text_size(method, &TextStyle::from((FONT, 15).into_font()))
-                .map_err(de)?;
-            x += 22 + w as i32 + 30;
         }
         let mut chart = ChartBuilder::on(&body)
             .margin(16)
@@ -107,6 +121,11 @@ pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
                         PathElement::new(vec![(x - cap, hi), (x + cap, hi)], whisker),
                     ])
                     .map_err(de)?;
+                // A value on top only where the bar is wide enough to carry it (the table has
+                // every value).
+                if bar_pixels < VALUE_LABEL_MIN_PIXELS {
+                    continue;
+                }
                 chart
                     .draw_series([Text::new(
                         format!("{:.1}", 100.0 * r.report.success_rate),
