@@ -12,7 +12,7 @@ use crate::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
 use crate::mount::Mount;
 use crate::nudge::{NudgeEvent, NudgeHook};
 use crate::obs::Observation;
-use crate::perception::{observe_object, true_object};
+use crate::perception::{observe_object, wrist_view};
 use crate::randomize::Scenario;
 use crate::robot::Robot;
 use crate::sim::Sim;
@@ -338,17 +338,8 @@ impl GraspEnv {
         let tcp = self.robot.tcp_in_base().xyz();
         let truth = self.object_in_base();
         let seen = observe_object(&self.mount, &truth, self.scenario.as_ref());
-        let centre = truth.xyz();
-        let near = |range: f64| {
-            let d = (0..3).map(|i| (centre[i] - tcp[i]).powi(2)).sum::<f64>();
-            d.sqrt() <= range
-        };
-        let wrist_camera = self
-            .config
-            .randomization
-            .wrist_camera
-            .filter(|w| near(w.range))
-            .map(|_| true_object(&self.mount, &truth));
+        let wrist = self.config.randomization.wrist_camera.as_ref();
+        let wrist_camera = wrist_view(wrist, &self.mount, &truth, tcp);
         Observation {
             joints: self.robot.q,
             joint_velocities,

@@ -12,8 +12,8 @@
 //! Jacobian in `base_link`; near a singularity it trades accuracy for bounded joint rates. The
 //! result is scaled down as a whole (direction kept) if a joint would exceed its velocity limit.
 
-use fairgrasp_kinematics::{ArmModel, EndFrame, Pose};
-use nalgebra::{Matrix6, Vector3, Vector6};
+use fairgrasp_kinematics::{ArmModel, EndFrame, Pose, damped_least_squares};
+use nalgebra::{Vector3, Vector6};
 
 /// Damping λ of the least-squares map (mixed units: m and rad).
 pub const DAMPING: f64 = 0.01;
@@ -62,11 +62,9 @@ pub fn joint_velocities(
         linear.x, linear.y, linear.z, angular.x, angular.y, angular.z,
     );
     let j = model.jacobian(q, EndFrame::Tcp);
-    let damped = j * j.transpose() + Matrix6::identity() * DAMPING * DAMPING;
-    let Some(solve) = damped.cholesky() else {
+    let Some(qd) = damped_least_squares(&j, &twist, DAMPING) else {
         return [0.0; 6];
     };
-    let qd = j.transpose() * solve.solve(&twist);
     let mut out: [f64; 6] = std::array::from_fn(|i| qd[i]);
     let over = (0..6)
         .map(|i| out[i].abs() / model.joints[i].max_velocity)

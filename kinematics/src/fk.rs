@@ -133,6 +133,19 @@ impl ArmModel {
     }
 }
 
+/// The damped least-squares solution of `J Δq = e`: `Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e` (λ = `damping`,
+/// mixed units m and rad). Near a singularity it trades accuracy for a bounded `Δq`. None if the
+/// damped matrix is not positive definite (only for a non-finite `J` or `λ = 0` at a singularity).
+pub fn damped_least_squares(
+    jacobian: &Matrix6<f64>,
+    error: &nalgebra::Vector6<f64>,
+    damping: f64,
+) -> Option<nalgebra::Vector6<f64>> {
+    let damped = jacobian * jacobian.transpose() + Matrix6::identity() * damping * damping;
+    let solve = damped.cholesky()?;
+    Some(jacobian.transpose() * solve.solve(error))
+}
+
 /// Yoshikawa's manipulability `sqrt(det(J·Jᵀ))` (mixed units: it is a product of singular
 /// values; compare values only for the same frame and arm). Zero at a singularity.
 pub fn manipulability(jacobian: &Matrix6<f64>) -> f64 {

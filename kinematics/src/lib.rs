@@ -49,7 +49,7 @@ mod urdf_check;
 mod urdf_error;
 
 pub use analytic_ik::{AnalyticIkOptions, IkError, IkSolution, nearest_solution};
-pub use fk::{EndFrame, manipulability, min_singular_value};
+pub use fk::{EndFrame, damped_least_squares, manipulability, min_singular_value};
 pub use model::{ArmKind, ArmModel};
 pub use pose::{Pose, base_to_world, world_to_base};
 pub use qp_ik::{QpIkError, QpIkOptions, QpIkSolution};

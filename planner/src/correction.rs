@@ -7,8 +7,8 @@
 //! rotation in `base_link`): kinematics first. (One step alone, the first-order map, is off by
 //! ~3 mm for a 3.7 cm offset; three are exact to micrometres.)
 
-use fairgrasp_kinematics::{ArmModel, EndFrame, Pose};
-use nalgebra::{Matrix6, Vector3, Vector6};
+use fairgrasp_kinematics::{ArmModel, EndFrame, Pose, damped_least_squares};
+use nalgebra::{Vector3, Vector6};
 use serde::Serialize;
 
 /// Damping λ of the least-squares map (mixed units: m and rad); as the env's TCP action.
@@ -148,11 +148,9 @@ pub fn corrected(
         let dr = (target_rotation * now.rotation.inverse()).scaled_axis();
         let error = Vector6::new(dp.x, dp.y, dp.z, dr.x, dr.y, dr.z);
         let j = model.jacobian(&out, EndFrame::Tcp);
-        let damped = j * j.transpose() + Matrix6::identity() * DAMPING * DAMPING;
-        let Some(solve) = damped.cholesky() else {
+        let Some(dq) = damped_least_squares(&j, &error, DAMPING) else {
             return out;
         };
-        let dq = j.transpose() * solve.solve(&error);
         for (v, d) in out.iter_mut().zip(dq.iter()) {
             *v += d;
         }

@@ -100,16 +100,11 @@ impl ShippedPolicy {
         ShippedPolicy::PureHard,
     ];
 
-    /// What `fairgrasp compare` compares by default: every shipped policy but the pitfall
+    /// Whether `fairgrasp compare` compares it by default: every shipped policy but the pitfall
     /// exhibit `pure_hard` (0 % everywhere; the guide's pitfall 2 evaluates it).
-    pub const COMPARED: [ShippedPolicy; 6] = [
-        ShippedPolicy::ResidualMiscalibrated,
-        ShippedPolicy::ResidualMiscalibratedB,
-        ShippedPolicy::ResidualNudged,
-        ShippedPolicy::ResidualWristCamera,
-        ShippedPolicy::PureFull,
-        ShippedPolicy::ResidualHard,
-    ];
+    pub fn compared_by_default(self) -> bool {
+        self != ShippedPolicy::PureHard
+    }
 
     /// The folder name under `assets/policies/` (also the run-folder label in comparisons).
     pub fn name(self) -> &'static str {
@@ -165,11 +160,13 @@ pub fn default_policy() -> Result<PathBuf, ShippedError> {
     ShippedPolicy::ResidualHard.checkpoint_dir()
 }
 
-/// The compared shipped policies' checkpoint folders ([`ShippedPolicy::COMPARED`]): the
-/// default of `fairgrasp compare`.
+/// The checkpoint folders of the policies compared by default
+/// ([`ShippedPolicy::compared_by_default`], in [`ShippedPolicy::ALL`]'s order): the default of
+/// `fairgrasp compare`.
 pub fn default_compare_policies() -> Result<Vec<PathBuf>, ShippedError> {
-    ShippedPolicy::COMPARED
+    ShippedPolicy::ALL
         .iter()
+        .filter(|p| p.compared_by_default())
         .map(|p| p.checkpoint_dir())
         .collect()
 }
