@@ -1,6 +1,6 @@
 //! A curriculum over the randomisation: fixed → position (optionally through sectors narrowed
 //! around the fixed cube position first) → +yaw → +friction/mass, advancing when the rolling
-//! success rate passes a threshold.
+//! success rate passes a threshold (optionally on each side of the fixed cube's bearing).
 
 use std::collections::VecDeque;
 
@@ -21,6 +21,11 @@ pub struct CurriculumConfig {
     /// from the fixed position to the full sector's radius and angle ranges. Empty: straight
     /// from `fixed` to the whole sector.
     pub position_steps: Vec<f64>,
+    /// Once cube positions vary, advance only when the cubes on *each* side of the fixed cube's
+    /// bearing from the base (left and right) pass the threshold over their own window. Without
+    /// it a policy that grasps on one side only (about half the episodes) can pass a 0.6
+    /// threshold and carry the one-sided skill to the last stage.
+    pub both_sides: bool,
 }
 
 impl Default for CurriculumConfig {
@@ -29,6 +34,7 @@ impl Default for CurriculumConfig {
             threshold: 0.6,
             window: 50,
             position_steps: Vec::new(),
+            both_sides: false,
         }
     }
 }
@@ -69,6 +75,9 @@ pub struct Curriculum {
     fixed_xy: [f64; 2],
     stage: usize,
     recent: VecDeque<bool>,
+    /// Outcomes of cubes left of the fixed bearing (index 0) and right of it (index 1); used
+    /// with `both_sides`.
+    sides: [VecDeque<bool>; 2],
 }
 
 impl Curriculum {
@@ -81,6 +90,7 @@ impl Curriculum {
             fixed_xy,
             stage: 0,
             recent: VecDeque::new(),
+            sides: [VecDeque::new(), VecDeque::new()],
         }
     }
 
@@ -106,30 +116,59 @@ impl Curriculum {
 
     /// Success rate over the window so far (0 when empty).
     pub fn success_rate(&self) -> f64 {
-        if self.recent.is_empty() {
-            0.0
-        } else {
-            self.recent.iter().filter(|s| **s).count() as f64 / self.recent.len() as f64
-        }
+        rate(&self.recent)
     }
 
-    /// Records an episode outcome; returns true if this advanced the stage. A stage advances
-    /// only with a full window, which then starts empty again.
+    /// Records an episode outcome without its cube position; returns true if this advanced the
+    /// stage (see [`Curriculum::record_at`]).
     pub fn record(&mut self, success: bool) -> bool {
-        self.recent.push_back(success);
-        while self.recent.len() > self.config.window {
-            self.recent.pop_front();
+        self.record_at(success, None)
+    }
+
+    /// Records an episode outcome and where its cube was (table frame [m], if known); returns
+    /// true if this advanced the stage. A stage advances only with a full window (with
+    /// `both_sides`, once positions vary: a full window on each side, each passing the
+    /// threshold); the windows then start empty again.
+    pub fn record_at(&mut self, success: bool, object_xy: Option<[f64; 2]>) -> bool {
+        let window = self.config.window;
+        let push = |q: &mut VecDeque<bool>| {
+            q.push_back(success);
+            while q.len() > window {
+                q.pop_front();
+            }
+        };
+        push(&mut self.recent);
+        if let Some(side) = object_xy.map(|xy| self.side_of(xy)) {
+            push(&mut self.sides[side]);
         }
-        let full = self.recent.len() == self.config.window;
-        if full
-            && self.success_rate() >= self.config.threshold
-            && self.stage + 1 < self.stage_count()
-        {
+        let passes = |q: &VecDeque<bool>| q.len() == window && rate(q) >= self.config.threshold;
+        let sided = self.config.both_sides && self.stage > 0;
+        let ready = if sided {
+            self.sides.iter().all(passes)
+        } else {
+            passes(&self.recent)
+        };
+        if ready && self.stage + 1 < self.stage_count() {
             self.stage += 1;
             self.recent.clear();
+            self.sides.iter_mut().for_each(VecDeque::clear);
             return true;
         }
         false
+    }
+
+    /// Success rates over the left and right windows so far (0 when empty).
+    pub fn side_success_rates(&self) -> [f64; 2] {
+        [rate(&self.sides[0]), rate(&self.sides[1])]
+    }
+
+    /// 0 when `xy` lies left of (counter-clockwise from) the fixed cube's bearing from the
+    /// base, 1 otherwise.
+    fn side_of(&self, xy: [f64; 2]) -> usize {
+        let bearing = self.fixed_xy[1].atan2(self.fixed_xy[0]);
+        let a = xy[1].atan2(xy[0]) - bearing;
+        let wrapped = a.sin().atan2(a.cos());
+        usize::from(wrapped < 0.0)
     }
 
     /// The randomisation in force at the current stage.
@@ -168,5 +207,14 @@ impl Curriculum {
             },
             _ => t.clone(),
         }
+    }
+}
+
+/// The fraction of successes in `q` (0 when empty).
+fn rate(q: &VecDeque<bool>) -> f64 {
+    if q.is_empty() {
+        0.0
+    } else {
+        q.iter().filter(|s| **s).count() as f64 / q.len() as f64
     }
 }

@@ -224,6 +224,7 @@ fn narrowed_position_stages_widen_from_the_fixed_cube_to_the_whole_sector() {
         threshold: 0.5,
         window: 2,
         position_steps: vec![0.25, 0.5],
+        ..CurriculumConfig::default()
     };
     assert!(config.validate().is_ok());
     let full = RandomizationConfig::full();
@@ -276,6 +277,39 @@ fn narrowed_position_stages_widen_from_the_fixed_cube_to_the_whole_sector() {
             .unwrap_err()
             .contains("curriculum.position_steps")
     );
+}
+
+#[test]
+fn with_both_sides_a_one_sided_policy_stays_in_its_stage() {
+    let config = CurriculumConfig {
+        threshold: 0.6,
+        window: 10,
+        both_sides: true,
+        ..CurriculumConfig::default()
+    };
+    // The fixed cube lies on the +x axis: y > 0 is the left side, y < 0 the right.
+    let mut c = Curriculum::new(config, RandomizationConfig::full(), [0.4, 0.0]);
+    for _ in 0..10 {
+        c.record(true);
+    }
+    assert_eq!(c.stage(), 1, "the fixed stage has no sides");
+    let (left, right) = (Some([0.3, 0.2]), Some([0.3, -0.2]));
+    for _ in 0..50 {
+        c.record_at(true, left);
+        assert!(!c.record_at(false, right), "one side only must not advance");
+    }
+    assert_eq!(c.stage(), 1);
+    assert_eq!(c.side_success_rates(), [1.0, 0.0]);
+    let mut advanced = false;
+    for i in 0..6 {
+        advanced |= c.record_at(true, right);
+        // The right window holds 10 − (i + 1) failures and i + 1 successes: 0.6 at i = 5.
+        assert_eq!(advanced, i == 5, "after {} right successes", i + 1);
+    }
+    assert_eq!(c.stage(), 2);
+    // A cube behind the base on the left (bearing 170°) is still the left side.
+    c.record_at(true, Some([-0.3, 0.05]));
+    assert_eq!(c.side_success_rates(), [1.0, 0.0]);
 }
 
 #[test]

@@ -171,6 +171,7 @@ impl VecEnvironment for GraspVecEnv {
                     success: step.infos[e].success,
                     episode_return: self.returns[e],
                     length: self.lengths[e],
+                    object_xy: step.infos[e].scenario.map(|s| s.object_xy),
                 });
                 self.returns[e] = 0.0;
                 self.lengths[e] = 0;

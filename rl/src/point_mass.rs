@@ -104,6 +104,7 @@ impl VecEnvironment for PointMass {
                     success: false,
                     episode_return: m.episode_return,
                     length: m.t,
+                    object_xy: None,
                 });
                 *m = Self::spawn(&mut self.rng);
             }

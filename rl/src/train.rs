@@ -123,7 +123,7 @@ impl Run<'_> {
         self.meta.obs_norm = self.ppo.obs_norm.clone();
         if let Some(c) = &mut self.curriculum {
             for e in &stats.episodes {
-                c.record(e.success);
+                c.record_at(e.success, e.object_xy);
             }
         }
         let due = config.eval_every > 0

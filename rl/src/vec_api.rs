@@ -71,6 +71,8 @@ pub struct EpisodeStats {
     pub episode_return: f32,
     /// Steps [env steps].
     pub length: usize,
+    /// Where the episode's cube started, table frame [m] (None where there is no cube).
+    pub object_xy: Option<[f64; 2]>,
 }
 
 /// Why a batch of environments could not reset or step.
