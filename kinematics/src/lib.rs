@@ -47,6 +47,7 @@ pub mod qp_ik;
 pub mod urdf;
 mod urdf_check;
 mod urdf_error;
+mod wrist_singular;
 
 pub use analytic_ik::{AnalyticIkOptions, IkError, IkSolution, nearest_solution};
 pub use fk::{EndFrame, damped_least_squares, manipulability, min_singular_value};

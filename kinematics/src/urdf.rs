@@ -1,8 +1,11 @@
 //! Loading any URDF: the joint table, and a serial chain from the root to a tip link with FK.
 //!
-//! Errors name the file, the element and the value at fault.
+//! Errors name the file, the element and the value at fault. Reading and checking take time
+//! linear in the file's length (every look-up by name goes through a hash map), and files larger
+//! than [`MAX_URDF_BYTES`] or nested deeper than [`MAX_NESTING_DEPTH`] are refused.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
+use std::io::Read;
 use std::path::Path;
 
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
@@ -11,6 +14,7 @@ use serde::Serialize;
 use crate::pose::Pose;
 use crate::urdf_check::check_urdf_text;
 
+pub use crate::urdf_check::{MAX_NESTING_DEPTH, MAX_URDF_BYTES};
 pub use crate::urdf_error::UrdfError;
 
 /// A URDF joint type.
@@ -94,17 +98,30 @@ pub struct SerialChain {
 }
 
 impl UrdfRobot {
-    /// Reads and checks a URDF file.
+    /// Reads and checks a URDF file of at most [`MAX_URDF_BYTES`].
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, UrdfError> {
         let file = path.as_ref().display().to_string();
-        let text = std::fs::read_to_string(path.as_ref()).map_err(|e| UrdfError::Read {
+        let read_error = |e: std::io::Error| UrdfError::Read {
             file: file.clone(),
             message: e.to_string(),
-        })?;
+        };
+        let handle = std::fs::File::open(path.as_ref()).map_err(read_error)?;
+        let bytes = handle.metadata().map_err(read_error)?.len();
+        let limit = MAX_URDF_BYTES as u64;
+        if bytes > limit {
+            return Err(UrdfError::TooLarge { file, bytes, limit });
+        }
+        // `take`: a device or a growing file stops one byte past the limit, which the check
+        // in `from_str_named` then refuses.
+        let mut text = String::new();
+        handle
+            .take(limit + 1)
+            .read_to_string(&mut text)
+            .map_err(read_error)?;
         Self::from_str_named(&text, &file)
     }
 
-    /// Parses URDF text; `file` names it in error messages.
+    /// Parses URDF text of at most [`MAX_URDF_BYTES`]; `file` names it in error messages.
     pub fn from_str_named(text: &str, file: &str) -> Result<Self, UrdfError> {
         check_urdf_text(file, text)?;
         let robot = urdf_rs::read_from_string(text).map_err(|e| UrdfError::Parse {
@@ -152,18 +169,18 @@ impl UrdfRobot {
     }
 
     fn only_leaf(&self) -> Result<String, UrdfError> {
+        let children_of = child_joints(&self.joints);
         let mut link = self.root.as_str();
         loop {
-            let children: Vec<&UrdfJoint> =
-                self.joints.iter().filter(|j| j.parent == link).collect();
-            match children.as_slice() {
+            let children = children_of.get(link).map_or(&[][..], Vec::as_slice);
+            match children {
                 [] => return Ok(link.to_string()),
                 [only] => link = &only.child,
                 many => {
                     return Err(UrdfError::NonSerial {
                         file: self.file.clone(),
                         link: link.to_string(),
-                        children: many.iter().map(|j| j.name.clone()).collect(),
+                        children: many.iter().map(|&j| j.name.clone()).collect(),
                     });
                 }
             }
@@ -171,12 +188,22 @@ impl UrdfRobot {
     }
 }
 
+/// The joints whose parent is each link, in the order of `joints`.
+fn child_joints(joints: &[UrdfJoint]) -> HashMap<&str, Vec<&UrdfJoint>> {
+    let mut children: HashMap<&str, Vec<&UrdfJoint>> = HashMap::new();
+    for joint in joints {
+        children.entry(&joint.parent).or_default().push(joint);
+    }
+    children
+}
+
 fn build_tree(file: &str, robot: urdf_rs::Robot) -> Result<UrdfRobot, UrdfError> {
     let links: Vec<String> = robot.links.iter().map(|l| l.name.clone()).collect();
+    let known_links: HashSet<&str> = links.iter().map(String::as_str).collect();
     let mut parent_of: HashMap<&str, &str> = HashMap::new();
     for j in &robot.joints {
         for (role, link) in [("parent", &j.parent.link), ("child", &j.child.link)] {
-            if !links.contains(link) {
+            if !known_links.contains(link.as_str()) {
                 return Err(UrdfError::MissingLink {
                     file: file.to_string(),
                     joint: j.name.clone(),
@@ -237,16 +264,21 @@ fn build_tree(file: &str, robot: urdf_rs::Robot) -> Result<UrdfRobot, UrdfError>
     })
 }
 
-/// The joints reachable from `root`, each right after the branch that leads to it.
+/// The joints reachable from `root`, each right after the branch that leads to it (pre-order,
+/// siblings in file order). An explicit stack, not recursion: a chain of thousands of joints
+/// must not overflow the call stack.
 fn depth_first(pool: &[UrdfJoint], root: &str) -> Vec<UrdfJoint> {
-    fn visit(link: &str, pool: &[UrdfJoint], out: &mut Vec<UrdfJoint>) {
-        for j in pool.iter().filter(|j| j.parent == link) {
-            out.push(j.clone());
-            visit(&j.child, pool, out);
-        }
-    }
+    let children_of = child_joints(pool);
+    let children = |link: &str| children_of.get(link).map_or(&[][..], Vec::as_slice);
     let mut ordered = Vec::with_capacity(pool.len());
-    visit(root, pool, &mut ordered);
+    let mut stack: Vec<&UrdfJoint> = children(root).iter().rev().copied().collect();
+    while let Some(joint) = stack.pop() {
+        ordered.push(joint.clone());
+        if ordered.len() > pool.len() {
+            break; // a cycle below the root; the caller reports it
+        }
+        stack.extend(children(&joint.child).iter().rev());
+    }
     ordered
 }
 
@@ -265,10 +297,16 @@ fn convert_joint(file: &str, j: &urdf_rs::Joint) -> Result<UrdfJoint, UrdfError>
         joint: j.name.clone(),
         problem,
     };
+    // Scaled by its largest component first, so that 1e200 does not overflow the norm.
     let axis = Vector3::from(j.axis.xyz.0);
+    let largest = axis.amax();
+    let axis = if largest > 0.0 { axis / largest } else { axis };
     let norm = axis.norm();
-    if kind.is_single_axis() && norm < 1e-9 {
-        return Err(bad("its axis is zero".to_string()));
+    if kind.is_single_axis() && largest < 1e-9 {
+        let [x, y, z] = j.axis.xyz.0;
+        return Err(bad(format!(
+            "its axis is zero: <axis xyz=\"{x} {y} {z}\"/>; a unit vector is expected"
+        )));
     }
     let limits = match kind {
         JointKind::Revolute | JointKind::Prismatic => {

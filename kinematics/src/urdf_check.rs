@@ -1,8 +1,15 @@
 //! A first pass over URDF text that names the offending element, attribute and line.
 //!
-//! `urdf-rs` reports a bad number or an unknown joint type without saying where; this pass reads
-//! the XML once, checks every joint type and every numeric attribute, and reports the first fault
-//! as `line N, joint 'j2' <origin xyz="0 0 abc">: …`.
+//! `urdf-rs` reports a bad number or an unknown joint type without saying where, and it builds a
+//! tree with one level of recursion per level of nesting. This pass reads the XML once, in time
+//! linear in its length and with no recursion, before `urdf-rs` sees it, and reports the first
+//! fault as `line N: joint 'j2' <origin> xyz="0 0 abc": …`. It checks
+//! - the size ([`MAX_URDF_BYTES`]) and the nesting depth ([`MAX_NESTING_DEPTH`]),
+//! - every joint's type, and that revolute and prismatic joints have a `<limit>`,
+//! - that no two links and no two joints share a name,
+//! - every numeric attribute: the count of numbers, each of them finite.
+
+use std::collections::HashMap;
 
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
@@ -20,13 +27,21 @@ pub const URDF_JOINT_TYPES: [&str; 7] = [
     "spherical",
 ];
 
+/// The largest URDF text read [bytes]. A URDF names its mesh files rather than holding them:
+/// the shipped FR3 file is 8 kB, a humanoid's a few hundred kB.
+pub const MAX_URDF_BYTES: usize = 16 * 1024 * 1024;
+
+/// The deepest element nesting read, `<robot>` being level 1. A URDF needs about 6
+/// (`robot > link > visual > geometry > mesh`); vendor extensions a few more.
+pub const MAX_NESTING_DEPTH: usize = 64;
+
 /// How many numbers an attribute holds, by element and attribute name.
 fn numeric_arity(element: &str, attribute: &str) -> Option<usize> {
     match (element, attribute) {
         ("origin", "xyz" | "rpy") | ("axis", "xyz") | ("box", "size") | ("mesh", "scale") => {
             Some(3)
         }
-        ("color", "rgba") => Some(4),
+        ("color", "rgba") | ("origin", "quat_xyzw") => Some(4),
         ("limit", "lower" | "upper" | "effort" | "velocity")
         | ("mass", "value")
         | ("inertia", "ixx" | "ixy" | "ixz" | "iyy" | "iyz" | "izz")
@@ -34,74 +49,246 @@ fn numeric_arity(element: &str, attribute: &str) -> Option<usize> {
         | ("sphere", "radius")
         | ("mimic", "multiplier" | "offset")
         | ("dynamics", "damping" | "friction")
+        | ("calibration", "rising" | "falling")
         | ("safety_controller", _) => Some(1),
         _ => None,
     }
 }
 
-fn line_of(text: &str, byte: usize) -> usize {
-    1 + text.as_bytes()[..byte.min(text.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
+/// 1-based line numbers of byte offsets, counted incrementally: a pass asking for increasing
+/// offsets reads the text once in all (counting from the start each time was quadratic).
+struct LineCounter<'a> {
+    bytes: &'a [u8],
+    /// Byte offset up to which newlines have been counted.
+    position: usize,
+    /// Line of `position`.
+    line: usize,
 }
 
-/// Checks joint types and numeric attributes; `file` is only used in messages.
+impl<'a> LineCounter<'a> {
+    fn new(text: &'a str) -> Self {
+        Self {
+            bytes: text.as_bytes(),
+            position: 0,
+            line: 1,
+        }
+    }
+
+    fn line_at(&mut self, offset: usize) -> usize {
+        let offset = offset.min(self.bytes.len());
+        if offset < self.position {
+            self.position = 0;
+            self.line = 1;
+        }
+        let newlines = self.bytes[self.position..offset]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
+        self.line += newlines;
+        self.position = offset;
+        self.line
+    }
+}
+
+/// A top-level `<joint>` whose end has not been read yet.
+struct OpenJoint {
+    name: String,
+    kind: String,
+    line: usize,
+    has_limit: bool,
+}
+
+/// The first line each link name and each joint name was defined on.
+#[derive(Default)]
+struct NamesSeen {
+    links: HashMap<String, usize>,
+    joints: HashMap<String, usize>,
+}
+
+/// Checks size, nesting, joint types and limits, unique names and numeric attributes; `file` is
+/// only used in messages.
 pub fn check_urdf_text(file: &str, text: &str) -> Result<(), UrdfError> {
+    if text.len() > MAX_URDF_BYTES {
+        return Err(UrdfError::TooLarge {
+            file: file.to_string(),
+            bytes: text.len() as u64,
+            limit: MAX_URDF_BYTES as u64,
+        });
+    }
     let mut reader = Reader::from_str(text);
+    let mut lines = LineCounter::new(text);
     let mut owner = String::from("robot");
+    // The elements opened and not yet closed: name and line, outermost first.
+    let mut open_elements: Vec<(String, usize)> = Vec::new();
+    let mut names = NamesSeen::default();
+    let mut open_joint: Option<OpenJoint> = None;
     loop {
         let start = reader.buffer_position() as usize;
         let event = reader.read_event().map_err(|e| UrdfError::Xml {
             file: file.to_string(),
-            line: line_of(text, reader.error_position() as usize),
+            line: lines.line_at(reader.error_position() as usize),
             message: e.to_string(),
         })?;
-        let element = match &event {
-            Event::Start(e) | Event::Empty(e) => e.clone(),
-            Event::Eof => return Ok(()),
+        let (element, is_empty) = match &event {
+            Event::Start(e) => (e, false),
+            Event::Empty(e) => (e, true),
+            Event::End(_) => {
+                open_elements.pop();
+                if open_elements.len() == 1
+                    && let Some(joint) = open_joint.take()
+                {
+                    check_limit_present(file, &joint)?;
+                }
+                continue;
+            }
+            Event::Eof => return check_all_closed(file, &open_elements),
             _ => continue,
         };
-        let line = line_of(text, start);
+        let line = lines.line_at(start);
         let name = String::from_utf8_lossy(element.name().as_ref()).into_owned();
-        if name == "link" || name == "joint" {
-            owner = format!(
-                "{name} '{}'",
-                attribute(&element, "name").unwrap_or_default()
-            );
+        let level = open_elements.len() + 1;
+        if level > MAX_NESTING_DEPTH {
+            return Err(UrdfError::TooDeep {
+                file: file.to_string(),
+                line,
+                element: name,
+                depth: level,
+                limit: MAX_NESTING_DEPTH,
+            });
         }
-        if name == "joint" {
-            check_joint_type(file, line, &owner, &element)?;
+        if !is_empty {
+            open_elements.push((name.clone(), line));
         }
-        for attr in element.attributes().flatten() {
-            let key = String::from_utf8_lossy(attr.key.as_ref()).into_owned();
-            let Some(arity) = numeric_arity(&name, &key) else {
-                continue;
+        if level == 2 {
+            // A direct child of <robot>: a link, a joint, a material, a transmission, …
+            let own_name = attribute(element, "name");
+            owner = match &own_name {
+                Some(own_name) => format!("{name} '{own_name}'"),
+                None => name.clone(),
             };
-            let value = attr
-                .unescape_value()
-                .map(|v| v.into_owned())
-                .unwrap_or_default();
-            let numbers: Vec<Option<f64>> = value
-                .split_whitespace()
-                .map(|t| t.parse::<f64>().ok().filter(|v| v.is_finite()))
-                .collect();
-            if numbers.len() != arity || numbers.iter().any(Option::is_none) {
-                let expected = match arity {
-                    1 => "one finite number",
-                    3 => "3 finite numbers separated by spaces",
-                    _ => "4 finite numbers separated by spaces",
-                };
-                return Err(UrdfError::BadValue {
-                    file: file.to_string(),
-                    line,
-                    context: format!("{owner} <{name}>"),
-                    attribute: key,
-                    value,
-                    expected,
-                });
+            if let Some(own_name) = &own_name {
+                check_unique(file, line, &name, own_name, &mut names)?;
             }
+            if name == "joint" {
+                let joint = OpenJoint {
+                    name: own_name.unwrap_or_default(),
+                    kind: check_joint_type(file, line, &owner, element)?,
+                    line,
+                    has_limit: false,
+                };
+                if is_empty {
+                    check_limit_present(file, &joint)?;
+                } else {
+                    open_joint = Some(joint);
+                }
+            }
+        } else if level == 3
+            && name == "limit"
+            && let Some(joint) = open_joint.as_mut()
+        {
+            joint.has_limit = true;
         }
+        check_numbers(file, line, &owner, &name, element)?;
+    }
+}
+
+/// At the end of the text: is every element closed?
+fn check_all_closed(file: &str, open_elements: &[(String, usize)]) -> Result<(), UrdfError> {
+    match open_elements.last() {
+        None => Ok(()),
+        Some((name, line)) => Err(UrdfError::Xml {
+            file: file.to_string(),
+            line: *line,
+            message: format!("<{name}> opened on this line is never closed (the text ends first)"),
+        }),
+    }
+}
+
+fn check_unique(
+    file: &str,
+    line: usize,
+    element: &str,
+    name: &str,
+    seen: &mut NamesSeen,
+) -> Result<(), UrdfError> {
+    let (kind, first_lines) = match element {
+        "link" => ("link", &mut seen.links),
+        "joint" => ("joint", &mut seen.joints),
+        _ => return Ok(()),
+    };
+    if let Some(&first_line) = first_lines.get(name) {
+        return Err(UrdfError::Duplicate {
+            file: file.to_string(),
+            line,
+            kind,
+            name: name.to_string(),
+            first_line,
+        });
+    }
+    first_lines.insert(name.to_string(), line);
+    Ok(())
+}
+
+fn check_limit_present(file: &str, joint: &OpenJoint) -> Result<(), UrdfError> {
+    let needs_limit = joint.kind == "revolute" || joint.kind == "prismatic";
+    if needs_limit && !joint.has_limit {
+        return Err(UrdfError::MissingLimit {
+            file: file.to_string(),
+            line: joint.line,
+            joint: joint.name.clone(),
+            kind: joint.kind.clone(),
+        });
+    }
+    Ok(())
+}
+
+/// Every numeric attribute of `element` holds the count of finite numbers it should.
+fn check_numbers(
+    file: &str,
+    line: usize,
+    owner: &str,
+    name: &str,
+    element: &BytesStart<'_>,
+) -> Result<(), UrdfError> {
+    for attr in element.attributes().flatten() {
+        let key = String::from_utf8_lossy(attr.key.as_ref()).into_owned();
+        let Some(arity) = numeric_arity(name, &key) else {
+            continue;
+        };
+        let value = attr
+            .unescape_value()
+            .map(|v| v.into_owned())
+            .unwrap_or_default();
+        let mut count = 0;
+        let all_finite = value.split_whitespace().all(|t| {
+            count += 1;
+            t.parse::<f64>().is_ok_and(f64::is_finite)
+        });
+        if count != arity || !all_finite {
+            let expected = match arity {
+                1 => "one finite number",
+                3 => "3 finite numbers separated by spaces",
+                _ => "4 finite numbers separated by spaces",
+            };
+            return Err(UrdfError::BadValue {
+                file: file.to_string(),
+                line,
+                context: format!("{owner} <{name}>"),
+                attribute: key,
+                value: shorten(value),
+                expected,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// A value as quoted in a message: at most 80 characters.
+fn shorten(value: String) -> String {
+    const MAX_CHARS: usize = 80;
+    match value.char_indices().nth(MAX_CHARS) {
+        Some((cut, _)) => format!("{}…", &value[..cut]),
+        None => value,
     }
 }
 
@@ -113,14 +300,15 @@ fn attribute(element: &BytesStart<'_>, key: &str) -> Option<String> {
         .and_then(|a| a.unescape_value().ok().map(|v| v.into_owned()))
 }
 
+/// The joint's `type`, if it is a URDF joint type.
 fn check_joint_type(
     file: &str,
     line: usize,
     owner: &str,
     element: &BytesStart<'_>,
-) -> Result<(), UrdfError> {
+) -> Result<String, UrdfError> {
     match attribute(element, "type") {
-        Some(kind) if URDF_JOINT_TYPES.contains(&kind.as_str()) => Ok(()),
+        Some(kind) if URDF_JOINT_TYPES.contains(&kind.as_str()) => Ok(kind),
         found => Err(UrdfError::UnknownJointType {
             file: file.to_string(),
             line,

@@ -23,6 +23,54 @@ pub enum UrdfError {
         joint: String,
         value: String,
     },
+    /// The text is larger than fairgrasp reads.
+    #[error(
+        "{file}: {bytes} bytes is more than the {limit} bytes fairgrasp reads as a URDF (a URDF names its meshes, it does not hold them)"
+    )]
+    TooLarge {
+        file: String,
+        /// Size of the file or text [bytes].
+        bytes: u64,
+        /// [`crate::urdf::MAX_URDF_BYTES`] [bytes].
+        limit: u64,
+    },
+    /// Elements nest deeper than any URDF does.
+    #[error(
+        "{file}: line {line}: element nesting depth {depth} at <{element}> exceeds the limit of {limit} levels (a URDF needs about 6)"
+    )]
+    TooDeep {
+        file: String,
+        line: usize,
+        /// The element that went over the limit.
+        element: String,
+        /// Its depth, `<robot>` being 1.
+        depth: usize,
+        /// [`crate::urdf::MAX_NESTING_DEPTH`].
+        limit: usize,
+    },
+    /// Two links or two joints share a name.
+    #[error(
+        "{file}: line {line}: a second {kind} named '{name}' (the first is on line {first_line}); {kind} names must be unique"
+    )]
+    Duplicate {
+        file: String,
+        line: usize,
+        /// "link" or "joint".
+        kind: &'static str,
+        name: String,
+        first_line: usize,
+    },
+    /// A revolute or prismatic joint without `<limit>`.
+    #[error(
+        "{file}: line {line}: joint '{joint}' is {kind} but has no <limit>; URDF requires <limit lower=\"…\" upper=\"…\" effort=\"…\" velocity=\"…\"/> for revolute and prismatic joints (use type=\"continuous\" for a joint without position limits)"
+    )]
+    MissingLimit {
+        file: String,
+        line: usize,
+        joint: String,
+        /// "revolute" or "prismatic".
+        kind: String,
+    },
     /// A numeric attribute does not hold the numbers it should.
     #[error("{file}: line {line}: {context} {attribute}=\"{value}\": expected {expected}")]
     BadValue {
