@@ -17,7 +17,11 @@ pub enum ReportError {
     /// A file exists but its content is not what fairgrasp writes.
     #[error("{path}: {what}")]
     Malformed { path: PathBuf, what: String },
-    /// plotters or the image encoder failed.
+    /// The output folder may not be written (it is not ours to replace, it is an input, or its
+    /// parent is not writable), or the finished folder could not be moved into place.
+    #[error("{path}: {what}")]
+    OutputFolder { path: PathBuf, what: String },
+    /// plotters or the image encoder failed, or the chart cannot be drawn from these data.
     #[error("chart {path}: {what}")]
     Chart { path: PathBuf, what: String },
 }

@@ -11,6 +11,8 @@
 //! - [`charts`]: success bars, learning curves, workspace maps, episode charts, GIF replays.
 //! - [`document`], [`notebook`]: the report as Markdown and as nbformat 4.5.
 //! - [`report`]: all of it from a list of folders.
+//! - [`output_folder`], [`folder_marker`]: the output folder, written whole or not at all, and
+//!   never over files fairgrasp did not write.
 //!
 //! Text is drawn with the embedded DejaVu Sans ([`raster::register_fonts`]): no system font is
 //! needed.
@@ -19,7 +21,9 @@ pub mod charts;
 pub mod compare;
 pub mod document;
 pub mod error;
+pub mod folder_marker;
 pub mod notebook;
+pub mod output_folder;
 pub mod raster;
 pub mod report;
 pub mod runs;
@@ -27,5 +31,6 @@ pub mod trajectory;
 
 pub use compare::{Comparison, EpisodeResult, MethodResult, Outcome, RecordedEpisode};
 pub use error::ReportError;
-pub use report::{Input, build_report};
+pub use output_folder::{Existing, StagedFolder};
+pub use report::{Input, build_report, load_inputs, write_report};
 pub use runs::RunFolder;

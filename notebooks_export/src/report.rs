@@ -7,6 +7,7 @@ use crate::compare::{Comparison, markdown_table, paired_markdown};
 use crate::document::{Document, toml_block};
 use crate::error::{ReportError, write_file};
 use crate::notebook::to_notebook;
+use crate::output_folder::{Existing, StagedFolder};
 use crate::runs::RunFolder;
 use crate::trajectory::EpisodeTrajectory;
 
@@ -61,19 +62,64 @@ impl Input {
 /// File name fragments of methods and presets, the same as the comparison's recorded episodes.
 pub use fairgrasp_types::fs::slug;
 
-/// Writes charts, `report.md` and `report.ipynb` for `inputs` into `out`; returns every file
-/// written. All inputs are loaded (and refused if broken) before anything is written.
-pub fn build_report(inputs: &[PathBuf], out: &Path) -> Result<Vec<PathBuf>, ReportError> {
+/// Writes charts, `report.md` and `report.ipynb` for `inputs` into the folder `out`, written
+/// whole or not at all ([`StagedFolder`]; `existing` says whether an earlier fairgrasp report
+/// there may be replaced); returns every file written. All inputs are loaded (and refused if
+/// broken), and `out` is checked, before anything is written; `out` may not be, or contain,
+/// an input.
+pub fn build_report(
+    inputs: &[PathBuf],
+    out: &Path,
+    existing: Existing,
+) -> Result<Vec<PathBuf>, ReportError> {
+    let loaded = load_inputs(inputs, out)?;
+    if let Some(input) = input_inside(inputs, out) {
+        return Err(ReportError::OutputFolder {
+            path: out.to_path_buf(),
+            what: format!(
+                "is (or contains) the input folder {}: writing the report there would replace \
+                 what it reads; choose another --out",
+                input.display()
+            ),
+        });
+    }
+    let staged = StagedFolder::create(out, existing, "fairgrasp report")?;
+    let written = write_report(&loaded, staged.path(), out)?;
+    staged.commit()?;
+    Ok(written.iter().map(|name| out.join(name)).collect())
+}
+
+/// Loads every input folder (see [`Input::load`]); `out` names the report in the error for
+/// an empty list.
+pub fn load_inputs(inputs: &[PathBuf], out: &Path) -> Result<Vec<Input>, ReportError> {
     if inputs.is_empty() {
         return Err(ReportError::NotAReportInput {
             path: out.to_path_buf(),
             what: "no input folder given".into(),
         });
     }
-    let loaded: Vec<Input> = inputs
-        .iter()
-        .map(|p| Input::load(p))
-        .collect::<Result<_, _>>()?;
+    inputs.iter().map(|p| Input::load(p)).collect()
+}
+
+/// The first input that is `out` or lies inside it (both existing).
+fn input_inside<'a>(inputs: &'a [PathBuf], out: &Path) -> Option<&'a PathBuf> {
+    let out = out.canonicalize().ok()?;
+    inputs.iter().find(|input| {
+        input
+            .canonicalize()
+            .is_ok_and(|input| input.starts_with(&out))
+    })
+}
+
+/// Writes charts, `report.md` and `report.ipynb` for the loaded `inputs` into the existing
+/// folder `dir` (a [`StagedFolder`]'s path), which will end up at `shown_as` (the name the
+/// report gives the folder); returns the files written, relative to `dir`.
+pub fn write_report(
+    loaded: &[Input],
+    dir: &Path,
+    shown_as: &Path,
+) -> Result<Vec<String>, ReportError> {
+    let out = dir;
     let mut written = Vec::new();
     let mut doc = Document::new("fairgrasp report: grasping the FR3's cube");
     doc.markdown(
@@ -101,9 +147,11 @@ pub fn build_report(inputs: &[PathBuf], out: &Path) -> Result<Vec<PathBuf>, Repo
                 } else {
                     String::new()
                 };
+                // A comparison read from the folder being written is named by its final name.
+                let shown = if dir == out { shown_as } else { dir.as_path() };
                 comparison_section(
                     &mut doc,
-                    (dir, comparison, trajectories),
+                    (dir, shown, comparison, trajectories),
                     out,
                     &prefix,
                     &mut written,
@@ -131,23 +179,21 @@ pub fn build_report(inputs: &[PathBuf], out: &Path) -> Result<Vec<PathBuf>, Repo
                 .collect::<String>()
         ));
     }
-    let md = out.join("report.md");
-    write_file(&md, doc.to_markdown().as_bytes())?;
-    written.push(md);
-    let nb = out.join("report.ipynb");
+    write_file(&out.join("report.md"), doc.to_markdown().as_bytes())?;
+    written.push("report.md".into());
     let json = serde_json::to_string_pretty(&to_notebook(&doc, out)?).expect("JSON serialises");
-    write_file(&nb, json.as_bytes())?;
-    written.push(nb);
+    write_file(&out.join("report.ipynb"), json.as_bytes())?;
+    written.push("report.ipynb".into());
     Ok(written)
 }
 
-/// Charts and text for one comparison folder.
+/// Charts and text for one comparison folder `dir`, named `shown` in the text.
 fn comparison_section(
     doc: &mut Document,
-    (dir, c, trajectories): (&Path, &Comparison, &[EpisodeTrajectory]),
+    (dir, shown, c, trajectories): (&Path, &Path, &Comparison, &[EpisodeTrajectory]),
     out: &Path,
     prefix: &str,
-    written: &mut Vec<PathBuf>,
+    written: &mut Vec<String>,
 ) -> Result<(), ReportError> {
     let episodes = c.results.first().map_or(0, |r| r.report.episodes);
     doc.markdown(format!(
@@ -173,7 +219,7 @@ fn comparison_section(
     }
     let file = format!("{prefix}success_rate.png");
     success::success_chart(c, &out.join(&file))?;
-    written.push(out.join(&file));
+    written.push(file.clone());
     doc.image(&file, "success rate per method and preset with 95 % CI");
     doc.markdown(
         "**Discussion.** Which preset separates the methods? Are the intervals of two methods \
@@ -188,7 +234,7 @@ fn comparison_section(
     for preset in &c.presets {
         let file = format!("{prefix}workspace_{}.png", slug(preset));
         workspace::workspace_map(c, preset, &out.join(&file))?;
-        written.push(out.join(&file));
+        written.push(file.clone());
         doc.image(&file, &format!("workspace map, preset {preset}"));
     }
     if !c.recorded.is_empty() {
@@ -214,7 +260,7 @@ fn comparison_section(
         episode::episode_chart(trajectory, &title, &out.join(&png))?;
         let gif = format!("replay_{stem}.gif");
         replay::replay_gif(trajectory, &title, &out.join(&gif))?;
-        written.extend([out.join(&png), out.join(&gif)]);
+        written.extend([png.clone(), gif.clone()]);
         doc.markdown(format!("#### {title}"));
         doc.image(&png, &title);
         doc.image(&gif, &format!("replay: {title}"));
@@ -224,7 +270,7 @@ fn comparison_section(
          as fractions); `compare.json` adds every episode's seed, outcome, steps, return and \
          cube start. This cell reads the CSV with Python's standard library only (folder: \
          `{}`).",
-        dir.display()
+        shown.display()
     ));
     // Jupyter runs a notebook from its own folder: name the CSV relative to it when it is there.
     let same = dir
@@ -256,7 +302,7 @@ fn runs_section(
     doc: &mut Document,
     runs: &[RunFolder],
     out: &Path,
-    written: &mut Vec<PathBuf>,
+    written: &mut Vec<String>,
 ) -> Result<(), ReportError> {
     doc.markdown(
         "## Training\n\nOne line per run. PPO's losses are not a measure of progress: the \
@@ -266,7 +312,7 @@ fn runs_section(
     );
     let file = "learning_curves.png";
     curves::learning_curves(runs, &out.join(file))?;
-    written.push(out.join(file));
+    written.push(file.into());
     doc.image(file, "learning curves");
     for run in runs {
         let steps = run

@@ -7,7 +7,7 @@ use std::process::Command;
 
 use base64::Engine;
 use common::{temp_dir, write_comparison, write_run};
-use fairgrasp_report::build_report;
+use fairgrasp_report::{Existing, build_report};
 
 /// The Python interpreter of the project's test venv (created by scripts/python-env.sh).
 fn python_with_nbformat() -> String {
@@ -33,7 +33,7 @@ fn report_from_a_comparison_and_a_run_passes_nbformat_validation() {
     let run = dir.join("run_a").display().to_string();
     write_comparison(&dir.join("cmp"), vec![run]);
     let out = dir.join("out");
-    let written = build_report(&[dir.join("cmp")], &out).unwrap();
+    let written = build_report(&[dir.join("cmp")], &out, Existing::Refuse).unwrap();
     for f in [
         "success_rate.png",
         "workspace_seed.png",
@@ -114,7 +114,12 @@ fn a_broken_input_writes_nothing() {
     let dir = temp_dir("notebook-broken");
     write_comparison(&dir.join("cmp"), Vec::new());
     let out = dir.join("out");
-    let e = build_report(&[dir.join("cmp"), dir.join("missing_run")], &out).unwrap_err();
+    let e = build_report(
+        &[dir.join("cmp"), dir.join("missing_run")],
+        &out,
+        Existing::Refuse,
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("missing_run: no such folder"), "{e}");
     assert!(
         !out.exists(),
@@ -132,7 +137,7 @@ fn a_broken_recorded_episode_stops_the_report_before_any_chart() {
     )
     .unwrap();
     let out = dir.join("out");
-    let e = build_report(&[dir.join("cmp")], &out).unwrap_err();
+    let e = build_report(&[dir.join("cmp")], &out, Existing::Refuse).unwrap_err();
     assert!(
         e.to_string()
             .contains("baseline_hard_ep0.json: not a fairgrasp trajectory JSON"),

@@ -4,10 +4,10 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 use clap::Args;
-use fairgrasp_report::build_report;
 use fairgrasp_report::compare;
+use fairgrasp_report::{Input, StagedFolder, write_report};
 use fairgrasp_rl::compare::{
     CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, run_comparison,
 };
@@ -15,6 +15,7 @@ use fairgrasp_rl::shipped;
 use fairgrasp_types::{ArmSimulation, write_atomic};
 
 use super::baseline::{ArmArg, preset_config, progress_bar};
+use super::report::existing_rule;
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
@@ -41,9 +42,19 @@ pub struct CompareArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
-    /// Output folder: compare.csv, compare.json, charts, replays, report.md, report.ipynb.
+    /// Output folder: compare.csv, compare.json, charts, replays, report.md, report.ipynb. It
+    /// must be new or empty, or (with --force) one an earlier `fairgrasp compare` or `report`
+    /// wrote. It is checked, and DIR.partial-<pid> created next to it, before any episode
+    /// runs; everything is written there and moved into place only when complete, so an error
+    /// or interrupt never leaves old and new files mixed in DIR.
     #[arg(long, value_name = "DIR", default_value = "report")]
     out: PathBuf,
+    /// Replace --out if an earlier `fairgrasp compare` or `fairgrasp report` wrote it (it holds
+    /// a .fairgrasp-report file) and no file in it was edited or added since (an edited
+    /// report.md, your notes, charts drawn into it later with `plot`: these are named and
+    /// nothing is replaced). A folder fairgrasp did not write is never replaced.
+    #[arg(long)]
+    force: bool,
     /// Scenario index (on the last preset) recorded for the episode charts and replays.
     /// Default: the first one where the first two methods end differently, else 0.
     #[arg(long, value_name = "K")]
@@ -99,11 +110,11 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     };
     // Refuse a bad request before loading anything.
     spec.check()?;
-    if a.out.is_file() {
-        bail!("--out {}: is a file, expected a folder", a.out.display());
-    }
     let learned = LearnedPolicy::load_all(&policy_paths)
         .context("loading the policy (pass --policy DIR to choose one)")?;
+    // The output folder is checked and its staging folder created before the episodes run.
+    let staged = StagedFolder::create(&a.out, existing_rule(a.force), "fairgrasp compare")?;
+    let dir = staged.path();
     let methods = fairgrasp_rl::compare::SCRIPTS.len() + learned.len();
     let total = (spec.presets.len() * methods) as u64 * u64::from(a.episodes);
     let bar = progress_bar(total, a.json, "compare");
@@ -113,16 +124,17 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     })?;
     bar.finish_and_clear();
 
-    output.save_episodes(&a.out)?;
+    output.save_episodes(dir)?;
     let comparison = &output.comparison;
-    write_atomic(&a.out.join("compare.json"), comparison.to_json().as_bytes())
-        .with_context(|| format!("writing {}", a.out.join("compare.json").display()))?;
+    write_atomic(&dir.join("compare.json"), comparison.to_json().as_bytes())
+        .with_context(|| format!("writing {}", dir.join("compare.json").display()))?;
     write_atomic(
-        &a.out.join("compare.csv"),
+        &dir.join("compare.csv"),
         compare::to_csv(comparison).as_bytes(),
     )
-    .with_context(|| format!("writing {}", a.out.join("compare.csv").display()))?;
-    let written = build_report(std::slice::from_ref(&a.out), &a.out)?;
+    .with_context(|| format!("writing {}", dir.join("compare.csv").display()))?;
+    let written = write_report(&[Input::load(dir)?], dir, &a.out)?;
+    staged.commit()?;
     if a.json {
         println!("{}", comparison.to_json());
     } else {
@@ -139,13 +151,10 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
             ArmSimulation::from(a.arm)
         );
         println!("Written to {}:", a.out.display());
-        let mut names: Vec<String> = ["compare.csv", "compare.json"].map(String::from).to_vec();
-        names.extend(
-            written
-                .iter()
-                .filter_map(|p| p.strip_prefix(&a.out).ok())
-                .map(|p| p.display().to_string()),
-        );
+        let names = ["compare.csv", "compare.json"]
+            .map(String::from)
+            .into_iter()
+            .chain(written);
         for n in names {
             println!("  {n}");
         }

@@ -8,7 +8,7 @@ use anyhow::bail;
 use clap::Args;
 use fairgrasp_report::charts::{curves, episode, replay};
 use fairgrasp_report::trajectory::EpisodeTrajectory;
-use fairgrasp_report::{RunFolder, build_report};
+use fairgrasp_report::{Existing, RunFolder, build_report};
 
 #[derive(Args, Debug)]
 pub struct PlotArgs {
@@ -21,7 +21,8 @@ pub struct PlotArgs {
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// Also write one replay frame at this step as <episode>_step<N>.png (for documents that
-    /// cannot show GIFs).
+    /// cannot show GIFs). Steps are numbered from 0; a step past an episode's last one is
+    /// refused (the error gives the range) before anything is drawn.
     #[arg(long, value_name = "STEP")]
     still: Option<usize>,
 }
@@ -42,6 +43,19 @@ pub fn run_plot(a: &PlotArgs) -> anyhow::Result<ExitCode> {
         .collect::<Result<_, _>>()?;
     if a.out.is_some() && runs.is_empty() {
         bail!("--out names the learning-curve file, but no run folder was given");
+    }
+    if let Some(step) = a.still {
+        for (path, t) in episodes.iter().zip(&trajectories) {
+            let n = t.rows.len();
+            if step >= n {
+                bail!(
+                    "--still {step}: {} has {n} recorded steps, numbered 0–{}; choose a step in \
+                     that range",
+                    path.display(),
+                    n.saturating_sub(1)
+                );
+            }
+        }
     }
     if let Some(first) = runs.first() {
         let out = a
@@ -86,13 +100,31 @@ pub struct ReportArgs {
     /// `fairgrasp train`).
     #[arg(required = true, value_name = "RUN_OR_COMPARE_DIR")]
     inputs: Vec<PathBuf>,
-    /// Output folder for report.md, report.ipynb and the charts they show.
+    /// Output folder for report.md, report.ipynb and the charts they show. It must be new or
+    /// empty, or (with --force) one an earlier `fairgrasp compare` or `report` wrote; it may not
+    /// be one of the input folders. The report is built next to it in DIR.partial-<pid> and
+    /// moved into place only when complete: an error leaves DIR as it was.
     #[arg(long, value_name = "DIR", default_value = "report")]
     out: PathBuf,
+    /// Replace --out if an earlier `fairgrasp compare` or `fairgrasp report` wrote it (it holds
+    /// a .fairgrasp-report file) and no file in it was edited or added since; otherwise the
+    /// files in the way are named and nothing is replaced. A folder fairgrasp did not write is
+    /// never replaced, --force or not.
+    #[arg(long)]
+    force: bool,
+}
+
+/// `--force` as the report crate's rule for an existing output folder.
+pub fn existing_rule(force: bool) -> Existing {
+    if force {
+        Existing::Replace
+    } else {
+        Existing::Refuse
+    }
 }
 
 pub fn run_report(a: &ReportArgs) -> anyhow::Result<ExitCode> {
-    let written = build_report(&a.inputs, &a.out)?;
+    let written = build_report(&a.inputs, &a.out, existing_rule(a.force))?;
     println!("Written to {}:", a.out.display());
     for p in &written {
         println!("  {}", p.strip_prefix(&a.out).unwrap_or(p).display());

@@ -5,7 +5,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::{draw_legend, line_mark, min_max, padded, series_color};
+use super::axis::Axis;
+use super::{draw_legend, finite_points, line_mark, min_max, series_color};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 use crate::runs::RunFolder;
@@ -49,36 +50,43 @@ pub fn learning_curves(runs: &[RunFolder], path: &Path) -> Result<(), ReportErro
             ))
             .map_err(de)?;
         let panels = body.split_evenly((2, 3));
+        // From 0 (or the first step, if negative) to the last step; one step wide at least.
         let (x_lo, x_hi) = min_max(
             runs.iter()
                 .flat_map(|r| r.metrics.column("timesteps").unwrap_or_default()),
         );
-        let x_hi = if x_hi > x_lo { x_hi } else { x_lo + 1.0 };
+        let x_axis = if x_lo <= x_hi {
+            Axis::new(x_lo.min(0.0), x_hi.max(x_lo.min(0.0) + 1.0))
+        } else {
+            Axis::new(0.0, 1.0)
+        };
         for ((column, caption, y_desc), area) in PANELS.iter().zip(&panels) {
-            let series: Vec<Vec<(f64, f64)>> =
-                runs.iter().map(|r| r.metrics.series(column)).collect();
+            let series: Vec<Vec<(f64, f64)>> = runs
+                .iter()
+                .map(|r| finite_points(r.metrics.series(column)))
+                .collect();
             let eval: Vec<Vec<(f64, f64)>> = runs
                 .iter()
                 .map(|r| {
                     if *column == "success_rate" {
-                        r.metrics.series("eval_success_rate")
+                        finite_points(r.metrics.series("eval_success_rate"))
                     } else {
                         Vec::new()
                     }
                 })
                 .collect();
-            let (y_lo, y_hi) = if *column == "success_rate" {
-                (-0.03, 1.03)
+            let y_axis = if *column == "success_rate" {
+                Axis::new(-0.03, 1.03)
             } else {
-                let (lo, hi) = min_max(series.iter().flatten().map(|p| p.1));
-                padded(lo, hi, 0.08, 1e-3)
+                Axis::fit(series.iter().flatten().map(|p| p.1), 0.08, 1e-3)
             };
+            let (y_lo, y_hi) = y_axis.ends();
             let mut chart = ChartBuilder::on(area)
                 .caption(*caption, (FONT, 18))
                 .margin(10)
                 .x_label_area_size(36)
                 .y_label_area_size(64)
-                .build_cartesian_2d(0.0..x_hi, y_lo..y_hi)
+                .build_cartesian_2d(x_axis, y_axis)
                 .map_err(de)?;
             chart
                 .configure_mesh()
@@ -94,7 +102,7 @@ pub fn learning_curves(runs: &[RunFolder], path: &Path) -> Result<(), ReportErro
                 .map_err(de)?;
             for (i, run) in runs.iter().enumerate() {
                 let color = series_color(i);
-                for (x, _) in run.metrics.stage_changes() {
+                for (x, _) in finite_points(run.metrics.stage_changes()) {
                     chart
                         .draw_series(DashedLineSeries::new(
                             vec![(x, y_lo), (x, y_hi)],
@@ -136,16 +144,16 @@ pub fn learning_curves(runs: &[RunFolder], path: &Path) -> Result<(), ReportErro
 /// Updates averaged by the smoothed line.
 pub const SMOOTHING: usize = 15;
 
-/// Centred moving average over `window` points (shorter at the ends).
+/// Centred moving average over `window` points (shorter at the ends). A mean that overflows
+/// (values near ±1.8e308) is left out of the result.
 pub fn moving_average(points: &[(f64, f64)], window: usize) -> Vec<(f64, f64)> {
     let half = window / 2;
-    (0..points.len())
-        .map(|i| {
-            let part = &points[i.saturating_sub(half)..(i + half + 1).min(points.len())];
-            let mean = part.iter().map(|p| p.1).sum::<f64>() / part.len() as f64;
-            (points[i].0, mean)
-        })
-        .collect()
+    let averaged = (0..points.len()).map(|i| {
+        let part = &points[i.saturating_sub(half)..(i + half + 1).min(points.len())];
+        let mean = part.iter().map(|p| p.1).sum::<f64>() / part.len() as f64;
+        (points[i].0, mean)
+    });
+    finite_points(averaged)
 }
 
 /// `1.2M`, `350k`, `900`.

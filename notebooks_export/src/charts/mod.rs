@@ -1,20 +1,28 @@
 //! PNG charts and the GIF replay, drawn with plotters and the embedded DejaVu font.
+//!
+//! Every chart finishes on any numbers its input holds. Axes are [`axis::Axis`] (bounded tick
+//! computation, overflow-free pixel mapping): finite values of any size are drawn, pinned just
+//! past the axis end when they lie far outside it. Points with a non-finite coordinate (NaN,
+//! ±infinity: an empty `metrics.csv` cell, a value beyond `f64`) are skipped, as if not
+//! recorded; a line joins the points on either side. A request the data cannot meet (a replay
+//! still past the last step, an episode without steps) is refused with an error that names the
+//! allowed range.
 
+pub mod axis;
 pub mod curves;
 pub mod episode;
 pub mod replay;
 pub mod success;
 pub mod workspace;
 
-use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use crate::raster::{FONT, de};
+use axis::{AXIS_LIMIT, Axis};
 use fairgrasp_types::Outcome;
 
-/// Every chart here: f64 × f64 Cartesian axes on the bitmap backend.
-pub(crate) type Chart<'a, 'b> =
-    ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+/// Every chart here: [`Axis`] × [`Axis`] Cartesian coordinates on the bitmap backend.
+pub(crate) type Chart<'a, 'b> = ChartContext<'a, BitMapBackend<'b>, Cartesian2d<Axis, Axis>>;
 
 /// Draws the chart's legend at `position` in the house style (white box, black border).
 pub(crate) fn draw_legend<'a, 'b: 'a>(
@@ -93,19 +101,25 @@ pub fn outcome_color(outcome: Outcome) -> RGBColor {
     }
 }
 
-/// `[lo, hi]` widened by `margin` of its span (and to at least `min_span`).
+/// `[lo, hi]` (each clamped to ±[`AXIS_LIMIT`]) widened by `margin` of its span and to at least
+/// `min_span`; `[0, 1]` so widened when the bounds are not finite or not ordered (no value).
+/// The result is finite for any input.
 pub(crate) fn padded(lo: f64, hi: f64, margin: f64, min_span: f64) -> (f64, f64) {
     let (lo, hi) = if lo.is_finite() && hi.is_finite() && lo <= hi {
-        (lo, hi)
+        (
+            lo.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+            hi.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+        )
     } else {
         (0.0, 1.0)
     };
-    let mid = 0.5 * (lo + hi);
-    let half = (0.5 * (hi - lo)).max(0.5 * min_span) * (1.0 + margin);
+    // Halves first: `lo + hi` and `hi - lo` could overflow.
+    let mid = 0.5 * lo + 0.5 * hi;
+    let half = (0.5 * hi - 0.5 * lo).max(0.5 * min_span) * (1.0 + margin);
     (mid - half, mid + half)
 }
 
-/// The smallest and largest finite value.
+/// The smallest and largest finite value (`(∞, −∞)` when there is none).
 pub(crate) fn min_max(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
     values
         .into_iter()
@@ -115,16 +129,25 @@ pub(crate) fn min_max(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
         })
 }
 
-/// Ranges for an equal-aspect plot of `(x, y)` bounds in a `w × h` pixel area.
+/// Axes for an equal-aspect plot of `(x, y)` bounds (from [`padded`]) in a `w × h` pixel area.
 pub(crate) fn equal_aspect(
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
     (w, h): (f64, f64),
-) -> ((f64, f64), (f64, f64)) {
-    let scale = ((x1 - x0) / w).max((y1 - y0) / h);
-    let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+) -> (Axis, Axis) {
+    let (w, h) = (w.max(1.0), h.max(1.0));
+    let scale = ((0.5 * x1 - 0.5 * x0) / w).max((0.5 * y1 - 0.5 * y0) / h);
+    let (cx, cy) = (0.5 * x0 + 0.5 * x1, 0.5 * y0 + 0.5 * y1);
     (
-        (cx - 0.5 * scale * w, cx + 0.5 * scale * w),
-        (cy - 0.5 * scale * h, cy + 0.5 * scale * h),
+        Axis::new(cx - scale * w, cx + scale * w),
+        Axis::new(cy - scale * h, cy + scale * h),
     )
+}
+
+/// The points whose both coordinates are finite (see the module documentation).
+pub(crate) fn finite_points(points: impl IntoIterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
+    points
+        .into_iter()
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .collect()
 }

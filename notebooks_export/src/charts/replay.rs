@@ -5,7 +5,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::{equal_aspect, min_max, padded};
+use super::{equal_aspect, finite_points, min_max, padded};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, gif_palette, render_gif, render_png};
 use crate::trajectory::{EpisodeTrajectory, StepRecord};
@@ -23,9 +23,16 @@ const GRIPPER: RGBColor = RGBColor(80, 80, 80);
 const CUBE: RGBColor = RGBColor(225, 87, 89);
 const CUBE_EDGE: RGBColor = RGBColor(140, 30, 30);
 
-/// Writes the replay GIF of `t` with `title` above both views.
+/// Writes the replay GIF of `t` with `title` above both views; refuses an episode without
+/// steps.
 pub fn replay_gif(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<(), ReportError> {
     let n = t.rows.len();
+    if n == 0 {
+        return Err(ReportError::chart(
+            path,
+            "the episode has no recorded steps",
+        ));
+    }
     let stride = n.div_ceil(MAX_FRAMES).max(1);
     let frames: Vec<usize> = (0..n).step_by(stride).chain([n - 1]).collect();
     let dt = if n > 1 {
@@ -33,6 +40,7 @@ pub fn replay_gif(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<(),
     } else {
         0.05
     };
+    // Saturating conversion: a NaN or absurd time gives the shortest or longest delay.
     let step_cs = ((100.0 * dt * stride as f64).round() as u16).max(2);
     let mut delays: Vec<u16> = vec![step_cs; frames.len()];
     if let Some(last) = delays.last_mut() {
@@ -53,16 +61,29 @@ pub fn replay_gif(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<(),
     })
 }
 
-/// Writes one frame of the replay (step `step`, clamped to the episode) as a PNG: a still for
-/// documents that cannot show GIFs.
+/// Writes one frame of the replay (row `step` of the episode) as a PNG: a still for documents
+/// that cannot show GIFs. A step past the last row is refused with the allowed range, and
+/// nothing is written.
 pub fn replay_still(
     t: &EpisodeTrajectory,
     title: &str,
     step: usize,
     path: &Path,
 ) -> Result<(), ReportError> {
+    let Some(row) = t.rows.get(step) else {
+        return Err(ReportError::chart(
+            path,
+            match t.rows.len() {
+                0 => "the episode has no recorded steps".to_string(),
+                n => format!(
+                    "step {step} is past the end of the episode: it has {n} recorded steps, \
+                     numbered 0–{}",
+                    n - 1
+                ),
+            },
+        ));
+    };
     let bounds = view_bounds(t);
-    let row = &t.rows[step.min(t.rows.len() - 1)];
     render_png(path, SIZE, |root| draw_frame(t, row, title, &bounds, root))
 }
 
@@ -123,15 +144,16 @@ fn draw_view(
     let (ur, vr) = equal_aspect(
         padded(ur.0, ur.1, 0.08, 0.1),
         padded(vr.0, vr.1, 0.08, 0.1),
-        ((w - 70) as f64, (h - 70) as f64),
+        (f64::from(w) - 70.0, f64::from(h) - 70.0),
     );
     let mut chart = ChartBuilder::on(area)
         .caption(caption, (FONT, 15))
         .margin(6)
         .x_label_area_size(30)
         .y_label_area_size(44)
-        .build_cartesian_2d(ur.0..ur.1, vr.0..vr.1)
+        .build_cartesian_2d(ur, vr)
         .map_err(de)?;
+    let (ur, vr) = (ur.ends(), vr.ends());
     chart
         .configure_mesh()
         .x_labels(5)
@@ -144,10 +166,11 @@ fn draw_view(
         .bold_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(de)?;
+    // Pixels per metre from the axis ends (points far off the axis are pinned near it).
     let px_per_m = {
-        let a = chart.backend_coord(&(0.0, 0.0));
-        let b = chart.backend_coord(&(1.0, 0.0));
-        f64::from(b.0 - a.0).abs()
+        let a = chart.backend_coord(&(ur.0, vr.0));
+        let b = chart.backend_coord(&(ur.1, vr.0));
+        f64::from(b.0 - a.0).abs() / (ur.1 - ur.0)
     };
     let scene = &t.scene;
     if axes[1] == 1 {
@@ -192,9 +215,12 @@ fn draw_view(
     order.sort_by(|a, b| a.0.total_cmp(&b.0));
     for (_, item) in order {
         let Some(i) = item else {
-            // The cube: the convex hull of its projected corners.
+            // The cube: the convex hull of its projected corners (left out if not finite).
             let projected: Vec<(f64, f64)> =
                 corners.iter().map(|p| (p[axes[0]], p[axes[1]])).collect();
+            if projected.len() != finite_points(projected.iter().copied()).len() {
+                continue;
+            }
             let hull = convex_hull(projected);
             chart
                 .draw_series([Polygon::new(hull.clone(), CUBE.filled())])
@@ -215,7 +241,12 @@ fn draw_view(
         };
         let a = (c[axes[0]], c[axes[1]]);
         let b = (c[3 + axes[0]], c[3 + axes[1]]);
-        let r_px = (c[6] * px_per_m).max(1.0);
+        if ![a.0, a.1, b.0, b.1, c[6]].iter().all(|v| v.is_finite()) {
+            continue;
+        }
+        // At most the frame's width: a wider capsule would cover the whole view anyway, and
+        // the rasteriser's work grows with the radius.
+        let r_px = (c[6] * px_per_m).clamp(1.0, f64::from(SIZE.0));
         for (color, extra) in [(BLACK.mix(0.8), 2.0), (fill.mix(1.0), 0.0)] {
             let width = (2.0 * r_px + extra).round() as u32;
             let radius = (r_px + 0.5 * extra).round() as i32;

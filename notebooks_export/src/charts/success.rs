@@ -5,6 +5,7 @@ use std::path::Path;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+use super::axis::Axis;
 use super::series_color;
 use crate::compare::Comparison;
 use crate::error::ReportError;
@@ -61,7 +62,7 @@ pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
             .margin(16)
             .x_label_area_size(40)
             .y_label_area_size(60)
-            .build_cartesian_2d(-0.5..n - 0.5, 0.0..108.0)
+            .build_cartesian_2d(Axis::new(-0.5, n - 0.5), Axis::new(0.0, 108.0))
             .map_err(de)?;
         let names = presets.clone();
         chart
@@ -96,6 +97,8 @@ pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
                 .iter()
                 .enumerate()
                 .filter_map(|(p, preset)| c.get(method, preset).map(|r| (p, r)))
+                // A rate whose percentage is not finite has no bar (see `charts`).
+                .filter(|(_, r)| (100.0 * r.report.success_rate).is_finite())
                 .collect();
             let left = |p: usize| p as f64 - 0.4 + m as f64 * bar_width;
             chart
@@ -114,13 +117,19 @@ pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
                 let cap = 0.15 * bar_width;
                 let (lo, hi) = (100.0 * r.report.ci_low, 100.0 * r.report.ci_high);
                 let whisker = BLACK.stroke_width(2);
-                chart
-                    .draw_series([
-                        PathElement::new(vec![(x, lo), (x, hi)], whisker),
-                        PathElement::new(vec![(x - cap, lo), (x + cap, lo)], whisker),
-                        PathElement::new(vec![(x - cap, hi), (x + cap, hi)], whisker),
-                    ])
-                    .map_err(de)?;
+                let rate = 100.0 * r.report.success_rate;
+                let top = if lo.is_finite() && hi.is_finite() {
+                    chart
+                        .draw_series([
+                            PathElement::new(vec![(x, lo), (x, hi)], whisker),
+                            PathElement::new(vec![(x - cap, lo), (x + cap, lo)], whisker),
+                            PathElement::new(vec![(x - cap, hi), (x + cap, hi)], whisker),
+                        ])
+                        .map_err(de)?;
+                    hi.max(rate)
+                } else {
+                    rate
+                };
                 // A value on top only where the bar is wide enough to carry it (the table has
                 // every value).
                 if bar_pixels < VALUE_LABEL_MIN_PIXELS {
@@ -128,8 +137,8 @@ pub fn success_chart(c: &Comparison, path: &Path) -> Result<(), ReportError> {
                 }
                 chart
                     .draw_series([Text::new(
-                        format!("{:.1}", 100.0 * r.report.success_rate),
-                        (x, hi + 1.5),
+                        format!("{rate:.1}"),
+                        (x, top + 1.5),
                         TextStyle::from((FONT, 14).into_font())
                             .pos(Pos::new(HPos::Center, VPos::Bottom)),
                     )])

@@ -64,7 +64,7 @@ pub fn workspace_map(c: &Comparison, preset: &str, path: &Path) -> Result<(), Re
         let panels = body.split_evenly((1, results.len().max(1)));
         for (r, area) in results.iter().zip(&panels) {
             let (w, h) = area.dim_in_pixel();
-            let (xr, yr) = equal_aspect(xr, yr, ((w - 70) as f64, (h - 90) as f64));
+            let (xr, yr) = equal_aspect(xr, yr, (f64::from(w) - 70.0, f64::from(h) - 90.0));
             let mut chart = ChartBuilder::on(area)
                 .caption(
                     format!(
@@ -77,7 +77,7 @@ pub fn workspace_map(c: &Comparison, preset: &str, path: &Path) -> Result<(), Re
                 .margin(8)
                 .x_label_area_size(34)
                 .y_label_area_size(48)
-                .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+                .build_cartesian_2d(xr, yr)
                 .map_err(de)?;
             draw_axes(&mut chart, "x [m]", "y [m]", Some(5))?;
             let cross = BLACK.stroke_width(2);
@@ -96,6 +96,7 @@ pub fn workspace_map(c: &Comparison, preset: &str, path: &Path) -> Result<(), Re
                             .results
                             .iter()
                             .filter(|e| e.outcome == outcome)
+                            .filter(|e| e.object_xy.iter().all(|v| v.is_finite()))
                             .map(|e| {
                                 let size = if outcome == Outcome::Success { 3 } else { 5 };
                                 Circle::new((e.object_xy[0], e.object_xy[1]), size, color.filled())
