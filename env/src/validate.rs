@@ -9,7 +9,7 @@ use crate::config::{EnvConfig, Range};
 pub enum ConfigError {
     #[error("{field} = {value}: {rule}")]
     Invalid {
-        field: &'static str,
+        field: String,
         value: String,
         rule: &'static str,
     },
@@ -22,7 +22,7 @@ pub const MAX_BASE_TILT: f64 = 15.0 * std::f64::consts::PI / 180.0;
 
 fn check(
     ok: bool,
-    field: &'static str,
+    field: &str,
     value: impl std::fmt::Debug,
     rule: &'static str,
 ) -> Result<(), ConfigError> {
@@ -30,12 +30,124 @@ fn check(
         Ok(())
     } else {
         Err(ConfigError::Invalid {
-            field,
+            field: field.to_string(),
             value: format!("{value:?}"),
             rule,
         })
     }
 }
+
+/// The first non-finite number (inf, −inf, NaN) anywhere in `value`, with its dotted field path
+/// (`physics.dt`, `scene.table_size[1]`). TOML accepts `inf` and `nan` literals, and no field of
+/// any fairgrasp config means anything with them, so one walk refuses them all.
+pub fn first_non_finite(value: &toml::Value) -> Option<(String, f64)> {
+    fn walk(v: &toml::Value, path: &mut String) -> Option<(String, f64)> {
+        match v {
+            toml::Value::Float(f) if !f.is_finite() => Some((path.clone(), *f)),
+            toml::Value::Table(t) => t.iter().find_map(|(k, v)| {
+                let len = path.len();
+                if !path.is_empty() {
+                    path.push('.');
+                }
+                path.push_str(k);
+                let found = walk(v, path);
+                path.truncate(len);
+                found
+            }),
+            toml::Value::Array(a) => a.iter().enumerate().find_map(|(i, v)| {
+                let len = path.len();
+                path.push_str(&format!("[{i}]"));
+                let found = walk(v, path);
+                path.truncate(len);
+                found
+            }),
+            _ => None,
+        }
+    }
+    walk(value, &mut String::new())
+}
+
+/// The first whole number beyond TOML's range (above 9 223 372 036 854 775 807, which serde
+/// still reads into a `u64` or `usize` field) anywhere in `value`, with its dotted path.
+fn first_huge_integer(value: &serde_json::Value, path: &str) -> Option<(String, String)> {
+    let join = |k: &str| {
+        if path.is_empty() {
+            k.to_string()
+        } else {
+            format!("{path}.{k}")
+        }
+    };
+    match value {
+        serde_json::Value::Number(n) if n.as_u64().is_some_and(|u| u > i64::MAX as u64) => {
+            Some((path.to_string(), n.to_string()))
+        }
+        serde_json::Value::Object(o) => o.iter().find_map(|(k, v)| first_huge_integer(v, &join(k))),
+        serde_json::Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .find_map(|(i, v)| first_huge_integer(v, &format!("{path}[{i}]"))),
+        _ => None,
+    }
+}
+
+/// The first number of a configuration that no field accepts, with its dotted path and why:
+/// a non-finite float, or an integer beyond ±9.2·10¹⁸.
+pub fn first_bad_number(config: &impl serde::Serialize) -> Option<(String, String, &'static str)> {
+    if let Ok(json) = serde_json::to_value(config)
+        && let Some((field, value)) = first_huge_integer(&json, "")
+    {
+        return Some((
+            field,
+            value,
+            "must be at most 9223372036854775807 (and within the field's range)",
+        ));
+    }
+    let value = toml::Value::try_from(config).ok()?;
+    first_non_finite(&value).map(|(field, v)| (field, v.to_string(), "must be a finite number"))
+}
+
+/// Refuses any non-finite number or out-of-range integer in a configuration, naming the field.
+pub fn check_all_finite(config: &impl serde::Serialize) -> Result<(), ConfigError> {
+    match first_bad_number(config) {
+        Some((field, value, rule)) => Err(ConfigError::Invalid { field, value, rule }),
+        None => Ok(()),
+    }
+}
+
+/// A TOML error as a message that says where: the parser's own (line, column, the line itself)
+/// or, for the errors it gives without a position (an integer beyond ±9.2·10¹⁸), the first line
+/// holding such an integer.
+pub fn toml_error_message(text: &str, error: &toml::de::Error) -> String {
+    let message = error.to_string();
+    if message.contains("line") {
+        return message;
+    }
+    let too_big = |word: &str| {
+        let digits = word.trim_start_matches(['+', '-']).replace('_', "");
+        !digits.is_empty()
+            && digits.bytes().all(|b| b.is_ascii_digit())
+            && word.replace('_', "").parse::<i64>().is_err()
+    };
+    let found = text.lines().enumerate().find(|(_, line)| {
+        line.split(|c: char| c.is_whitespace() || "=[],{}".contains(c))
+            .any(too_big)
+    });
+    match found {
+        Some((i, line)) => format!(
+            "line {}: `{}`: {message} (integers must lie within ±9223372036854775807)",
+            i + 1,
+            line.trim()
+        ),
+        None => message,
+    }
+}
+
+/// The most physics substeps per env step the env accepts (each costs a full rigid-body step).
+pub const MAX_SUBSTEPS: usize = 200;
+/// The most solver iterations per substep the env accepts.
+pub const MAX_SOLVER_ITERATIONS: usize = 100;
+/// The longest episode the env accepts [steps].
+pub const MAX_EPISODE_STEPS: usize = 100_000;
 
 fn check_range(range: &Range, field: &'static str, lowest: f64) -> Result<(), ConfigError> {
     check(
@@ -77,7 +189,7 @@ impl EnvConfig {
     pub fn from_toml_str(text: &str) -> Result<Self, ConfigError> {
         let config: EnvConfig = toml::from_str(text).map_err(|e| ConfigError::File {
             path: "<string>".into(),
-            message: e.to_string(),
+            message: toml_error_message(text, &e),
         })?;
         config.validate()?;
         Ok(config)
@@ -90,6 +202,7 @@ impl EnvConfig {
 
     /// Refuses values outside their allowed ranges, naming the field.
     pub fn validate(&self) -> Result<(), ConfigError> {
+        check_all_finite(self)?;
         let p = &self.physics;
         check(
             p.dt > 0.0 && p.dt <= 0.05,
@@ -98,22 +211,22 @@ impl EnvConfig {
             "must be in (0, 0.05] s",
         )?;
         check(
-            p.substeps >= 1,
+            (1..=MAX_SUBSTEPS).contains(&p.substeps),
             "physics.substeps",
             p.substeps,
-            "must be at least 1",
+            "must be in 1..=200",
         )?;
         check(
-            p.solver_iterations >= 1,
+            (1..=MAX_SOLVER_ITERATIONS).contains(&p.solver_iterations),
             "physics.solver_iterations",
             p.solver_iterations,
-            "must be at least 1",
+            "must be in 1..=100",
         )?;
         check(
-            p.contact_natural_frequency > 0.0,
+            p.contact_natural_frequency > 0.0 && p.contact_natural_frequency <= 10_000.0,
             "physics.contact_natural_frequency",
             p.contact_natural_frequency,
-            "must be positive",
+            "must be in (0, 10000] Hz (default 120)",
         )?;
         let a = &self.arm;
         check(
@@ -123,10 +236,10 @@ impl EnvConfig {
             "must be in (0, 3.15] rad/s (the FR3 velocity limit)",
         )?;
         check(
-            a.max_acceleration > 0.0,
+            a.max_acceleration > 0.0 && a.max_acceleration <= 1000.0,
             "arm.max_acceleration",
             a.max_acceleration,
-            "must be positive",
+            "must be in (0, 1000] rad/s² (default 10)",
         )?;
         check(
             a.tcp_speed > 0.0 && a.tcp_speed <= 1.0,
@@ -169,29 +282,29 @@ impl EnvConfig {
             "must be in (0, 100] N",
         )?;
         check(
-            g.pad_friction >= 0.0,
+            (0.0..=10.0).contains(&g.pad_friction),
             "gripper.pad_friction",
             g.pad_friction,
-            "must not be negative",
+            "must be in [0, 10]",
         )?;
         let s = &self.scene;
         check(
-            s.table_height >= 0.0,
+            (0.0..=2.0).contains(&s.table_height),
             "scene.table_height",
             s.table_height,
-            "must not be negative",
+            "must be in [0, 2] m",
         )?;
         check(
-            s.table_size.iter().all(|v| *v > 0.2),
+            s.table_size.iter().all(|v| *v > 0.2 && *v <= 10.0),
             "scene.table_size",
             s.table_size,
-            "must be above 0.2 m each",
+            "each side must be in (0.2, 10] m",
         )?;
         check(
-            s.table_friction >= 0.0,
+            (0.0..=10.0).contains(&s.table_friction),
             "scene.table_friction",
             s.table_friction,
-            "must not be negative",
+            "must be in [0, 10]",
         )?;
         check(
             s.cube_size >= 0.01 && s.cube_size <= 0.08,
@@ -200,29 +313,29 @@ impl EnvConfig {
             "must be in [0.01, 0.08] m (the gripper opens 0.085 m)",
         )?;
         check(
-            s.cube_mass > 0.0,
+            s.cube_mass > 0.0 && s.cube_mass <= 3.0,
             "scene.cube_mass",
             s.cube_mass,
-            "must be positive",
+            "must be in (0, 3] kg (the FR3's payload)",
         )?;
         check(
-            s.cube_friction >= 0.0,
+            (0.0..=10.0).contains(&s.cube_friction),
             "scene.cube_friction",
             s.cube_friction,
-            "must not be negative",
+            "must be in [0, 10]",
         )?;
         let t = &self.task;
         check(
-            t.max_steps >= 1,
+            (1..=MAX_EPISODE_STEPS).contains(&t.max_steps),
             "task.max_steps",
             t.max_steps,
-            "must be at least 1",
+            "must be in 1..=100000",
         )?;
         check(
-            t.lift_height > 0.0,
+            t.lift_height > 0.0 && t.lift_height <= 0.3,
             "task.lift_height",
             t.lift_height,
-            "must be positive",
+            "must be in (0, 0.3] m (default 0.03)",
         )?;
         check(
             t.protective_stop_force.is_finite() && t.protective_stop_force > 0.0,

@@ -80,34 +80,88 @@ pub enum PpoConfigError {
     },
 }
 
+/// The largest rollout (n_steps × n_envs samples) a run may hold in memory: 2²² samples, about
+/// 0.5 GB of observations and buffers on a laptop.
+pub const MAX_ROLLOUT: usize = 1 << 22;
+
 impl PpoConfig {
-    /// Checks the configuration for `n_envs` environments.
+    /// Checks the configuration for `n_envs` environments: every number finite and in its
+    /// range, the rollout's size overflow-checked and capped at [`MAX_ROLLOUT`].
     pub fn validate(&self, n_envs: usize) -> Result<(), PpoConfigError> {
         let bad = |field, value: String, rule| Err(PpoConfigError::Invalid { field, value, rule });
-        if self.n_steps == 0 {
-            return bad("n_steps", "0".into(), "must be at least 1");
+        let counts = [
+            (self.n_steps, "n_steps", "must be in 1..=1000000"),
+            (self.batch_size, "batch_size", "must be in 1..=1000000"),
+            (self.n_epochs, "n_epochs", "must be in 1..=1000"),
+        ];
+        for (value, field, rule) in counts {
+            let max = if field == "n_epochs" { 1000 } else { 1_000_000 };
+            if !(1..=max).contains(&value) {
+                return bad(field, value.to_string(), rule);
+            }
         }
-        if self.batch_size == 0 {
-            return bad("batch_size", "0".into(), "must be at least 1");
-        }
-        if self.n_epochs == 0 {
-            return bad("n_epochs", "0".into(), "must be at least 1");
-        }
-        if self.learning_rate.is_nan() || self.learning_rate <= 0.0 {
+        if !(self.learning_rate > 0.0 && self.learning_rate <= 1.0) {
             return bad(
                 "learning_rate",
                 self.learning_rate.to_string(),
-                "must be positive",
+                "must be in (0, 1] (SB3's default 3e-4)",
             );
         }
-        if !(0.0..=1.0).contains(&self.gamma) || !(0.0..=1.0).contains(&self.gae_lambda) {
+        let unit = [
+            (self.gamma, "gamma", "must be in [0, 1]"),
+            (self.gae_lambda, "gae_lambda", "must be in [0, 1]"),
+            (
+                self.clip_coef,
+                "clip_coef",
+                "must be in (0, 1] (default 0.2)",
+            ),
+        ];
+        for (value, field, rule) in unit {
+            let low_ok = if field == "clip_coef" {
+                value > 0.0
+            } else {
+                value >= 0.0
+            };
+            if !(low_ok && value <= 1.0) {
+                return bad(field, value.to_string(), rule);
+            }
+        }
+        let weights = [
+            (self.ent_coef, "ent_coef", "must be in [0, 100]"),
+            (self.vf_coef, "vf_coef", "must be in [0, 100]"),
+        ];
+        for (value, field, rule) in weights {
+            if !(0.0..=100.0).contains(&value) {
+                return bad(field, value.to_string(), rule);
+            }
+        }
+        if !(self.max_grad_norm > 0.0 && self.max_grad_norm <= 1e6) {
             return bad(
-                "gamma/gae_lambda",
-                format!("{}/{}", self.gamma, self.gae_lambda),
-                "must be in [0, 1]",
+                "max_grad_norm",
+                self.max_grad_norm.to_string(),
+                "must be in (0, 1e6] (default 0.5)",
             );
         }
-        let rollout = self.n_steps * n_envs;
+        if let Some(kl) = self.target_kl
+            && !(kl > 0.0 && kl <= 100.0)
+        {
+            return bad(
+                "target_kl",
+                kl.to_string(),
+                "must be in (0, 100], or left out for no early stop",
+            );
+        }
+        let rollout = self
+            .n_steps
+            .checked_mul(n_envs)
+            .filter(|r| *r <= MAX_ROLLOUT);
+        let Some(rollout) = rollout else {
+            return bad(
+                "n_steps × n_envs",
+                format!("{} × {}", self.n_steps, n_envs),
+                "must be at most 4194304 samples per rollout (2^22, about 0.5 GB)",
+            );
+        };
         if !rollout.is_multiple_of(self.batch_size) {
             return Err(PpoConfigError::UnevenMinibatches {
                 n_steps: self.n_steps,

@@ -12,6 +12,19 @@ use crate::checkpoint;
 use crate::model::ModelConfig;
 use crate::ppo::PpoConfig;
 
+/// The most parallel environments a run may step (each holds a physics world, ~1 MB).
+pub const MAX_ENVS: usize = 4096;
+/// The most threads a run may step them on.
+pub const MAX_THREADS: usize = 256;
+/// The longest run in environment steps (10¹⁰: years on a laptop).
+pub const MAX_TIMESTEPS: u64 = 10_000_000_000;
+/// The most scenarios per evaluation.
+pub const MAX_EVAL_EPISODES: usize = 100_000;
+/// The most hidden layers, and the widest one: a 4096 × 4096 layer is 64 MB of f32 weights
+/// plus Adam's two moments; wider networks do not fit this kind of machine's training loop.
+pub const MAX_LAYERS: usize = 8;
+pub const MAX_WIDTH: usize = 4096;
+
 /// Everything a training run needs; saved as `config.toml` in the run folder.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -100,14 +113,15 @@ pub enum TrainError {
     #[error(transparent)]
     Env(#[from] fairgrasp_env::EnvError),
     #[error(
-        "update {update} failed: {source}; checkpoints/latest keeps the last good network (update {last_good})"
+        "update {update} failed: {cause}; checkpoints/latest keeps the last good network (update {last_good}): change the config (e.g. a lower learning_rate) and continue with --resume --accept-config-changes"
     )]
     Update {
         /// The update that failed (1 = the first of this run folder).
         update: u64,
         /// The update `checkpoints/latest` holds.
         last_good: u64,
-        source: Box<TrainError>,
+        /// What went wrong (in the message, not a separate `source`, so it is printed once).
+        cause: Box<TrainError>,
     },
     #[error(transparent)]
     Ppo(#[from] crate::ppo::PpoError),
@@ -131,31 +145,72 @@ impl TrainConfig {
     /// Reads and checks a TOML file.
     pub fn from_toml_file(path: &Path) -> Result<Self, TrainError> {
         let text = std::fs::read_to_string(path).map_err(io(path))?;
-        let config: TrainConfig = toml::from_str(&text)
-            .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
+        let config: TrainConfig = toml::from_str(&text).map_err(|e| {
+            let message = fairgrasp_env::validate::toml_error_message(&text, &e);
+            TrainError::Config(format!("{}: {message}", path.display()))
+        })?;
         config
             .validate()
             .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
         Ok(config)
     }
 
-    /// Checks every part; the message names the field.
+    /// Checks every part; the message names the field, the value and the allowed range.
     pub fn validate(&self) -> Result<(), String> {
-        if self.n_envs == 0 || self.threads == 0 {
+        if let Some((field, value, rule)) = fairgrasp_env::validate::first_bad_number(self) {
+            return Err(format!("{field} = {value}: {rule}"));
+        }
+        if !(1..=MAX_ENVS).contains(&self.n_envs) {
             return Err(format!(
-                "n_envs = {}, threads = {}: both must be at least 1",
-                self.n_envs, self.threads
+                "n_envs = {}: must be in 1..={MAX_ENVS}",
+                self.n_envs
             ));
         }
-        if self.model.hidden.is_empty() || self.model.hidden.contains(&0) {
+        if !(1..=MAX_THREADS).contains(&self.threads) {
             return Err(format!(
-                "model.hidden = {:?}: give one or more non-zero layer widths",
+                "threads = {}: must be in 1..={MAX_THREADS}",
+                self.threads
+            ));
+        }
+        if !(1..=MAX_TIMESTEPS).contains(&self.total_timesteps) {
+            return Err(format!(
+                "total_timesteps = {}: must be in 1..={MAX_TIMESTEPS}",
+                self.total_timesteps
+            ));
+        }
+        if let Some(t) = self.max_wall_time_s
+            && (t.is_nan() || t <= 0.0)
+        {
+            return Err(format!(
+                "max_wall_time_s = {t}: must be a positive number of seconds, or left out"
+            ));
+        }
+        if self.eval_every > 0 && !(1..=MAX_EVAL_EPISODES).contains(&self.eval_episodes) {
+            return Err(format!(
+                "eval_episodes = {}: must be in 1..={MAX_EVAL_EPISODES} while eval_every = {} (set eval_every = 0 to never evaluate)",
+                self.eval_episodes, self.eval_every
+            ));
+        }
+        let widths_ok = self
+            .model
+            .hidden
+            .iter()
+            .all(|w| (1..=MAX_WIDTH).contains(w));
+        if self.model.hidden.is_empty() || self.model.hidden.len() > MAX_LAYERS || !widths_ok {
+            return Err(format!(
+                "model.hidden = {:?}: give 1 to {MAX_LAYERS} layer widths, each in 1..={MAX_WIDTH}",
                 self.model.hidden
             ));
         }
-        if self.agent.residual_scale.is_nan() || self.agent.residual_scale <= 0.0 {
+        if !(-20.0..=2.0).contains(&self.model.log_std_init) {
             return Err(format!(
-                "agent.residual_scale = {}: must be positive",
+                "model.log_std_init = {}: must be in [-20, 2] (σ from 2e-9 to 7.4)",
+                self.model.log_std_init
+            ));
+        }
+        if !(self.agent.residual_scale > 0.0 && self.agent.residual_scale <= 10.0) {
+            return Err(format!(
+                "agent.residual_scale = {}: must be in (0, 10]",
                 self.agent.residual_scale
             ));
         }

@@ -102,3 +102,39 @@ pub fn fmt_joints(q: &[f64; 6]) -> String {
 pub fn print_json(value: &serde_json::Value) {
     println!("{value}");
 }
+
+/// The largest magnitude a number on the command line may have (lengths in metres, angles in
+/// radians or degrees): beyond it squares and products of poses overflow to infinity.
+pub const MAX_CLI_NUMBER: f64 = 1e6;
+
+/// Parses a finite number within ±[`MAX_CLI_NUMBER`] (clap value parser); exponent forms such as
+/// `-1e-12` are numbers too.
+pub fn finite_number(text: &str) -> Result<f64, String> {
+    let value: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("{text:?} is not a number"))?;
+    if !value.is_finite() || value.abs() > MAX_CLI_NUMBER {
+        return Err(format!(
+            "{text}: must be a finite number within ±{MAX_CLI_NUMBER:e}"
+        ));
+    }
+    Ok(value)
+}
+
+/// Parses a positive, finite number of seconds (clap value parser).
+pub fn positive_seconds(text: &str) -> Result<f64, String> {
+    let value = finite_number(text)?;
+    if value <= 0.0 {
+        return Err(format!("{text}: must be a positive number of seconds"));
+    }
+    Ok(value)
+}
+
+/// Parses a worker-thread count, 1–256 (clap value parser).
+pub fn thread_count(text: &str) -> Result<usize, String> {
+    match text.trim().parse::<usize>() {
+        Ok(n) if (1..=256).contains(&n) => Ok(n),
+        _ => Err(format!("{text}: give a whole number of threads in 1..=256")),
+    }
+}

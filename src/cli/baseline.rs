@@ -50,7 +50,7 @@ pub struct ScenarioArgs {
     #[arg(long, default_value = "seed", help = preset_help())]
     pub preset: String,
     /// Episodes (scenarios) to run.
-    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub episodes: u32,
     /// Seed of the scenario set: the same seed gives the same scenarios for every policy.
     #[arg(long, default_value_t = 0)]
@@ -58,8 +58,8 @@ pub struct ScenarioArgs {
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
     pub arm: ArmArg,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
+    /// Worker threads, 1–256 (default: all cores).
+    #[arg(long, value_parser = crate::cli::args::thread_count)]
     pub threads: Option<usize>,
     /// Write each episode's trajectory (CSV and JSON) into this folder.
     #[arg(long, value_name = "DIR")]

@@ -18,7 +18,7 @@ pub struct FkArgs {
         long,
         num_args = 6,
         required = true,
-        allow_negative_numbers = true,
+        allow_hyphen_values = true, value_parser = crate::cli::args::finite_number,
         value_name = "Q"
     )]
     joints: Vec<f64>,

@@ -18,12 +18,12 @@ pub struct FramesArgs {
     #[arg(long, value_enum, default_value = "fr3")]
     model: ModelArg,
     /// base_link's pose in the world: x y z [m] roll pitch yaw (radians or --deg).
-    #[arg(long, num_args = 6, allow_negative_numbers = true,
+    #[arg(long, num_args = 6, allow_hyphen_values = true, value_parser = crate::cli::args::finite_number,
           default_values_t = [0.2, -0.1, 0.62, 0.0, 0.0, std::f64::consts::FRAC_PI_2],
           value_names = ["X", "Y", "Z", "ROLL", "PITCH", "YAW"])]
     base: Vec<f64>,
     /// A point in the world [m], e.g. the cube's centre.
-    #[arg(long, num_args = 3, allow_negative_numbers = true, default_values_t = [0.6, 0.1, 0.645],
+    #[arg(long, num_args = 3, allow_hyphen_values = true, value_parser = crate::cli::args::finite_number, default_values_t = [0.6, 0.1, 0.645],
           value_names = ["X", "Y", "Z"])]
     point: Vec<f64>,
     #[command(flatten)]

@@ -17,13 +17,13 @@ pub struct IkArgs {
     #[arg(long, value_enum, default_value = "fr3")]
     model: ModelArg,
     /// Target pose in base_link: x y z [m] roll pitch yaw (URDF fixed-axis; radians or --deg).
-    #[arg(long, num_args = 6, required = true, allow_negative_numbers = true, value_names = ["X", "Y", "Z", "ROLL", "PITCH", "YAW"])]
+    #[arg(long, num_args = 6, required = true, allow_hyphen_values = true, value_parser = crate::cli::args::finite_number, value_names = ["X", "Y", "Z", "ROLL", "PITCH", "YAW"])]
     pose: Vec<f64>,
     /// Which frame to place at the pose.
     #[arg(long, value_enum, default_value = "tool0")]
     frame: FrameArg,
     /// Current joints q1 … q6: picks the nearest branch and seeds the QP solver (default all 0).
-    #[arg(long, num_args = 6, allow_negative_numbers = true, value_name = "Q")]
+    #[arg(long, num_args = 6, allow_hyphen_values = true, value_parser = crate::cli::args::finite_number, value_name = "Q")]
     current: Option<Vec<f64>>,
     /// Also run the clarabel QP IK from --current (tolerance 1e-4 m / 1e-3 rad).
     #[arg(long)]
