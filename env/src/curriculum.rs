@@ -94,6 +94,12 @@ impl Curriculum {
         }
     }
 
+    /// The same curriculum resumed at `stage` (clamped to the last), with empty windows.
+    pub fn at_stage(mut self, stage: usize) -> Self {
+        self.stage = stage.min(self.stage_count() - 1);
+        self
+    }
+
     /// The current stage index (0 … `stage_count() − 1`).
     pub fn stage(&self) -> usize {
         self.stage

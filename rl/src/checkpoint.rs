@@ -3,6 +3,12 @@
 //!
 //! Written atomically: into `NAME.tmp`, then `NAME` is moved to `NAME.old`, the new folder into
 //! place, and `NAME.old` removed; a loader that finds no `NAME` falls back to `NAME.old`.
+//!
+//! Trusted only when it checks out: `meta.json` carries a checksum of `model.bpk` (and of
+//! `optimizer.bpk`) taken together with the network's shape (mode, input size, hidden sizes), so
+//! a flipped byte in the weights or an edited shape in the metadata is refused by name instead
+//! of reaching burn. Checkpoints written before the checksum existed (the shipped ones carry it
+//! now) load with the shape check of burn's loader, whose panics are caught and reported.
 
 use std::path::{Path, PathBuf};
 
@@ -35,6 +41,54 @@ pub struct CheckpointMeta {
     pub wall_time_s: f64,
     /// Evaluation success rate of this checkpoint, if evaluated.
     pub eval_success_rate: Option<f64>,
+    /// The best evaluation success rate of the run up to this checkpoint (what `best` holds).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub best_eval_success_rate: Option<f64>,
+    /// The `metrics.csv` row of the update this checkpoint ends (a resume restores it if a
+    /// kill came between the checkpoint and the row).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub metrics_row: Option<String>,
+    /// The curriculum stage the run had reached (a resume continues there).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curriculum_stage: Option<usize>,
+    /// `fnv1a64:` checksum of `model.bpk` with the network's shape (see the module docs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model_checksum: Option<String>,
+    /// `fnv1a64:` checksum of `optimizer.bpk`, when saved.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub optimizer_checksum: Option<String>,
+}
+
+/// 64-bit FNV-1a over `parts` in order, as `fnv1a64:HEX`: catches any flipped byte (not an
+/// adversary; nothing here needs one).
+pub fn checksum(parts: &[&[u8]]) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for part in parts {
+        for b in *part {
+            h ^= u64::from(*b);
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    format!("fnv1a64:{h:016x}")
+}
+
+impl CheckpointMeta {
+    /// What the weights must agree with: mode, action space, sizes and hidden widths.
+    fn shape_key(&self) -> String {
+        format!(
+            "mode={:?};action_space={:?};input={};act={};hidden={:?}",
+            self.agent.mode,
+            self.agent.action_space,
+            self.input_dim,
+            self.act_dim,
+            self.model.hidden
+        )
+    }
+
+    /// The checksum `model_checksum` must hold for these model bytes.
+    pub fn model_checksum_of(&self, model_bytes: &[u8]) -> String {
+        checksum(&[self.shape_key().as_bytes(), model_bytes])
+    }
 }
 
 /// A checkpoint that cannot be read, with the file and the reason.
@@ -71,15 +125,37 @@ pub fn save(
         o.save(tmp.join("optimizer.bpk"))
             .map_err(|e| err(&tmp, format!("writing optimizer.bpk: {e}")))?;
     }
-    let json = serde_json::to_vec_pretty(meta).map_err(|e| err(&tmp, e))?;
+    let read = |name: &str| std::fs::read(tmp.join(name)).map_err(|e| err(&tmp.join(name), e));
+    let mut meta = meta.clone();
+    meta.model_checksum = Some(meta.model_checksum_of(&read("model.bpk")?));
+    meta.optimizer_checksum = match optimizer {
+        Some(_) => Some(checksum(&[&read("optimizer.bpk")?])),
+        None => None,
+    };
+    let json = serde_json::to_vec_pretty(&meta).map_err(|e| err(&tmp, e))?;
     std::fs::write(tmp.join("meta.json"), json).map_err(|e| err(&tmp, e))?;
+    sync_dir_files(&tmp);
+    crate::resume::crash_point("checkpoint_written", meta.updates);
     let _ = std::fs::remove_dir_all(&old);
     if dir.exists() {
         std::fs::rename(dir, &old).map_err(|e| err(dir, e))?;
     }
+    crate::resume::crash_point("checkpoint_moved_aside", meta.updates);
     std::fs::rename(&tmp, dir).map_err(|e| err(dir, e))?;
     let _ = std::fs::remove_dir_all(&old);
     Ok(())
+}
+
+/// Flushes the files of a freshly written folder to disk before it is renamed into place (a
+/// power cut must not leave a renamed folder of empty files); best effort.
+fn sync_dir_files(dir: &Path) {
+    if let Ok(entries) = std::fs::read_dir(dir) {
+        for entry in entries.flatten() {
+            if let Ok(f) = std::fs::File::open(entry.path()) {
+                let _ = f.sync_all();
+            }
+        }
+    }
 }
 
 /// The folder to read: `dir`, or `dir.old` after an interrupted save.
@@ -142,10 +218,44 @@ pub fn load_model(
     let meta = load_meta(dir)?;
     let dir = existing(dir)?;
     let path = dir.join("model.bpk");
+    let bytes = std::fs::read(&path).map_err(|e| err(&path, e))?;
+    if let Some(expected) = &meta.model_checksum {
+        let found = meta.model_checksum_of(&bytes);
+        if &found != expected {
+            return Err(err(
+                &path,
+                format!(
+                    "checksum {found} differs from meta.json's {expected}: the weights are corrupted, or meta.json was edited (mode, input_dim or model.hidden no longer match the weights)"
+                ),
+            ));
+        }
+    }
+    let widths_ok = meta.model.hidden.iter().all(|w| (1..=4096).contains(w));
+    if meta.model.hidden.is_empty() || meta.model.hidden.len() > 8 || !widths_ok {
+        return Err(err(
+            &dir.join("meta.json"),
+            format!(
+                "model.hidden = {:?}: not a network this tool writes",
+                meta.model.hidden
+            ),
+        ));
+    }
     let fresh = ActorCritic::new(meta.input_dim, meta.act_dim, &meta.model, device);
-    let model = fresh
-        .try_load_file(&path)
-        .map_err(|e| err(&path, format!("cannot load the network: {e}")))?;
+    // burn's loader panics on some shape mismatches; report them as this checkpoint's error.
+    let loaded =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| fresh.try_load_file(&path)));
+    let model = match loaded {
+        Ok(result) => result.map_err(|e| err(&path, format!("cannot load the network: {e}")))?,
+        Err(_) => {
+            return Err(err(
+                &path,
+                format!(
+                    "the weights do not fit meta.json's network (input {}, hidden {:?}, {} actions)",
+                    meta.input_dim, meta.model.hidden, meta.act_dim
+                ),
+            ));
+        }
+    };
     Ok((meta, model))
 }
 
@@ -154,10 +264,23 @@ pub fn load_optimizer(
     dir: &Path,
     optimizer: ModuleOptimizer,
 ) -> Result<ModuleOptimizer, CheckpointError> {
+    let meta = load_meta(dir)?;
     let dir = existing(dir)?;
     let path = dir.join("optimizer.bpk");
     if !path.exists() {
         return Ok(optimizer);
+    }
+    if let Some(expected) = &meta.optimizer_checksum {
+        let bytes = std::fs::read(&path).map_err(|e| err(&path, e))?;
+        let found = checksum(&[&bytes]);
+        if &found != expected {
+            return Err(err(
+                &path,
+                format!(
+                    "checksum {found} differs from meta.json's {expected}: the optimiser state is corrupted"
+                ),
+            ));
+        }
     }
     optimizer
         .load(&path)

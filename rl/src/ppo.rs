@@ -61,6 +61,10 @@ pub enum PpoError {
         "the update made the network's parameters non-finite: the policy diverged (a lower learning_rate may help)"
     )]
     NonFiniteParameters,
+    #[error(
+        "the update's {what} is {value}, not finite: the policy diverged (a lower learning_rate may help)"
+    )]
+    NonFiniteLoss { what: &'static str, value: f32 },
     #[error("reading a tensor: {0}")]
     Tensor(String),
 }
@@ -379,6 +383,15 @@ impl Ppo {
         ] = sums.map(|s| s / count.max(1.0));
         stats.explained_variance = explained_variance(&b.values, &b.returns);
         self.buffer = Some(b);
+        let losses = [
+            ("policy loss", stats.policy_loss),
+            ("value loss", stats.value_loss),
+            ("entropy", stats.entropy),
+            ("approximate KL", stats.approx_kl),
+        ];
+        if let Some((what, value)) = losses.into_iter().find(|(_, v)| !v.is_finite()) {
+            return Err(PpoError::NonFiniteLoss { what, value });
+        }
         if !self.model.parameters_finite() {
             return Err(PpoError::NonFiniteParameters);
         }

@@ -24,6 +24,7 @@ use crate::grasp_env::GraspVecEnv;
 use crate::model::ActorCritic;
 use crate::normalizer::RunningNorm;
 use crate::ppo::{Ppo, UpdateStats};
+use crate::resume::{self, ResumeOptions};
 use crate::train_config::io;
 pub use crate::train_config::{TrainConfig, TrainError};
 
@@ -134,6 +135,7 @@ impl Run<'_> {
             self.meta.eval_success_rate = Some(r.success_rate);
             if r.success_rate > self.best {
                 self.best = r.success_rate;
+                self.meta.best_eval_success_rate = Some(self.best);
                 let best_dir = self.run_dir.join("checkpoints/best");
                 checkpoint::save(&best_dir, &self.meta, &self.ppo.model, None)?;
             }
@@ -146,16 +148,29 @@ impl Run<'_> {
         } else {
             None
         };
-        self.save_latest()?;
+        // The row travels inside the checkpoint first, then into metrics.csv: a kill between
+        // the two loses nothing (a resume restores the row from the checkpoint).
         let stage = self.curriculum.as_ref().map_or(0, Curriculum::stage);
         let m = &self.meta;
         let row = metrics_row(m.updates, m.timesteps, m.wall_time_s, &stats, stage, eval);
+        self.meta.metrics_row = Some(row.clone());
+        self.meta.curriculum_stage = self.curriculum.as_ref().map(Curriculum::stage);
+        let update = self.meta.updates;
+        resume::crash_point("before_checkpoint", update);
+        self.save_latest()?;
+        resume::crash_point("before_row", update);
         let metrics_path = self.run_dir.join("metrics.csv");
         let mut f = std::fs::OpenOptions::new()
             .append(true)
             .open(&metrics_path)
             .map_err(io(&metrics_path))?;
+        if std::env::var("FAIRGRASP_CRASH_AT").is_ok_and(|t| t == format!("torn_row@{update}")) {
+            // A kill in the middle of the append: half the row, no newline.
+            let _ = f.write_all(&row.as_bytes()[..row.len() / 2]);
+            std::process::abort();
+        }
         writeln!(f, "{row}").map_err(io(&metrics_path))?;
+        resume::crash_point("after_row", update);
         report(Progress {
             timesteps: self.meta.timesteps,
             total: config.total_timesteps,
@@ -185,6 +200,7 @@ fn start_from(
                 meta.input_dim
             )));
         }
+        resume::repair_metrics(run_dir, &meta, METRICS_HEADER)?;
         return Ok((meta, model, Some(latest)));
     }
     let toml = toml::to_string_pretty(config)
@@ -206,6 +222,11 @@ fn start_from(
         updates: 0,
         wall_time_s: 0.0,
         eval_success_rate: None,
+        best_eval_success_rate: None,
+        metrics_row: None,
+        curriculum_stage: None,
+        model_checksum: None,
+        optimizer_checksum: None,
     };
     let model = ActorCritic::new(input_dim, ACT_DIM, &config.model, device);
     Ok((meta, model, None))
@@ -221,7 +242,27 @@ pub fn train(
     resume: bool,
     report: &mut dyn FnMut(Progress),
 ) -> Result<EvalReport, TrainError> {
+    let options = ResumeOptions {
+        resume,
+        accept_config_changes: false,
+    };
+    train_with(config, run_dir, options, report)
+}
+
+/// [`train`] with the resume options spelled out: a resume checks the config against the run's
+/// `config.toml` (see [`crate::resume`]), repairs `metrics.csv` to match `checkpoints/latest`
+/// and carries the best score over; a resume of a folder with no checkpoint starts fresh.
+pub fn train_with(
+    config: &TrainConfig,
+    run_dir: &Path,
+    options: ResumeOptions,
+    report: &mut dyn FnMut(Progress),
+) -> Result<EvalReport, TrainError> {
     config.validate().map_err(TrainError::Config)?;
+    let resume = resume::decide(run_dir, options.resume)?;
+    if resume {
+        resume::check_config(run_dir, config, options.accept_config_changes)?;
+    }
     std::fs::create_dir_all(run_dir.join("checkpoints")).map_err(io(run_dir))?;
     let device = Device::flex().autodiff();
     device.seed(config.seed);
@@ -273,8 +314,13 @@ pub fn train(
                 env_config.randomization.clone(),
                 env_config.scene.cube_xy,
             )
+            .at_stage(meta.curriculum_stage.unwrap_or(0))
         }),
-        best: meta.eval_success_rate.unwrap_or(-1.0),
+        best: if resume {
+            resume::best_so_far(run_dir, &meta)
+        } else {
+            -1.0
+        },
         last_report: None,
         start: Instant::now(),
         wall_before: meta.wall_time_s,
@@ -296,7 +342,7 @@ pub fn train(
         run.update(report).map_err(|e| TrainError::Update {
             update,
             last_good: run.saved_updates,
-            source: Box::new(e),
+            cause: Box::new(e),
         })?;
     }
     match run.last_report {

@@ -30,8 +30,12 @@ fn a_diverging_run_stops_with_the_update_and_keeps_a_loadable_finite_latest() {
             n_steps: 16,
             batch_size: 16,
             n_epochs: 2,
-            learning_rate: 1e30,
+            learning_rate: 1.0,
             ..PpoConfig::default()
+        },
+        model: fairgrasp_rl::model::ModelConfig {
+            log_std_init: 2.0,
+            ..TrainConfig::default().model
         },
         ..TrainConfig::default()
     };

@@ -43,6 +43,11 @@ fn fresh(agent: AgentConfig, zero: bool) -> (CheckpointMeta, ActorCritic) {
         updates: 0,
         wall_time_s: 0.0,
         eval_success_rate: None,
+        best_eval_success_rate: None,
+        metrics_row: None,
+        curriculum_stage: None,
+        model_checksum: None,
+        optimizer_checksum: None,
     };
     (meta, model)
 }

@@ -3,12 +3,12 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 use burn::tensor::Device;
 use clap::Args;
 use fairgrasp_env::EnvConfig;
 use fairgrasp_rl::checkpoint;
-use fairgrasp_rl::train::{TrainConfig, agent_policy, train};
+use fairgrasp_rl::train::{TrainConfig, agent_policy, train_with};
 
 use super::baseline::{ArmArg, ScenarioArgs, evaluate_and_print, print_report};
 
@@ -23,14 +23,20 @@ pub struct TrainArgs {
     /// Continue the run in --run-dir from its latest checkpoint.
     #[arg(long)]
     resume: bool,
+    /// With --resume: continue even though the config differs from the run's config.toml
+    /// (the differences are listed without it). The new values are written to config.toml and
+    /// recorded in config_changes.log. total_timesteps, max_wall_time_s and threads may change
+    /// without it; the network's shape ([model] hidden, [agent]) never can.
+    #[arg(long, requires = "resume")]
+    accept_config_changes: bool,
     /// Override the config's seed.
     #[arg(long)]
     seed: Option<u64>,
     /// Override the config's total_timesteps.
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000_000_000))]
     timesteps: Option<u64>,
     /// Override the config's max_wall_time_s: stop after this many seconds of this invocation.
-    #[arg(long, value_name = "SECONDS")]
+    #[arg(long, value_name = "SECONDS", value_parser = crate::cli::args::positive_seconds)]
     max_wall_time: Option<f64>,
 }
 
@@ -52,9 +58,9 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
             .map_or("run".into(), |s| s.to_string_lossy().into_owned());
         Path::new("runs").join(stem)
     });
-    if !a.resume && run_dir.join("metrics.csv").exists() {
-        bail!(
-            "{} already holds a run: pass --resume to continue it, or choose another --run-dir",
+    if a.resume && !fairgrasp_rl::resume::has_checkpoint(&run_dir) {
+        eprintln!(
+            "note: {} holds no checkpoint yet (killed before its first one?): starting it fresh",
             run_dir.display()
         );
     }
@@ -65,7 +71,11 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
         )?
         .progress_chars("=> "),
     );
-    let report = train(&config, &run_dir, a.resume, &mut |p| {
+    let options = fairgrasp_rl::resume::ResumeOptions {
+        resume: a.resume,
+        accept_config_changes: a.accept_config_changes,
+    };
+    let report = train_with(&config, &run_dir, options, &mut |p| {
         let n = p.stats.episodes.len().max(1) as f64;
         let success = p.stats.episodes.iter().filter(|e| e.success).count() as f64 / n;
         let ret = p

@@ -1,0 +1,207 @@
+//! Continuing a run folder safely: which folders a fresh run or a resume accepts, the config a
+//! resume may change, `metrics.csv` repaired to match `checkpoints/latest`, and the best score
+//! carried over.
+//!
+//! The invariant a kill at any point keeps: `metrics.csv` holds exactly one row per update up to
+//! the one `checkpoints/latest` ends, because the row is saved inside the checkpoint first and
+//! appended to `metrics.csv` second; a resume drops rows past the checkpoint and restores a row
+//! the kill cut off.
+
+use std::path::Path;
+
+use fairgrasp_env::trajectory::write_atomic;
+
+use crate::checkpoint::{self, CheckpointMeta};
+use crate::train_config::{TrainConfig, TrainError, io};
+
+/// Fault injection for the kill tests: when the environment variable `FAIRGRASP_CRASH_AT`
+/// equals `POINT@UPDATE` (e.g. `before_row@2`), the process aborts at that point of that update,
+/// as a kill would (no destructors, no flushing). Does nothing otherwise.
+pub fn crash_point(point: &str, update: u64) {
+    if let Ok(target) = std::env::var("FAIRGRASP_CRASH_AT")
+        && target == format!("{point}@{update}")
+    {
+        std::process::abort();
+    }
+}
+
+/// Fields a resume may change without `--accept-config-changes`: how long to run and on how many
+/// threads (results do not depend on the thread count).
+const FREELY_CHANGED: [&str; 3] = ["total_timesteps", "max_wall_time_s", "threads"];
+
+/// Fields no resume can change: the saved network has their shape.
+const SHAPE_FIELDS: [&str; 2] = ["model.hidden", "agent"];
+
+/// How `train` treats an existing run folder.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ResumeOptions {
+    /// Continue from `checkpoints/latest` (`--resume`).
+    pub resume: bool,
+    /// Accept a config that differs from the run's `config.toml` (recorded in
+    /// `config_changes.log`, and `config.toml` rewritten).
+    pub accept_config_changes: bool,
+}
+
+/// Whether the folder holds a checkpoint (a run with something to lose).
+pub fn has_checkpoint(run_dir: &Path) -> bool {
+    let latest = run_dir.join("checkpoints/latest");
+    latest.join("meta.json").exists() || latest.with_extension("old").join("meta.json").exists()
+}
+
+/// Decides between a fresh start and a resume: a fresh run refuses a folder holding a
+/// checkpoint; a resume of a folder without one (killed before its first checkpoint) starts
+/// fresh. Returns true to resume.
+pub fn decide(run_dir: &Path, resume: bool) -> Result<bool, TrainError> {
+    match (resume, has_checkpoint(run_dir)) {
+        (false, true) => Err(TrainError::Config(format!(
+            "{} already holds a run (checkpoints/latest): pass --resume to continue it, or choose another --run-dir",
+            run_dir.display()
+        ))),
+        (true, false) => Ok(false),
+        (r, _) => Ok(r),
+    }
+}
+
+/// Every leaf of a TOML value as `dotted.path = value`.
+fn flatten(value: &toml::Value, path: &str, out: &mut Vec<(String, String)>) {
+    match value {
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                let p = if path.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{path}.{k}")
+                };
+                flatten(v, &p, out);
+            }
+        }
+        other => out.push((path.to_string(), other.to_string())),
+    }
+}
+
+/// The differences between the run's saved config and the new one, as `field: old → new`
+/// (fields in [`FREELY_CHANGED`] left out).
+pub fn config_differences(saved: &TrainConfig, new: &TrainConfig) -> Vec<String> {
+    let leaves = |c: &TrainConfig| {
+        let mut out = Vec::new();
+        if let Ok(v) = toml::Value::try_from(c) {
+            flatten(&v, "", &mut out);
+        }
+        out
+    };
+    let (old, new) = (leaves(saved), leaves(new));
+    let find = |list: &[(String, String)], key: &str| {
+        list.iter()
+            .find(|(k, _)| k == key)
+            .map_or("(unset)".to_string(), |(_, v)| v.clone())
+    };
+    let mut keys: Vec<&String> = old.iter().chain(&new).map(|(k, _)| k).collect();
+    keys.sort();
+    keys.dedup();
+    keys.into_iter()
+        .filter(|k| !FREELY_CHANGED.contains(&k.as_str()))
+        .filter_map(|k| {
+            let (a, b) = (find(&old, k), find(&new, k));
+            (a != b).then(|| format!("{k}: {a} → {b}"))
+        })
+        .collect()
+}
+
+/// Checks a resume's config against the run's `config.toml`: refuses differences unless
+/// accepted, never accepts a change of the network's shape, and records accepted ones.
+pub fn check_config(run_dir: &Path, config: &TrainConfig, accept: bool) -> Result<(), TrainError> {
+    let path = run_dir.join("config.toml");
+    let text = std::fs::read_to_string(&path).map_err(io(&path))?;
+    let saved: TrainConfig = toml::from_str(&text)
+        .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
+    let diffs = config_differences(&saved, config);
+    if diffs.is_empty() {
+        return Ok(());
+    }
+    let list = diffs.join("; ");
+    let shape: Vec<&String> = diffs
+        .iter()
+        .filter(|d| SHAPE_FIELDS.iter().any(|f| d.starts_with(f)))
+        .collect();
+    if !shape.is_empty() {
+        return Err(TrainError::Config(format!(
+            "cannot resume {} with a different network ({}): the checkpoint's weights have the old shape; start a new run folder instead",
+            run_dir.display(),
+            shape
+                .iter()
+                .map(|s| s.as_str())
+                .collect::<Vec<_>>()
+                .join("; ")
+        )));
+    }
+    if !accept {
+        return Err(TrainError::Config(format!(
+            "the config differs from the run's config.toml ({list}); pass --accept-config-changes to continue with the new values (recorded in config_changes.log), or resume with the old config"
+        )));
+    }
+    let log = run_dir.join("config_changes.log");
+    let mut previous = std::fs::read_to_string(&log).unwrap_or_default();
+    let stamp = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    previous.push_str(&format!("unix time {stamp}: {list}\n"));
+    write_atomic(&log, previous.as_bytes()).map_err(io(&log))?;
+    let toml = toml::to_string_pretty(config)
+        .map_err(|e| TrainError::Config(format!("config.toml: {e}")))?;
+    write_atomic(&path, toml.as_bytes()).map_err(io(&path))
+}
+
+/// The best evaluation score the run has reached: from `latest`'s record and from
+/// `checkpoints/best` itself (older checkpoints record only their own score). −1: none yet.
+pub fn best_so_far(run_dir: &Path, latest: &CheckpointMeta) -> f64 {
+    let best_dir = run_dir.join("checkpoints/best");
+    let from_best = checkpoint::load_meta(&best_dir)
+        .ok()
+        .and_then(|m| m.eval_success_rate);
+    [latest.best_eval_success_rate, from_best]
+        .into_iter()
+        .flatten()
+        .fold(-1.0, f64::max)
+}
+
+/// Rewrites `metrics.csv` to hold exactly the rows of updates 1 … `meta.updates`: drops a torn
+/// last line and rows past the checkpoint, and restores the checkpoint's own row if the kill
+/// came before it was appended. Returns how many rows were dropped and restored.
+pub fn repair_metrics(
+    run_dir: &Path,
+    meta: &CheckpointMeta,
+    header: &str,
+) -> Result<(usize, usize), TrainError> {
+    let path = run_dir.join("metrics.csv");
+    let text = std::fs::read_to_string(&path).unwrap_or_default();
+    let complete = match text.rfind('\n') {
+        Some(end) => &text[..=end],
+        None => "",
+    };
+    let mut rows: Vec<&str> = Vec::new();
+    let mut dropped = usize::from(complete.len() < text.len());
+    for line in complete.lines().filter(|l| !l.is_empty() && *l != header) {
+        let update = line.split(',').next().and_then(|u| u.parse::<u64>().ok());
+        match update {
+            Some(u) if u <= meta.updates && u as usize == rows.len() + 1 => rows.push(line),
+            _ => dropped += 1,
+        }
+    }
+    let mut restored = 0;
+    if (rows.len() as u64) < meta.updates
+        && let Some(row) = &meta.metrics_row
+        && rows.len() as u64 + 1 == meta.updates
+    {
+        rows.push(row);
+        restored = 1;
+    }
+    if dropped > 0 || restored > 0 || !text.starts_with(header) {
+        let mut out = format!("{header}\n");
+        for row in &rows {
+            out.push_str(row);
+            out.push('\n');
+        }
+        write_atomic(&path, out.as_bytes()).map_err(io(&path))?;
+    }
+    Ok((dropped, restored))
+}
