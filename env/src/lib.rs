@@ -37,6 +37,7 @@ pub mod scene;
 pub mod shapes;
 pub mod sim;
 mod snapshot;
+pub mod soak;
 pub mod spaces;
 pub mod step;
 pub mod task;

@@ -21,6 +21,10 @@ enum BenchWhat {
     Env(EnvBenchArgs),
     /// PPO update throughput (samples/s, 64×64 network) and training throughput with the env.
     Ppo(PpoBenchArgs),
+    /// Soak every preset's env with seeded random actions (default 1 M steps each): counts
+    /// non-finite observations and rewards, env errors, and resident memory over time. Exits 1
+    /// if anything non-finite or any env error was seen.
+    Soak(super::soak::SoakArgs),
 }
 
 #[derive(Args, Debug)]
@@ -67,6 +71,7 @@ pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
     match &a.what {
         BenchWhat::Env(a) => run_env(a),
         BenchWhat::Ppo(a) => super::bench_ppo::run(a.iterations, &a.preset, a.json),
+        BenchWhat::Soak(a) => super::soak::run(a),
     }
 }
 

@@ -11,6 +11,7 @@ mod ik;
 mod joints;
 mod report;
 mod scene;
+mod soak;
 mod train;
 
 use std::process::ExitCode;

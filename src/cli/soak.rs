@@ -1,0 +1,163 @@
+//! `fairgrasp bench soak`: every preset's env stepped with seeded random actions for a long
+//! time (`fairgrasp_env::soak`), presets spread over threads; the table says whether anything
+//! non-finite, any env error or any memory growth was seen.
+
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use anyhow::Context;
+use clap::Args;
+use fairgrasp_env::policy::Policy;
+use fairgrasp_env::presets::{self, PRESETS};
+use fairgrasp_env::soak::{SoakReport, ZeroActions, soak};
+use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+
+#[derive(Args, Debug)]
+pub struct SoakArgs {
+    /// Env steps per preset.
+    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(1..=1_000_000_000))]
+    steps: u64,
+    /// Presets to soak (default: every shipped preset).
+    #[arg(long = "preset", value_name = "NAME")]
+    presets: Vec<String>,
+    /// Seed of the random actions and the scenarios.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Where actions come from: `script` (the scripted grasp plus uniform noise of ±--noise:
+    /// grasps, lifts, drops and pushes, so contacts are exercised) or `random` (uniform in
+    /// [−1, 1]: the arm mostly swings in free space).
+    #[arg(long, value_enum, default_value = "script")]
+    actions: SoakActions,
+    /// Noise added to each scripted action component (0–1).
+    #[arg(long, default_value_t = 0.3, value_parser = noise_level)]
+    noise: f64,
+    /// Arm simulation.
+    #[arg(long, value_enum, default_value = "servo")]
+    arm: super::baseline::ArmArg,
+    /// Threads (presets run side by side, one env each), 1–256.
+    #[arg(long, default_value_t = 2, value_parser = super::args::thread_count)]
+    threads: usize,
+    /// Print the reports as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum SoakActions {
+    Script,
+    Random,
+}
+
+fn noise_level(text: &str) -> Result<f64, String> {
+    match super::args::finite_number(text)? {
+        v if (0.0..=1.0).contains(&v) => Ok(v),
+        v => Err(format!("{v}: must be in [0, 1]")),
+    }
+}
+
+pub fn run(a: &SoakArgs) -> anyhow::Result<ExitCode> {
+    let names: Vec<String> = if a.presets.is_empty() {
+        PRESETS.iter().map(|(n, _, _)| n.to_string()).collect()
+    } else {
+        a.presets.clone()
+    };
+    let configs = names
+        .iter()
+        .map(|n| {
+            let mut c = presets::load(n).with_context(|| format!("preset {n}"))?;
+            c.arm.model = a.arm.into();
+            Ok(c)
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let done = AtomicU64::new(0);
+    let bar = indicatif::ProgressBar::new(a.steps * configs.len() as u64);
+    bar.set_style(indicatif::ProgressStyle::with_template(
+        "{bar:30} {pos}/{len} env steps {per_sec} eta {eta}",
+    )?);
+    let next = AtomicU64::new(0);
+    let mut results: Vec<Option<anyhow::Result<(SoakReport, f64)>>> =
+        (0..configs.len()).map(|_| None).collect();
+    let slots: Vec<std::sync::Mutex<&mut Option<_>>> =
+        results.iter_mut().map(std::sync::Mutex::new).collect();
+    std::thread::scope(|s| {
+        for _ in 0..a.threads.min(configs.len()) {
+            s.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed) as usize;
+                    let Some(config) = configs.get(i) else { break };
+                    let start = std::time::Instant::now();
+                    let mut last = 0;
+                    let (mut policy, noise): (Box<dyn Policy>, f64) = match a.actions {
+                        SoakActions::Script => (
+                            Box::new(ScriptedGrasp::new(config, BaselineConfig::default())),
+                            a.noise,
+                        ),
+                        SoakActions::Random => (Box::new(ZeroActions), 1.0),
+                    };
+                    let r = soak(config, policy.as_mut(), noise, a.steps, a.seed, &mut |t| {
+                        done.fetch_add(t - last, Ordering::Relaxed);
+                        last = t;
+                        bar.set_position(done.load(Ordering::Relaxed));
+                    });
+                    let r = r.map(|r| (r, start.elapsed().as_secs_f64()));
+                    **slots[i].lock().expect("no thread panicked holding it") =
+                        Some(r.map_err(anyhow::Error::from));
+                }
+            });
+        }
+    });
+    drop(slots);
+    bar.finish_and_clear();
+    let mut rows = Vec::new();
+    let mut clean = true;
+    for (name, r) in names.iter().zip(results) {
+        let (r, secs) = r.context("a soak thread stopped early")??;
+        clean &= r.non_finite_observations == 0 && r.non_finite_rewards == 0 && r.env_errors == 0;
+        rows.push((name.clone(), r, secs));
+    }
+    if a.json {
+        let v: Vec<_> = rows
+            .iter()
+            .map(|(n, r, s)| serde_json::json!({"preset": n, "seconds": s, "report": r}))
+            .collect();
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        println!(
+            "{:<16} {:>10} {:>9} {:>8} {:>7} {:>7} {:>7} {:>6} {:>10} {:>10}",
+            "preset",
+            "steps",
+            "physics",
+            "episodes",
+            "NaN obs",
+            "NaN rew",
+            "faults",
+            "errors",
+            "RSS 10% MiB",
+            "RSS end MiB"
+        );
+        for (n, r, _) in &rows {
+            println!(
+                "{:<16} {:>10} {:>9} {:>8} {:>7} {:>7} {:>7} {:>6} {:>10.1} {:>10.1}",
+                n,
+                r.steps,
+                r.physics_steps,
+                r.episodes,
+                r.non_finite_observations,
+                r.non_finite_rewards,
+                r.physics_faults,
+                r.env_errors,
+                r.rss_after_warmup_kib as f64 / 1024.0,
+                r.rss_end_kib as f64 / 1024.0
+            );
+            if let Some(e) = &r.first_error {
+                println!("  first error: {e}");
+            }
+        }
+        println!("(resident memory is the process's: presets soaked side by side share it)");
+    }
+    Ok(if clean {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
