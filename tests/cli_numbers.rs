@@ -1,0 +1,68 @@
+//! Numbers on the command line: exponent forms with a sign parse, non-finite and absurd values
+//! are refused naming the flag (they used to give `null` in JSON), and the reported wrist
+//! singularity round-trips through `fk` and `ik`.
+
+use std::process::{Command, Output};
+
+fn fairgrasp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn json(out: &Output) -> serde_json::Value {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn a_negative_number_in_exponent_form_is_a_number_not_a_flag() {
+    let out = fairgrasp(&["fk", "--joints", "0", "-1e-12", "0", "0", "0", "0", "--json"]);
+    let v = json(&out);
+    assert!(v["flange"]["xyz"][0].is_f64(), "{v}");
+}
+
+#[test]
+fn non_finite_or_absurd_numbers_are_refused_naming_the_flag() {
+    for args in [
+        &["frames", "--point", "1e308", "0", "0", "--json"][..],
+        &["frames", "--point", "nan", "0", "0", "--json"][..],
+        &["fk", "--joints", "inf", "0", "0", "0", "0", "0"][..],
+        &["ik", "--pose", "0.3", "0", "0.3", "0", "-1e400", "0"][..],
+    ] {
+        let out = fairgrasp(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(&format!("'{}", args[1])) && stderr.contains("finite"),
+            "{args:?}: {stderr}"
+        );
+        assert!(out.stdout.is_empty(), "{args:?} printed a result");
+    }
+}
+
+#[test]
+fn ik_reaches_the_fk_pose_of_the_reported_wrist_singularity() {
+    let fk = json(&fairgrasp(&[
+        "fk", "--joints", "1", "-1", "0.3", "-1", "0", "1", "--json",
+    ]));
+    let xyz = &fk["flange"]["xyz"];
+    let rpy = &fk["flange"]["rpy"];
+    let pose: Vec<String> = (0..3)
+        .map(|i| xyz[i].to_string())
+        .chain((0..3).map(|i| rpy[i].to_string()))
+        .collect();
+    let mut args = vec!["ik", "--json", "--pose"];
+    args.extend(pose.iter().map(String::as_str));
+    let out = fairgrasp(&args);
+    let v = json(&out);
+    let text = v.to_string();
+    assert!(!text.contains("out of reach"), "{text}");
+    let solutions = v["solutions"].as_array().map_or(0, Vec::len);
+    assert!(solutions >= 1, "{text}");
+}
