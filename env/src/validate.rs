@@ -332,10 +332,10 @@ impl EnvConfig {
             "must be in 1..=100000",
         )?;
         check(
-            t.lift_height > 0.0 && t.lift_height <= 0.3,
+            t.lift_height > 0.0 && t.lift_height <= 2.0,
             "task.lift_height",
             t.lift_height,
-            "must be in (0, 0.3] m (default 0.03)",
+            "must be in (0, 2] m (default 0.03; a height the arm cannot reach means no success)",
         )?;
         check(
             t.protective_stop_force.is_finite() && t.protective_stop_force > 0.0,
