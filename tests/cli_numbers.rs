@@ -22,7 +22,9 @@ fn json(out: &Output) -> serde_json::Value {
 
 #[test]
 fn a_negative_number_in_exponent_form_is_a_number_not_a_flag() {
-    let out = fairgrasp(&["fk", "--joints", "0", "-1e-12", "0", "0", "0", "0", "--json"]);
+    let out = fairgrasp(&[
+        "fk", "--joints", "0", "-1e-12", "0", "0", "0", "0", "--json",
+    ]);
     let v = json(&out);
     assert!(v["flange"]["xyz"][0].is_f64(), "{v}");
 }

@@ -1,6 +1,7 @@
 //! Kill tests: `train` aborted (as by a kill: no destructors, no flushing) at every point of an
-//! update — while a checkpoint is written, once it is moved aside, before and after the metrics
-//! row, and in the middle of the row — then `train --resume`: the run finishes with exactly one
+//! update — while a checkpoint (`latest` or `best`) is written, once it is moved aside, before
+//! and after the metrics row, and in the middle of the row — then `train --resume` (twice after
+//! a kill that left only `latest.old`, since the next save must not delete the only copy): the run finishes with exactly one
 //! `metrics.csv` row per update, in order, and `checkpoints/best` never scores lower than before
 //! the kill. The abort comes from `FAIRGRASP_CRASH_AT` (see `fairgrasp_rl::resume::crash_point`).
 
@@ -64,9 +65,10 @@ fn metric_updates(run: &Path) -> (Vec<u64>, bool) {
 
 fn best_score(run: &Path) -> f64 {
     let dir = run.join("checkpoints/best");
-    let meta = ["meta.json", "../best.old/meta.json"]
-        .iter()
-        .find_map(|f| std::fs::read_to_string(dir.join(f)).ok());
+    let old = run.join("checkpoints/best.old/meta.json");
+    let meta = std::fs::read_to_string(dir.join("meta.json"))
+        .or_else(|_| std::fs::read_to_string(old))
+        .ok();
     meta.map_or(-1.0, |m| {
         let v: serde_json::Value = serde_json::from_str(&m).unwrap();
         v["eval_success_rate"].as_f64().unwrap_or(-1.0)
@@ -77,12 +79,15 @@ fn best_score(run: &Path) -> f64 {
 fn a_kill_at_any_point_of_an_update_loses_no_row_duplicates_none_and_keeps_the_best() {
     let dir = temp_dir("points");
     let config = write_config(&dir);
+    // `latest:`/`best:` name the checkpoint being written; the first evaluation always beats
+    // "none yet", so `best` is written at update 1.
     let points = [
-        "checkpoint_written@0",
-        "checkpoint_moved_aside@0",
+        "latest:checkpoint_written@0",
+        "best:checkpoint_written@1",
+        "best:checkpoint_moved_aside@1",
         "before_checkpoint@2",
-        "checkpoint_written@2",
-        "checkpoint_moved_aside@2",
+        "latest:checkpoint_written@2",
+        "latest:checkpoint_moved_aside@2",
         "before_row@2",
         "torn_row@2",
         "after_row@2",
@@ -97,6 +102,19 @@ fn a_kill_at_any_point_of_an_update_loses_no_row_duplicates_none_and_keeps_the_b
             "{point}: the crash point was not reached"
         );
         let best_before = best_score(&run);
+        if point.contains("moved_aside") {
+            // Killed again at the same point of the resume's first save: that save must not
+            // delete `.old`, the only copy left.
+            let killed_again = train(&config, &run, true, Some(point));
+            assert!(
+                !killed_again.status.success(),
+                "{point}: second crash not reached"
+            );
+            let kept = ["checkpoints/latest", "checkpoints/latest.old"]
+                .iter()
+                .any(|d| run.join(d).join("meta.json").exists());
+            assert!(kept, "{point}: the second kill left no checkpoint");
+        }
         let resumed = train(&config, &run, true, None);
         assert!(
             resumed.status.success(),
@@ -120,7 +138,7 @@ fn a_fresh_train_into_a_folder_killed_before_its_first_checkpoint_starts_over() 
     let dir = temp_dir("first");
     let config = write_config(&dir);
     let run = dir.join("run");
-    let killed = train(&config, &run, false, Some("checkpoint_written@0"));
+    let killed = train(&config, &run, false, Some("latest:checkpoint_written@0"));
     assert!(!killed.status.success());
     assert!(run.join("metrics.csv").exists() && !run.join("checkpoints/latest").exists());
     let again = train(&config, &run, false, None);

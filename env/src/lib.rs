@@ -15,6 +15,7 @@
 
 pub mod bench;
 pub mod config;
+pub mod config_numbers;
 pub mod contacts;
 pub mod convert;
 pub mod curriculum;

@@ -135,12 +135,17 @@ pub fn save(
     let json = serde_json::to_vec_pretty(&meta).map_err(|e| err(&tmp, e))?;
     std::fs::write(tmp.join("meta.json"), json).map_err(|e| err(&tmp, e))?;
     sync_dir_files(&tmp);
-    crate::resume::crash_point("checkpoint_written", meta.updates);
-    let _ = std::fs::remove_dir_all(&old);
+    let name = dir
+        .file_name()
+        .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+    crate::resume::crash_point(&format!("{name}:checkpoint_written"), meta.updates);
+    // `old` may be the only good copy (a kill came after the last save moved `dir` aside): it
+    // is replaced only when `dir` exists to take its place.
     if dir.exists() {
+        let _ = std::fs::remove_dir_all(&old);
         std::fs::rename(dir, &old).map_err(|e| err(dir, e))?;
     }
-    crate::resume::crash_point("checkpoint_moved_aside", meta.updates);
+    crate::resume::crash_point(&format!("{name}:checkpoint_moved_aside"), meta.updates);
     std::fs::rename(&tmp, dir).map_err(|e| err(dir, e))?;
     let _ = std::fs::remove_dir_all(&old);
     Ok(())
@@ -230,8 +235,13 @@ pub fn load_model(
             ));
         }
     }
-    let widths_ok = meta.model.hidden.iter().all(|w| (1..=4096).contains(w));
-    if meta.model.hidden.is_empty() || meta.model.hidden.len() > 8 || !widths_ok {
+    use crate::train_config::{MAX_LAYERS, MAX_WIDTH};
+    let widths_ok = meta
+        .model
+        .hidden
+        .iter()
+        .all(|w| (1..=MAX_WIDTH).contains(w));
+    if meta.model.hidden.is_empty() || meta.model.hidden.len() > MAX_LAYERS || !widths_ok {
         return Err(err(
             &dir.join("meta.json"),
             format!(

@@ -18,19 +18,24 @@ use crate::train_config::{TrainConfig, TrainError, io};
 /// equals `POINT@UPDATE` (e.g. `before_row@2`), the process aborts at that point of that update,
 /// as a kill would (no destructors, no flushing). Does nothing otherwise.
 pub fn crash_point(point: &str, update: u64) {
-    if let Ok(target) = std::env::var("FAIRGRASP_CRASH_AT")
-        && target == format!("{point}@{update}")
-    {
+    if crash_requested(point, update) {
         std::process::abort();
     }
+}
+
+/// Whether `FAIRGRASP_CRASH_AT` asks for a crash at `point` of `update`.
+pub fn crash_requested(point: &str, update: u64) -> bool {
+    std::env::var("FAIRGRASP_CRASH_AT").is_ok_and(|t| t == format!("{point}@{update}"))
 }
 
 /// Fields a resume may change without `--accept-config-changes`: how long to run and on how many
 /// threads (results do not depend on the thread count).
 const FREELY_CHANGED: [&str; 3] = ["total_timesteps", "max_wall_time_s", "threads"];
 
-/// Fields no resume can change: the saved network has their shape.
-const SHAPE_FIELDS: [&str; 2] = ["model.hidden", "agent"];
+/// Fields no resume can change: the saved network has their shape (`model.hidden`, and the
+/// input size through `agent.mode`/`agent.action_space`), and the checkpoint's `[agent]` is what
+/// every evaluation of it uses.
+const FIXED_FIELDS: [&str; 2] = ["model.hidden", "agent"];
 
 /// How `train` treats an existing run folder.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -49,12 +54,17 @@ pub fn has_checkpoint(run_dir: &Path) -> bool {
 }
 
 /// Decides between a fresh start and a resume: a fresh run refuses a folder holding a
-/// checkpoint; a resume of a folder without one (killed before its first checkpoint) starts
-/// fresh. Returns true to resume.
+/// checkpoint; a resume of a run folder without one (killed before its first checkpoint: it has
+/// `config.toml`) starts fresh; a resume of a folder that holds no run is refused (a mistyped
+/// `--run-dir`). Returns true to resume.
 pub fn decide(run_dir: &Path, resume: bool) -> Result<bool, TrainError> {
     match (resume, has_checkpoint(run_dir)) {
         (false, true) => Err(TrainError::Config(format!(
             "{} already holds a run (checkpoints/latest): pass --resume to continue it, or choose another --run-dir",
+            run_dir.display()
+        ))),
+        (true, false) if !run_dir.join("config.toml").exists() => Err(TrainError::Config(format!(
+            "--resume: {} holds no run (no config.toml, no checkpoints/latest); leave out --resume to start one",
             run_dir.display()
         ))),
         (true, false) => Ok(false),
@@ -81,15 +91,18 @@ fn flatten(value: &toml::Value, path: &str, out: &mut Vec<(String, String)>) {
 
 /// The differences between the run's saved config and the new one, as `field: old → new`
 /// (fields in [`FREELY_CHANGED`] left out).
-pub fn config_differences(saved: &TrainConfig, new: &TrainConfig) -> Vec<String> {
-    let leaves = |c: &TrainConfig| {
+pub fn config_differences(
+    saved: &TrainConfig,
+    new: &TrainConfig,
+) -> Result<Vec<String>, TrainError> {
+    let leaves = |c: &TrainConfig| -> Result<Vec<(String, String)>, TrainError> {
         let mut out = Vec::new();
-        if let Ok(v) = toml::Value::try_from(c) {
-            flatten(&v, "", &mut out);
-        }
-        out
+        let v = toml::Value::try_from(c)
+            .map_err(|e| TrainError::Config(format!("comparing configs: {e}")))?;
+        flatten(&v, "", &mut out);
+        Ok(out)
     };
-    let (old, new) = (leaves(saved), leaves(new));
+    let (old, new) = (leaves(saved)?, leaves(new)?);
     let find = |list: &[(String, String)], key: &str| {
         list.iter()
             .find(|(k, _)| k == key)
@@ -98,13 +111,14 @@ pub fn config_differences(saved: &TrainConfig, new: &TrainConfig) -> Vec<String>
     let mut keys: Vec<&String> = old.iter().chain(&new).map(|(k, _)| k).collect();
     keys.sort();
     keys.dedup();
-    keys.into_iter()
+    Ok(keys
+        .into_iter()
         .filter(|k| !FREELY_CHANGED.contains(&k.as_str()))
         .filter_map(|k| {
             let (a, b) = (find(&old, k), find(&new, k));
             (a != b).then(|| format!("{k}: {a} → {b}"))
         })
-        .collect()
+        .collect())
 }
 
 /// Checks a resume's config against the run's `config.toml`: refuses differences unless
@@ -114,18 +128,18 @@ pub fn check_config(run_dir: &Path, config: &TrainConfig, accept: bool) -> Resul
     let text = std::fs::read_to_string(&path).map_err(io(&path))?;
     let saved: TrainConfig = toml::from_str(&text)
         .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
-    let diffs = config_differences(&saved, config);
+    let diffs = config_differences(&saved, config)?;
     if diffs.is_empty() {
         return Ok(());
     }
     let list = diffs.join("; ");
     let shape: Vec<&String> = diffs
         .iter()
-        .filter(|d| SHAPE_FIELDS.iter().any(|f| d.starts_with(f)))
+        .filter(|d| FIXED_FIELDS.iter().any(|f| d.starts_with(f)))
         .collect();
     if !shape.is_empty() {
         return Err(TrainError::Config(format!(
-            "cannot resume {} with a different network ({}): the checkpoint's weights have the old shape; start a new run folder instead",
+            "cannot resume {} with a different network shape or [agent] ({}): the checkpoint's weights and agent are the old ones; start a new run folder instead",
             run_dir.display(),
             shape
                 .iter()
@@ -164,14 +178,17 @@ pub fn best_so_far(run_dir: &Path, latest: &CheckpointMeta) -> f64 {
         .fold(-1.0, f64::max)
 }
 
-/// Rewrites `metrics.csv` to hold exactly the rows of updates 1 … `meta.updates`: drops a torn
-/// last line and rows past the checkpoint, and restores the checkpoint's own row if the kill
-/// came before it was appended. Returns how many rows were dropped and restored.
+/// Rewrites `metrics.csv` to hold one row per update up to `meta.updates`, in order: drops a
+/// torn last line, rows past the checkpoint and any out of order, and restores the checkpoint's
+/// own row if it is missing (a kill between the checkpoint and the row). Rows missing further
+/// back (a file from before rows travelled in checkpoints, or a power cut before the append
+/// reached the disk) cannot be restored: they are counted in the result. Returns (rows dropped,
+/// rows restored, updates still without a row).
 pub fn repair_metrics(
     run_dir: &Path,
     meta: &CheckpointMeta,
     header: &str,
-) -> Result<(usize, usize), TrainError> {
+) -> Result<(usize, usize, u64), TrainError> {
     let path = run_dir.join("metrics.csv");
     let text = std::fs::read_to_string(&path).unwrap_or_default();
     let complete = match text.rfind('\n') {
@@ -179,22 +196,26 @@ pub fn repair_metrics(
         None => "",
     };
     let mut rows: Vec<&str> = Vec::new();
+    let mut last = 0u64;
     let mut dropped = usize::from(complete.len() < text.len());
     for line in complete.lines().filter(|l| !l.is_empty() && *l != header) {
         let update = line.split(',').next().and_then(|u| u.parse::<u64>().ok());
         match update {
-            Some(u) if u <= meta.updates && u as usize == rows.len() + 1 => rows.push(line),
+            Some(u) if u > last && u <= meta.updates => {
+                rows.push(line);
+                last = u;
+            }
             _ => dropped += 1,
         }
     }
     let mut restored = 0;
-    if (rows.len() as u64) < meta.updates
+    if last < meta.updates
         && let Some(row) = &meta.metrics_row
-        && rows.len() as u64 + 1 == meta.updates
     {
         rows.push(row);
         restored = 1;
     }
+    let missing = meta.updates - rows.len() as u64;
     if dropped > 0 || restored > 0 || !text.starts_with(header) {
         let mut out = format!("{header}\n");
         for row in &rows {
@@ -203,5 +224,5 @@ pub fn repair_metrics(
         }
         write_atomic(&path, out.as_bytes()).map_err(io(&path))?;
     }
-    Ok((dropped, restored))
+    Ok((dropped, restored, missing))
 }

@@ -164,12 +164,13 @@ impl Run<'_> {
             .append(true)
             .open(&metrics_path)
             .map_err(io(&metrics_path))?;
-        if std::env::var("FAIRGRASP_CRASH_AT").is_ok_and(|t| t == format!("torn_row@{update}")) {
+        if resume::crash_requested("torn_row", update) {
             // A kill in the middle of the append: half the row, no newline.
             let _ = f.write_all(&row.as_bytes()[..row.len() / 2]);
             std::process::abort();
         }
         writeln!(f, "{row}").map_err(io(&metrics_path))?;
+        f.sync_data().map_err(io(&metrics_path))?;
         resume::crash_point("after_row", update);
         report(Progress {
             timesteps: self.meta.timesteps,
@@ -200,7 +201,13 @@ fn start_from(
                 meta.input_dim
             )));
         }
-        resume::repair_metrics(run_dir, &meta, METRICS_HEADER)?;
+        let (dropped, restored, missing) = resume::repair_metrics(run_dir, &meta, METRICS_HEADER)?;
+        if dropped + restored > 0 || missing > 0 {
+            eprintln!(
+                "note: metrics.csv repaired to match checkpoints/latest (update {}): {dropped} torn or extra rows dropped, {restored} restored from the checkpoint, {missing} earlier updates without a row",
+                meta.updates
+            );
+        }
         return Ok((meta, model, Some(latest)));
     }
     let toml = toml::to_string_pretty(config)

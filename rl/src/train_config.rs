@@ -113,7 +113,7 @@ pub enum TrainError {
     #[error(transparent)]
     Env(#[from] fairgrasp_env::EnvError),
     #[error(
-        "update {update} failed: {cause}; checkpoints/latest keeps the last good network (update {last_good}): change the config (e.g. a lower learning_rate) and continue with --resume --accept-config-changes"
+        "update {update} failed: {cause}; checkpoints/latest keeps the last good network (update {last_good}); continue with --resume (after a divergence: lower learning_rate first and add --accept-config-changes)"
     )]
     Update {
         /// The update that failed (1 = the first of this run folder).
@@ -179,16 +179,16 @@ impl TrainConfig {
             ));
         }
         if let Some(t) = self.max_wall_time_s
-            && (t.is_nan() || t <= 0.0)
+            && (t.is_nan() || t <= 0.0 || t > 1e6)
         {
             return Err(format!(
-                "max_wall_time_s = {t}: must be a positive number of seconds, or left out"
+                "max_wall_time_s = {t}: must be in (0, 1e6] seconds, or left out"
             ));
         }
-        if self.eval_every > 0 && !(1..=MAX_EVAL_EPISODES).contains(&self.eval_episodes) {
+        if !(1..=MAX_EVAL_EPISODES).contains(&self.eval_episodes) {
             return Err(format!(
-                "eval_episodes = {}: must be in 1..={MAX_EVAL_EPISODES} while eval_every = {} (set eval_every = 0 to never evaluate)",
-                self.eval_episodes, self.eval_every
+                "eval_episodes = {}: must be in 1..={MAX_EVAL_EPISODES} (the run's evaluations and its final one)",
+                self.eval_episodes
             ));
         }
         let widths_ok = self

@@ -21,9 +21,9 @@ enum BenchWhat {
     Env(EnvBenchArgs),
     /// PPO update throughput (samples/s, 64×64 network) and training throughput with the env.
     Ppo(PpoBenchArgs),
-    /// Soak every preset's env with seeded random actions (default 1 M steps each): counts
-    /// non-finite observations and rewards, env errors, and resident memory over time. Exits 1
-    /// if anything non-finite or any env error was seen.
+    /// Soak every preset's env (default 1 M steps each) driven by the scripted grasp with noise
+    /// (or random actions): counts non-finite observations and rewards, physics faults, env
+    /// errors, and shows resident memory. Exits 1 if any of them was seen.
     Soak(super::soak::SoakArgs),
 }
 

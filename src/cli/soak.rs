@@ -1,6 +1,7 @@
 //! `fairgrasp bench soak`: every preset's env stepped with seeded random actions for a long
-//! time (`fairgrasp_env::soak`), presets spread over threads; the table says whether anything
-//! non-finite, any env error or any memory growth was seen.
+//! time (`fairgrasp_env::soak`), presets spread over threads; the table counts anything
+//! non-finite, physics faults and env errors (any of them: exit 1) and shows resident memory
+//! after the first 10 % and at the end, to compare by eye.
 
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -112,7 +113,10 @@ pub fn run(a: &SoakArgs) -> anyhow::Result<ExitCode> {
     let mut clean = true;
     for (name, r) in names.iter().zip(results) {
         let (r, secs) = r.context("a soak thread stopped early")??;
-        clean &= r.non_finite_observations == 0 && r.non_finite_rewards == 0 && r.env_errors == 0;
+        clean &= r.non_finite_observations == 0
+            && r.non_finite_rewards == 0
+            && r.physics_faults == 0
+            && r.env_errors == 0;
         rows.push((name.clone(), r, secs));
     }
     if a.json {

@@ -26,10 +26,11 @@ pub struct TrainArgs {
     /// With --resume: continue even though the config differs from the run's config.toml
     /// (the differences are listed without it). The new values are written to config.toml and
     /// recorded in config_changes.log. total_timesteps, max_wall_time_s and threads may change
-    /// without it; the network's shape ([model] hidden, [agent]) never can.
+    /// without it (with anneal_lr the learning-rate schedule then stretches to the new
+    /// total_timesteps); the network's shape ([model] hidden) and [agent] never can.
     #[arg(long, requires = "resume")]
     accept_config_changes: bool,
-    /// Override the config's seed.
+    /// Override the config's seed (a --resume without it keeps the run's seed).
     #[arg(long)]
     seed: Option<u64>,
     /// Override the config's total_timesteps.
@@ -58,7 +59,17 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
             .map_or("run".into(), |s| s.to_string_lossy().into_owned());
         Path::new("runs").join(stem)
     });
-    if a.resume && !fairgrasp_rl::resume::has_checkpoint(&run_dir) {
+    // A resume keeps the seed the run was started with when --seed is not given again.
+    if a.resume && a.seed.is_none() {
+        let saved = run_dir.join("config.toml");
+        if saved.exists() {
+            config.seed = TrainConfig::from_toml_file(&saved)?.seed;
+        }
+    }
+    if a.resume
+        && !fairgrasp_rl::resume::has_checkpoint(&run_dir)
+        && run_dir.join("config.toml").exists()
+    {
         eprintln!(
             "note: {} holds no checkpoint yet (killed before its first one?): starting it fresh",
             run_dir.display()
