@@ -87,6 +87,29 @@ pub fn replay_still(
     render_png(path, SIZE, |root| draw_frame(t, row, title, &bounds, root))
 }
 
+/// One frame of the replay (row `step`) as RGB bytes, `SIZE.0 × SIZE.1 × 3`, row-major: what
+/// gymnasium's `render_mode = "rgb_array"` returns from Python. A step past the last row is
+/// refused with the allowed range.
+pub fn replay_frame_rgb(
+    t: &EpisodeTrajectory,
+    title: &str,
+    step: usize,
+) -> Result<Vec<u8>, ReportError> {
+    let here = Path::new("<render>");
+    let Some(row) = t.rows.get(step) else {
+        return Err(ReportError::chart(
+            here,
+            format!(
+                "step {step}: the episode has {} recorded steps",
+                t.rows.len()
+            ),
+        ));
+    };
+    let bounds = view_bounds(t);
+    crate::raster::render_rgb(SIZE, |root| draw_frame(t, row, title, &bounds, root))
+        .map_err(|e| ReportError::chart(here, e))
+}
+
 /// The fixed view bounds of a replay [m]: everything that moves, over the whole episode.
 struct ViewBounds {
     x: (f64, f64),

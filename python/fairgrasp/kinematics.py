@@ -1,0 +1,39 @@
+"""The FR3/FR5 kinematics, NumPy in and out (the Rust library the CLI uses).
+
+Poses are ``[x, y, z, roll, pitch, yaw]`` in base_link (metres, URDF fixed-axis radians), as
+``fairgrasp fk/ik --json`` print them; frames are ``"tool0"`` (the flange) or ``"tcp"``.
+"""
+
+import numpy as np
+
+from . import _native
+
+
+def _vec(values, n, what):
+    a = np.ascontiguousarray(values, dtype=np.float64).reshape(-1)
+    if a.shape != (n,):
+        raise ValueError(f"{what} has {a.size} values, expected {n}")
+    return a
+
+
+def fk(joints, model="fr3"):
+    """Forward kinematics: ``{"flange": {...}, "tcp": {...}, "in_limits": bool}``, each frame
+    with ``xyz``, ``rpy`` and its 4×4 ``matrix`` in base_link."""
+    return _native.fk(_vec(joints, 6, "joints"), model)
+
+
+def ik(pose, frame="tool0", current=None, model="fr3"):
+    """Every closed-form IK branch for ``pose``: a list of ``{"joints", "in_limits", "branch"}``
+    (empty when out of reach). ``current`` sets θ6 at a wrist singularity."""
+    current = None if current is None else _vec(current, 6, "current")
+    return _native.ik(_vec(pose, 6, "pose"), frame, current, model)
+
+
+def ik_qp(pose, start, frame="tool0", seed=0, model="fr3"):
+    """The clarabel QP IK from ``start`` (joint limits respected): the joints, or ValueError."""
+    return _native.ik_qp(_vec(pose, 6, "pose"), _vec(start, 6, "start"), frame, seed, model)
+
+
+def world_to_base(base_pose, point):
+    """A world point expressed in base_link, given base_link's pose in the world."""
+    return _native.world_to_base(_vec(base_pose, 6, "base_pose"), _vec(point, 3, "point"))

@@ -1,0 +1,87 @@
+//! `fairgrasp._native`: the Rust env, vector env, kinematics and scripted baseline for Python.
+//! The gymnasium classes live in the pure-Python package around it (`python/fairgrasp/`);
+//! everything here takes and returns NumPy arrays, plain numbers and JSON strings (infos), and
+//! runs the physics with the GIL released.
+//!
+//! ```
+//! // The module's action size is the env's.
+//! assert_eq!(_native::ACT_DIM, fairgrasp_env::spaces::ACT_DIM);
+//! ```
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+mod env;
+mod kinematics;
+mod vector;
+
+/// A Rust error as Python's `ValueError` (bad input: config, action, pose).
+pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// Loads a preset by name (or a .toml path), with the arm simulation set.
+pub(crate) fn env_config(
+    preset: &str,
+    arm: &str,
+    config_toml: Option<&str>,
+) -> PyResult<fairgrasp_env::EnvConfig> {
+    let mut config = match config_toml {
+        Some(text) => fairgrasp_env::EnvConfig::from_toml_str(text).map_err(value_error)?,
+        None => fairgrasp_env::presets::load(preset).map_err(value_error)?,
+    };
+    config.arm.model = match arm {
+        "servo" => fairgrasp_env::ArmModelKind::Servo,
+        "multibody" => fairgrasp_env::ArmModelKind::Multibody,
+        other => {
+            return Err(value_error(format!(
+                "arm = {other:?}: choose \"servo\" or \"multibody\""
+            )));
+        }
+    };
+    Ok(config)
+}
+
+/// Checks an action's values: the right count and every value finite; names the index.
+pub(crate) fn checked_action(values: &[f64], what: &str) -> PyResult<fairgrasp_env::Action> {
+    let dim = fairgrasp_env::spaces::ACT_DIM;
+    if values.len() != dim {
+        return Err(value_error(format!(
+            "{what} has {} values, expected {dim}",
+            values.len()
+        )));
+    }
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(value_error(format!(
+            "{what}[{i}] = {} is not finite",
+            values[i]
+        )));
+    }
+    let mut a = [0.0; 7];
+    a.copy_from_slice(values);
+    Ok(fairgrasp_env::Action(a))
+}
+
+/// The names of the shipped presets, in order.
+#[pyfunction]
+fn preset_names() -> Vec<&'static str> {
+    fairgrasp_env::presets::PRESETS
+        .iter()
+        .map(|(name, _, _)| *name)
+        .collect()
+}
+
+/// Values per action (as exported to Python).
+pub const ACT_DIM: usize = fairgrasp_env::spaces::ACT_DIM;
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<env::Env>()?;
+    m.add_class::<env::Baseline>()?;
+    m.add_class::<vector::VecEnv>()?;
+    m.add_function(wrap_pyfunction!(preset_names, m)?)?;
+    kinematics::register(m)?;
+    m.add("OBS_DIM", fairgrasp_env::obs::OBS_DIM)?;
+    m.add("ACT_DIM", ACT_DIM)?;
+    Ok(())
+}

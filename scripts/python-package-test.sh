@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Runs the Python package's pytest tests (python/tests) in a virtual environment of their own.
+# Usage: scripts/python-package-test.sh [PYTEST_ARGS...]
+#   venv: $FAIRGRASP_PY_VENV (default target/python-package-venv), created on first use from
+#   scripts/requirements-python-package.txt (needs python3 with venv and PyPI the first time).
+#   The extension: with FAIRGRASP_NATIVE_LIB=path/to/lib_native.so (what `cargo test
+#   --workspace` builds; tests/python_package.rs passes it) the package is staged from python/
+#   with that library, so nothing is compiled again; without it, `maturin develop --profile dev`
+#   builds and installs the package into the venv. `pip install ./python` builds a release wheel.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+venv="${FAIRGRASP_PY_VENV:-$root/target/python-package-venv}"
+requirements="$root/scripts/requirements-python-package.txt"
+python="$venv/bin/python"
+stamp="$venv/.fairgrasp-requirements"
+if ! [[ -x "$python" && -f "$stamp" ]] || ! cmp -s "$stamp" "$requirements"; then
+    mkdir -p "$(dirname "$venv")"
+    python3 -m venv "$venv" >&2
+    "$python" -m pip install --quiet --disable-pip-version-check -r "$requirements" >&2
+    cp "$requirements" "$stamp"
+fi
+cd "$root"
+if [[ -n "${FAIRGRASP_NATIVE_LIB:-}" ]]; then
+    stage="$root/target/python-package-stage"
+    rm -rf "$stage"
+    mkdir -p "$stage/fairgrasp"
+    cp python/fairgrasp/*.py "$stage/fairgrasp/"
+    cp "$FAIRGRASP_NATIVE_LIB" "$stage/fairgrasp/_native.abi3.so"
+    export PYTHONPATH="$stage${PYTHONPATH:+:$PYTHONPATH}"
+else
+    VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" "$venv/bin/maturin" develop --quiet --profile dev \
+        --manifest-path python/Cargo.toml >&2
+fi
+exec "$python" -m pytest -q -p no:cacheprovider python/tests "$@"
