@@ -129,8 +129,14 @@ pub fn check_config(run_dir: &Path, config: &TrainConfig, accept: bool) -> Resul
     let saved: TrainConfig = toml::from_str(&text)
         .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
     let diffs = config_differences(&saved, config)?;
+    let write_config = || {
+        let toml = toml::to_string_pretty(config)
+            .map_err(|e| TrainError::Config(format!("config.toml: {e}")))?;
+        write_atomic(&path, toml.as_bytes()).map_err(io(&path))
+    };
     if diffs.is_empty() {
-        return Ok(());
+        // Only the freely changed fields (if any) differ: config.toml says what runs now.
+        return write_config();
     }
     let list = diffs.join("; ");
     let shape: Vec<&String> = diffs
@@ -160,9 +166,7 @@ pub fn check_config(run_dir: &Path, config: &TrainConfig, accept: bool) -> Resul
         .map_or(0, |d| d.as_secs());
     previous.push_str(&format!("unix time {stamp}: {list}\n"));
     write_atomic(&log, previous.as_bytes()).map_err(io(&log))?;
-    let toml = toml::to_string_pretty(config)
-        .map_err(|e| TrainError::Config(format!("config.toml: {e}")))?;
-    write_atomic(&path, toml.as_bytes()).map_err(io(&path))
+    write_config()
 }
 
 /// The best evaluation score the run has reached: from `latest`'s record and from

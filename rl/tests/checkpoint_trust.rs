@@ -128,6 +128,11 @@ fn a_resume_with_a_changed_config_is_refused_listing_the_differences_unless_acce
     let mut longer = changed.clone();
     longer.total_timesteps = 256;
     train(&longer, &dir, true, &mut |_| {}).unwrap();
+    let saved = TrainConfig::from_toml_file(&dir.join("config.toml")).unwrap();
+    assert_eq!(
+        saved.total_timesteps, 256,
+        "config.toml must hold the run length used"
+    );
     // The network's shape can never change on resume, even when accepted.
     let mut wider = longer.clone();
     wider.total_timesteps = 512;
