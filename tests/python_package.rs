@@ -38,12 +38,11 @@ fn the_python_package_passes_its_pytest_suite() {
     let reference =
         std::env::temp_dir().join(format!("fairgrasp-py-ref-{}.json", std::process::id()));
     std::fs::write(&reference, rust_reference().to_string()).unwrap();
-    // target/<profile>/deps/python_package-HASH → target/<profile>/lib_native.so
+    // target/<profile>/deps/python_package-HASH → target/<profile>/deps/lib_native.so, the
+    // workspace build's cdylib (linked against libpython; the crate's doctest makes cargo
+    // build it).
     let exe = std::env::current_exe().unwrap();
-    let native = exe
-        .parent()
-        .and_then(|d| d.parent())
-        .map(|d| d.join("lib_native.so"));
+    let native = exe.parent().map(|d| d.join("lib_native.so"));
     let mut cmd = Command::new("bash");
     cmd.arg(root.join("scripts/python-package-test.sh"));
     if let Some(lib) = native.filter(|p| p.exists()) {
