@@ -166,7 +166,7 @@ fn walk(dir: &Path) -> Result<Vec<Entry>, ReportError> {
 /// The size and FNV-1a hash of a file, read in blocks.
 fn stamp(path: &Path) -> Result<FileStamp, ReportError> {
     let mut file = std::fs::File::open(path).map_err(|e| ReportError::io(path, e))?;
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut hash = fairgrasp_types::checksum::Fnv1a64::default();
     let mut bytes = 0u64;
     let mut block = vec![0u8; 1 << 16];
     loop {
@@ -177,13 +177,11 @@ fn stamp(path: &Path) -> Result<FileStamp, ReportError> {
             break;
         }
         bytes += n as u64;
-        for &b in &block[..n] {
-            hash = (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-        }
+        hash.update(&block[..n]);
     }
     Ok(FileStamp {
         bytes,
-        fnv1a64: format!("{hash:016x}"),
+        fnv1a64: format!("{:016x}", hash.value()),
     })
 }
 

@@ -37,6 +37,14 @@ fn rows<'py>(py: Python<'py>, rows: Vec<Vec<f32>>) -> PyResult<Bound<'py, PyArra
     flat.into_pyarray(py).reshape([n, OBS_DIM])
 }
 
+/// Each env's info as JSON (parsed on the Python side).
+fn infos_json(infos: &[fairgrasp_env::Info]) -> PyResult<Vec<String>> {
+    infos
+        .iter()
+        .map(|i| serde_json::to_string(i).map_err(value_error))
+        .collect()
+}
+
 #[pymethods]
 impl VecEnv {
     #[new]
@@ -79,12 +87,7 @@ impl VecEnv {
             })
             .map_err(value_error)?;
         let obs = out.obs.iter().map(crate::env::obs_array).collect();
-        let infos = out
-            .infos
-            .iter()
-            .map(serde_json::to_string)
-            .collect::<Result<_, _>>()
-            .map_err(value_error)?;
+        let infos = infos_json(&out.infos)?;
         Ok((rows(py, obs)?, infos))
     }
 
@@ -122,12 +125,7 @@ impl VecEnv {
                     .map_or(vec![f32::NAN; OBS_DIM], crate::env::obs_array)
             })
             .collect();
-        let infos = out
-            .infos
-            .iter()
-            .map(serde_json::to_string)
-            .collect::<Result<_, _>>()
-            .map_err(value_error)?;
+        let infos = infos_json(&out.infos)?;
         Ok((
             rows(py, obs)?,
             out.rewards.clone().into_pyarray(py),

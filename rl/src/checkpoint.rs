@@ -62,14 +62,9 @@ pub struct CheckpointMeta {
 /// 64-bit FNV-1a over `parts` in order, as `fnv1a64:HEX`: catches any flipped byte (not an
 /// adversary; nothing here needs one).
 pub fn checksum(parts: &[&[u8]]) -> String {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for part in parts {
-        for b in *part {
-            h ^= u64::from(*b);
-            h = h.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-    format!("fnv1a64:{h:016x}")
+    let mut h = fairgrasp_types::checksum::Fnv1a64::default();
+    parts.iter().for_each(|p| h.update(p));
+    format!("fnv1a64:{:016x}", h.value())
 }
 
 impl CheckpointMeta {

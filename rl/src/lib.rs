@@ -26,6 +26,7 @@ pub mod normalizer;
 pub mod point_mass;
 pub mod ppo;
 pub mod ppo_config;
+pub mod ppo_error;
 pub mod resume;
 pub mod rollout;
 pub mod script;

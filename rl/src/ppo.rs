@@ -22,6 +22,8 @@ use crate::gae::{explained_variance, normalize};
 use crate::gaussian;
 use crate::model::ActorCritic;
 use crate::normalizer::RunningNorm;
+pub use crate::ppo_error::PpoError;
+use crate::ppo_error::finite_output;
 use crate::rollout::{RolloutBuffer, RolloutShape, gather, gather_rows};
 use crate::vec_api::{EpisodeStats, VecEnvError, VecEnvironment, check_finite};
 
@@ -42,31 +44,6 @@ pub struct UpdateStats {
     /// Largest `|r − 1|` of the PPO ratio on the update's first minibatch, before any gradient
     /// step: 0 when the rollout and the update compute the same log-probability.
     pub first_ratio_deviation: f32,
-}
-
-/// Why a PPO iteration stopped.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum PpoError {
-    #[error(transparent)]
-    Env(#[from] VecEnvError),
-    #[error(
-        "the network's {what} for environment {env} is {value}, not finite: the policy diverged (a lower learning_rate may help)"
-    )]
-    NonFiniteOutput {
-        what: &'static str,
-        env: usize,
-        value: f32,
-    },
-    #[error(
-        "the update made the network's parameters non-finite: the policy diverged (a lower learning_rate may help)"
-    )]
-    NonFiniteParameters,
-    #[error(
-        "the update's {what} is {value}, not finite: the policy diverged (a lower learning_rate may help)"
-    )]
-    NonFiniteLoss { what: &'static str, value: f32 },
-    #[error("reading a tensor: {0}")]
-    Tensor(String),
 }
 
 /// The clipped surrogate objective, as a loss `[1]`: `mean(max(−A·r, −A·clip(r, 1−ε, 1+ε)))`
@@ -126,18 +103,6 @@ fn to_vec<const D: usize>(t: Tensor<D>) -> Result<Vec<f32>, PpoError> {
 
 fn scalar(t: Tensor<1>) -> Result<f32, PpoError> {
     Ok(to_vec(t)?.first().copied().unwrap_or(f32::NAN))
-}
-
-/// The first non-finite network output of `[env][dim]` rows, as an error.
-fn finite_output(values: &[f32], dim: usize, what: &'static str) -> Result<(), PpoError> {
-    match values.iter().position(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(i) => Err(PpoError::NonFiniteOutput {
-            what,
-            env: i / dim.max(1),
-            value: values[i],
-        }),
-    }
 }
 
 /// A new Adam optimiser with PPO's gradient-norm clipping.

@@ -8,6 +8,7 @@
 //! - [`paired`]: McNemar's exact test between two methods on the same scenarios.
 //! - [`fs`]: [`write_atomic`], the one way fairgrasp writes a result file.
 
+pub mod checksum;
 pub mod compare;
 pub mod eval;
 pub mod fs;
