@@ -109,8 +109,7 @@ pub enum BenchError {
 
 fn ppo(config: &PpoConfig, dim: usize) -> Ppo {
     let device = Device::flex().autodiff();
-    device.seed(0);
-    let model = ActorCritic::new(dim, ACT_DIM, &ModelConfig::default(), &device);
+    let model = ActorCritic::new(dim, ACT_DIM, &ModelConfig::default(), 0, &device);
     Ppo::new(
         config.clone(),
         model,

@@ -245,7 +245,8 @@ pub fn load_model(
             ),
         ));
     }
-    let fresh = ActorCritic::new(meta.input_dim, meta.act_dim, &meta.model, device);
+    // The fresh weights are replaced by the file's: any seed will do.
+    let fresh = ActorCritic::new(meta.input_dim, meta.act_dim, &meta.model, 0, device);
     // burn's loader panics on some shape mismatches; report them as this checkpoint's error.
     let loaded =
         std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| fresh.try_load_file(&path)));

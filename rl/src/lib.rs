@@ -1,9 +1,9 @@
 //! fairgrasp-rl: PPO in burn, and the residual grasping agent.
 //!
 //! - [`gae`]: generalised advantage estimation, advantage normalisation, explained variance.
-//! - [`model`]: the actor-critic MLPs.
+//! - [`model`]: the actor-critic MLPs; [`init`]: their weights from the run's own generator.
 //! - [`normalizer`]: running observation statistics.
-//! - [`ppo`]: the PPO loop, CleanRL style.
+//! - [`ppo`]: the PPO loop, CleanRL style; [`ppo_loss`]: its losses and ratio diagnostics.
 //! - [`gaussian`]: the policy's distribution, its one log-probability.
 //! - [`rollout`]: the rollout buffer, one flat buffer per quantity.
 //! - [`vec_api`]: what PPO needs from environments; [`point_mass`]: a small task PPO must solve.
@@ -21,12 +21,14 @@ pub mod evaluate;
 pub mod gae;
 pub mod gaussian;
 pub mod grasp_env;
+pub mod init;
 pub mod model;
 pub mod normalizer;
 pub mod point_mass;
 pub mod ppo;
 pub mod ppo_config;
 pub mod ppo_error;
+pub mod ppo_loss;
 pub mod resume;
 pub mod rollout;
 pub mod script;

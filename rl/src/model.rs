@@ -5,10 +5,13 @@
 
 use burn::module::{Module, Param};
 use burn::nn::{Initializer, Linear, LinearConfig};
-use burn::tensor::{Device, Tensor};
+use burn::tensor::{Device, Tensor, TensorData};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
 use crate::gaussian;
+use crate::init::orthogonal;
 
 /// Sizes and initialisation of the network.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -33,6 +36,9 @@ impl Default for ModelConfig {
     }
 }
 
+/// The ChaCha stream the initial weights are drawn from (PPO's sampling uses stream 0).
+const INIT_STREAM: u64 = 1;
+
 /// Actor and critic.
 #[derive(Module, Debug)]
 pub struct ActorCritic {
@@ -42,13 +48,19 @@ pub struct ActorCritic {
     log_std: Param<Tensor<1>>,
 }
 
-fn mlp(sizes: &[usize], output_gain: f64, zero_output: bool, device: &Device) -> Vec<Linear> {
+fn mlp(
+    sizes: &[usize],
+    output_gain: f64,
+    zero_output: bool,
+    rng: &mut ChaCha8Rng,
+    device: &Device,
+) -> Vec<Linear> {
     let n = sizes.len() - 1;
     (0..n)
         .map(|i| {
             let last = i + 1 == n;
-            // Zero weights and bias, then orthogonal weights (burn's initializer would also
-            // apply to the 1-D bias, which orthogonal initialisation cannot fill).
+            // Zero weights and bias, then orthogonal weights drawn from the caller's generator
+            // (burn's initialisers draw from the device's, shared by the whole process).
             let mut layer = LinearConfig::new(sizes[i], sizes[i + 1])
                 .with_initializer(Initializer::Zeros)
                 .init(device);
@@ -58,8 +70,13 @@ fn mlp(sizes: &[usize], output_gain: f64, zero_output: bool, device: &Device) ->
                 } else {
                     std::f64::consts::SQRT_2
                 };
-                layer.weight =
-                    Initializer::Orthogonal { gain }.init([sizes[i], sizes[i + 1]], device);
+                // burn's `Linear` weight is `[d_input, d_output]`.
+                let (rows, cols) = (sizes[i], sizes[i + 1]);
+                let weights = orthogonal(rows, cols, gain, rng);
+                layer.weight = Param::from_tensor(Tensor::from_data(
+                    TensorData::new(weights, [rows, cols]),
+                    device,
+                ));
             }
             layer
         })
@@ -85,15 +102,32 @@ fn forward_mlp(layers: &[Linear], x: Tensor<2>) -> Tensor<2> {
 }
 
 impl ActorCritic {
-    /// A fresh network for `obs_dim` inputs and `act_dim` actions.
-    pub fn new(obs_dim: usize, act_dim: usize, config: &ModelConfig, device: &Device) -> Self {
+    /// A fresh network for `obs_dim` inputs and `act_dim` actions, its weights drawn from a
+    /// generator seeded with `seed` (and owned by this call: the same seed gives the same
+    /// network whatever else the process draws). Its stream is separate from the one PPO
+    /// samples actions from with the same seed.
+    pub fn new(
+        obs_dim: usize,
+        act_dim: usize,
+        config: &ModelConfig,
+        seed: u64,
+        device: &Device,
+    ) -> Self {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(INIT_STREAM);
         let mut sizes = vec![obs_dim];
         sizes.extend(&config.hidden);
         let actor_sizes: Vec<usize> = sizes.iter().copied().chain([act_dim]).collect();
         let critic_sizes: Vec<usize> = sizes.iter().copied().chain([1]).collect();
         Self {
-            actor: mlp(&actor_sizes, 0.01, config.zero_actor_output, device),
-            critic: mlp(&critic_sizes, 1.0, false, device),
+            actor: mlp(
+                &actor_sizes,
+                0.01,
+                config.zero_actor_output,
+                &mut rng,
+                device,
+            ),
+            critic: mlp(&critic_sizes, 1.0, false, &mut rng, device),
             log_std: Param::from_tensor(Tensor::<1>::full([act_dim], config.log_std_init, device)),
         }
     }
@@ -136,14 +170,24 @@ impl ActorCritic {
         )
     }
 
+    /// Every parameter in a fixed order: per layer (actor's, then critic's) the weights
+    /// row-major then the bias, and last the log-std.
+    pub fn flat_parameters(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        let mut push = |t: Tensor<1>| out.extend(t.into_data().iter::<f32>());
+        for layer in self.actor.iter().chain(&self.critic) {
+            push(layer.weight.val().flatten::<1>(0, 1));
+            if let Some(b) = &layer.bias {
+                push(b.val());
+            }
+        }
+        push(self.log_std());
+        out
+    }
+
     /// Are all parameters (weights, biases, log-std) finite? A diverged update makes them NaN
     /// or infinite; such a network must not be saved over a good checkpoint.
     pub fn parameters_finite(&self) -> bool {
-        let finite = |t: Tensor<1>| t.into_data().iter::<f32>().all(f32::is_finite);
-        let layer_finite = |l: &Linear| {
-            finite(l.weight.val().flatten::<1>(0, 1))
-                && l.bias.as_ref().is_none_or(|b| finite(b.val()))
-        };
-        self.actor.iter().chain(&self.critic).all(layer_finite) && finite(self.log_std())
+        self.flat_parameters().iter().all(|v| v.is_finite())
     }
 }

@@ -24,6 +24,7 @@ use crate::model::ActorCritic;
 use crate::normalizer::RunningNorm;
 pub use crate::ppo_error::PpoError;
 use crate::ppo_error::finite_output;
+pub use crate::ppo_loss::{RatioDiagnostics, clipped_surrogate, ratio_diagnostics, value_loss};
 use crate::rollout::{RolloutBuffer, RolloutShape, gather, gather_rows};
 use crate::vec_api::{EpisodeStats, VecEnvError, VecEnvironment, check_finite};
 
@@ -44,44 +45,6 @@ pub struct UpdateStats {
     /// Largest `|r − 1|` of the PPO ratio on the update's first minibatch, before any gradient
     /// step: 0 when the rollout and the update compute the same log-probability.
     pub first_ratio_deviation: f32,
-}
-
-/// The clipped surrogate objective, as a loss `[1]`: `mean(max(−A·r, −A·clip(r, 1−ε, 1+ε)))`
-/// with `r = exp(logπ_new − logπ_old)`. Also returns `r` for the diagnostics.
-pub fn clipped_surrogate(
-    new_logprob: Tensor<1>,
-    old_logprob: Tensor<1>,
-    advantages: Tensor<1>,
-    clip: f32,
-) -> (Tensor<1>, Tensor<1>) {
-    let ratio = new_logprob.sub(old_logprob).exp();
-    let pg1 = advantages.clone().neg().mul(ratio.clone());
-    let pg2 = advantages
-        .neg()
-        .mul(ratio.clone().clamp(1.0 - clip, 1.0 + clip));
-    (pg1.max_pair(pg2).mean(), ratio)
-}
-
-/// The value loss `[1]`: `½·mean((V − R)²)`, or with clipping
-/// `½·mean(max((V − R)², (V_old + clip(V − V_old, ±ε) − R)²))`.
-pub fn value_loss(
-    values: Tensor<1>,
-    returns: Tensor<1>,
-    old_values: Tensor<1>,
-    clip: Option<f32>,
-) -> Tensor<1> {
-    let unclipped = values.clone().sub(returns.clone()).powi_scalar(2);
-    match clip {
-        None => unclipped.mean().mul_scalar(0.5),
-        Some(c) => {
-            let clipped = old_values
-                .clone()
-                .add(values.sub(old_values).clamp(-c, c))
-                .sub(returns)
-                .powi_scalar(2);
-            unclipped.max_pair(clipped).mean().mul_scalar(0.5)
-        }
-    }
 }
 
 fn tensor1(values: Vec<f32>, device: &Device) -> Tensor<1> {
@@ -291,7 +254,7 @@ impl Ppo {
                 }
                 let (new_logprob, entropy) =
                     self.model.log_prob_and_entropy(mb_obs.clone(), mb_actions);
-                let (pg_loss, ratio) = clipped_surrogate(
+                let (pg_loss, log_ratio) = clipped_surrogate(
                     new_logprob,
                     tensor1(gather(&b.logprobs, mb_inds), &self.device),
                     tensor1(mb_adv, &self.device),
@@ -310,31 +273,25 @@ impl Ppo {
                     .sub(entropy.clone().mul_scalar(c.ent_coef))
                     .add(v_loss.clone().mul_scalar(c.vf_coef));
                 // Diagnostics (no gradients).
-                let ratio = to_vec(ratio.inner())?;
+                let diagnostics = ratio_diagnostics(&to_vec(log_ratio.inner())?, c.clip_coef);
                 if count == 0.0 {
-                    stats.first_ratio_deviation =
-                        ratio.iter().map(|r| (r - 1.0).abs()).fold(0.0, f32::max);
+                    stats.first_ratio_deviation = diagnostics.max_deviation;
                 }
-                let approx_kl =
-                    ratio.iter().map(|r| (r - 1.0) - r.ln()).sum::<f32>() / ratio.len() as f32;
-                let clip_frac = ratio
-                    .iter()
-                    .filter(|r| (*r - 1.0).abs() > c.clip_coef)
-                    .count() as f32
-                    / ratio.len() as f32;
                 let grads = GradientsParams::from_grads(loss.backward(), &self.model);
                 self.model = self.optimizer.step(lr, self.model.clone(), grads);
                 for (s, v) in sums.iter_mut().zip([
                     scalar(pg_loss.inner())?,
                     scalar(v_loss.inner())?,
                     scalar(entropy.inner())?,
-                    approx_kl,
-                    clip_frac,
+                    diagnostics.approx_kl,
+                    diagnostics.clip_fraction,
                 ]) {
                     *s += v;
                 }
                 count += 1.0;
-                if c.target_kl.is_some_and(|t| approx_kl > t) {
+                // SB3's early stop; a non-finite KL (a ratio overflowed) stops the epochs too.
+                let kl = diagnostics.approx_kl;
+                if c.target_kl.is_some_and(|t| !kl.is_finite() || kl > t) {
                     break 'epochs;
                 }
             }
@@ -348,11 +305,12 @@ impl Ppo {
         ] = sums.map(|s| s / count.max(1.0));
         stats.explained_variance = explained_variance(&b.values, &b.returns);
         self.buffer = Some(b);
+        // Only a non-finite loss (or parameter, below) is divergence; the KL and the clip
+        // fraction are diagnostics, reported as they are.
         let losses = [
             ("policy loss", stats.policy_loss),
             ("value loss", stats.value_loss),
             ("entropy", stats.entropy),
-            ("approximate KL", stats.approx_kl),
         ];
         if let Some((what, value)) = losses.into_iter().find(|(_, v)| !v.is_finite()) {
             return Err(PpoError::NonFiniteLoss { what, value });

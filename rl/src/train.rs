@@ -235,7 +235,7 @@ fn start_from(
         model_checksum: None,
         optimizer_checksum: None,
     };
-    let model = ActorCritic::new(input_dim, ACT_DIM, &config.model, device);
+    let model = ActorCritic::new(input_dim, ACT_DIM, &config.model, config.seed, device);
     Ok((meta, model, None))
 }
 
@@ -272,7 +272,6 @@ pub fn train_with(
     }
     std::fs::create_dir_all(run_dir.join("checkpoints")).map_err(io(run_dir))?;
     let device = Device::flex().autodiff();
-    device.seed(config.seed);
     let env_config = config
         .training_env_config()
         .map_err(|e| TrainError::Config(e.to_string()))?;

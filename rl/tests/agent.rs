@@ -20,7 +20,7 @@ fn fresh_meta(agent: AgentConfig) -> (CheckpointMeta, ActorCritic) {
         ..ModelConfig::default()
     };
     let input_dim = agent.input_dim();
-    let model = ActorCritic::new(input_dim, ACT_DIM, &model_config, &Device::flex());
+    let model = ActorCritic::new(input_dim, ACT_DIM, &model_config, 0, &Device::flex());
     let meta = CheckpointMeta {
         version: 1,
         input_dim,
@@ -77,7 +77,7 @@ fn a_checkpoint_round_trip_gives_identical_actions() {
     let model_config = ModelConfig::default(); // random actor output, so the test can fail
     let input_dim = agent.input_dim();
     let device = Device::flex();
-    let model = ActorCritic::new(input_dim, ACT_DIM, &model_config, &device);
+    let model = ActorCritic::new(input_dim, ACT_DIM, &model_config, 0, &device);
     let (mut meta, _) = fresh_meta(agent);
     meta.model = model_config;
     meta.obs_norm

@@ -21,16 +21,20 @@ fn a_diverging_run_stops_with_the_update_and_keeps_a_loadable_finite_latest() {
     let dir = temp_dir("diverge");
     let config = TrainConfig {
         preset: "fixed".into(),
-        total_timesteps: 128,
+        total_timesteps: 640,
         n_envs: 2,
         threads: 1,
         eval_every: 0,
         eval_episodes: 1,
+        // A genuine divergence: the entropy bonus dominates the loss and Adam at learning rate 1
+        // raises log σ by about 1 per minibatch step (20 per update), until σ = e^log σ
+        // overflows and the sampled actions are infinite.
         ppo: PpoConfig {
             n_steps: 16,
             batch_size: 16,
-            n_epochs: 2,
+            n_epochs: 10,
             learning_rate: 1.0,
+            ent_coef: 100.0,
             ..PpoConfig::default()
         },
         model: fairgrasp_rl::model::ModelConfig {

@@ -31,7 +31,7 @@ fn fresh(agent: AgentConfig, zero: bool) -> (CheckpointMeta, ActorCritic) {
         ..ModelConfig::default()
     };
     let input_dim = agent.input_dim();
-    let model = ActorCritic::new(input_dim, ACT_DIM, &model_config, &Device::flex());
+    let model = ActorCritic::new(input_dim, ACT_DIM, &model_config, 0, &Device::flex());
     let meta = CheckpointMeta {
         version: 1,
         input_dim,

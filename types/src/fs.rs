@@ -2,17 +2,27 @@
 
 use std::io::Write;
 use std::path::Path;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Writes `bytes` to `path` through a temporary file in the same folder (named after the file
-/// and this process) and a rename, creating the parent folder if needed. On failure the
-/// temporary file is removed and `path` is left as it was.
+/// A name no other call of this process (any thread) or other live process uses:
+/// `<stem>.tmp<pid>-<n>` with `n` counted across the process.
+fn temporary_name(path: &Path) -> std::path::PathBuf {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(format!(".tmp{}-{n}", std::process::id()));
+    path.with_file_name(name)
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder (named after the file,
+/// this process and a per-process counter, so two threads writing the same path never share
+/// one) and a rename, creating the parent folder if needed. On failure the temporary file is
+/// removed and `path` is left as it was.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
     }
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(format!(".tmp{}", std::process::id()));
-    let tmp = path.with_file_name(name);
+    let tmp = temporary_name(path);
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
@@ -69,6 +79,31 @@ mod tests {
             .map(|e| e.unwrap().file_name())
             .collect();
         assert_eq!(names, vec![std::ffi::OsString::from("result.json")]);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn threads_writing_one_path_at_once_all_succeed_and_leave_one_whole_file() {
+        let dir = scratch("threads");
+        let path = dir.join("shared.bin");
+        let payloads: Vec<Vec<u8>> = (0..8u8).map(|k| vec![k; 64 * 1024]).collect();
+        std::thread::scope(|s| {
+            for p in &payloads {
+                let path = &path;
+                s.spawn(move || {
+                    for _ in 0..20 {
+                        write_atomic(path, p).unwrap();
+                    }
+                });
+            }
+        });
+        let bytes = std::fs::read(&path).unwrap();
+        assert!(payloads.contains(&bytes), "a torn or mixed file");
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            1,
+            "temporaries left"
+        );
         std::fs::remove_dir_all(&dir).ok();
     }
 
