@@ -3,7 +3,7 @@
 //! and after the metrics row, and in the middle of the row — then `train --resume` (twice after
 //! a kill that left only `latest.old`, since the next save must not delete the only copy): the run finishes with exactly one
 //! `metrics.csv` row per update, in order, and `checkpoints/best` never scores lower than before
-//! the kill. The abort comes from `FAIRGRASP_CRASH_AT` (see `fairgrasp_rl::resume::crash_point`).
+//! the kill. The abort comes from `FAIRGRASP_CRASH_AT` (see `fairgrasp_rl::run::resume::crash_point`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -7,12 +7,12 @@ use burn::tensor::Device;
 use fairgrasp_env::presets;
 use serde::Serialize;
 
-use crate::agent::{ACT_DIM, AgentConfig};
-use crate::grasp_env::GraspVecEnv;
-use crate::model::{ActorCritic, ModelConfig};
-use crate::normalizer::RunningNorm;
+use crate::agent::grasp_agent::{ACT_DIM, AgentConfig};
+use crate::agent::grasp_env::GraspVecEnv;
+use crate::ppo::model::{ActorCritic, ModelConfig};
+use crate::ppo::normalizer::RunningNorm;
+use crate::ppo::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment};
 use crate::ppo::{Ppo, PpoConfig, PpoError};
-use crate::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment};
 
 /// An environment that costs nothing: deterministic made-up observations, reward 0.01 per step,
 /// every episode cut after 200 steps; so an iteration on it times PPO alone.

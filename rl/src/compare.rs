@@ -18,9 +18,9 @@ use fairgrasp_planner::{BaselineConfig, ClosedLoopGrasp, ScriptedGrasp};
 use fairgrasp_types::fs::slug;
 use fairgrasp_types::{ArmSimulation, Comparison, MethodResult, RecordedEpisode};
 
-use crate::checkpoint::{self, CheckpointError, CheckpointMeta};
-use crate::evaluate::agent_policy;
-use crate::model::ActorCritic;
+use crate::ppo::model::ActorCritic;
+use crate::run::checkpoint::{self, CheckpointError, CheckpointMeta};
+use crate::run::evaluate::agent_policy;
 
 /// The name of the scripted baseline (the open-loop script) in every comparison.
 pub const BASELINE: &str = "scripted baseline";

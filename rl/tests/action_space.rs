@@ -3,9 +3,9 @@
 use fairgrasp_env::config::{ActionSpace, RewardKind};
 use fairgrasp_env::presets;
 use fairgrasp_env::{Action, GraspEnv};
-use fairgrasp_rl::action_map::ActionMap;
-use fairgrasp_rl::agent::Mode;
-use fairgrasp_rl::train::TrainConfig;
+use fairgrasp_rl::agent::action_map::ActionMap;
+use fairgrasp_rl::agent::grasp_agent::Mode;
+use fairgrasp_rl::run::train::TrainConfig;
 
 #[test]
 fn a_task_space_action_becomes_joint_actions_that_move_the_tcp_that_way() {

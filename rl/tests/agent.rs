@@ -6,12 +6,12 @@ use fairgrasp_env::policy::Policy;
 use fairgrasp_env::randomize::scenario_set;
 use fairgrasp_env::{GraspEnv, presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
-use fairgrasp_rl::agent::{ACT_DIM, AgentConfig};
-use fairgrasp_rl::checkpoint::{self, CheckpointMeta};
-use fairgrasp_rl::model::{ActorCritic, ModelConfig};
-use fairgrasp_rl::normalizer::RunningNorm;
+use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
 use fairgrasp_rl::ppo::PpoConfig;
-use fairgrasp_rl::train::{TrainConfig, agent_policy, train};
+use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
+use fairgrasp_rl::ppo::normalizer::RunningNorm;
+use fairgrasp_rl::run::checkpoint::{self, CheckpointMeta};
+use fairgrasp_rl::run::train::{TrainConfig, agent_policy, train};
 
 fn fresh_meta(agent: AgentConfig) -> (CheckpointMeta, ActorCritic) {
     let model_config = ModelConfig {

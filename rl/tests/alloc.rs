@@ -16,9 +16,9 @@ use fairgrasp_env::policy::Policy;
 use fairgrasp_env::vec_env::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
-use fairgrasp_rl::agent::{ACT_DIM, AgentConfig, Mode};
-use fairgrasp_rl::grasp_env::GraspVecEnv;
-use fairgrasp_rl::vec_api::VecEnvironment;
+use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig, Mode};
+use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
+use fairgrasp_rl::ppo::vec_api::VecEnvironment;
 
 struct Counting;
 

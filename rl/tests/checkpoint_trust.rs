@@ -6,11 +6,11 @@
 use std::path::{Path, PathBuf};
 
 use burn::tensor::Device;
-use fairgrasp_rl::checkpoint;
-use fairgrasp_rl::model::ModelConfig;
 use fairgrasp_rl::ppo::PpoConfig;
-use fairgrasp_rl::resume::ResumeOptions;
-use fairgrasp_rl::train::{TrainConfig, train, train_with};
+use fairgrasp_rl::ppo::model::ModelConfig;
+use fairgrasp_rl::run::checkpoint;
+use fairgrasp_rl::run::resume::ResumeOptions;
+use fairgrasp_rl::run::train::{TrainConfig, train, train_with};
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-trust-{name}-{}", std::process::id()));

@@ -9,7 +9,7 @@ use fairgrasp_env::presets;
 use fairgrasp_rl::compare::{
     CompareError, CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, SCRIPTS, run_comparison,
 };
-use fairgrasp_rl::shipped::ShippedPolicy;
+use fairgrasp_rl::run::shipped::ShippedPolicy;
 use fairgrasp_types::ArmSimulation;
 
 fn preset(name: &str) -> ComparePreset {

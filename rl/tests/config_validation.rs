@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use fairgrasp_env::{EnvConfig, GraspEnv};
-use fairgrasp_rl::train::TrainConfig;
+use fairgrasp_rl::run::train::TrainConfig;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 

@@ -3,12 +3,12 @@
 //! trainings in parallel threads of one process give each exactly what it gives alone.
 
 use burn::tensor::Device;
-use fairgrasp_rl::checkpoint;
-use fairgrasp_rl::model::{ActorCritic, ModelConfig};
-use fairgrasp_rl::normalizer::RunningNorm;
-use fairgrasp_rl::point_mass::PointMass;
+use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
+use fairgrasp_rl::ppo::normalizer::RunningNorm;
+use fairgrasp_rl::ppo::point_mass::PointMass;
 use fairgrasp_rl::ppo::{Ppo, PpoConfig, UpdateStats};
-use fairgrasp_rl::train::{TrainConfig, train};
+use fairgrasp_rl::run::checkpoint;
+use fairgrasp_rl::run::train::{TrainConfig, train};
 
 /// PPO on the point mass for `iterations` updates: every update's statistics and the final
 /// parameters.

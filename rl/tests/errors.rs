@@ -3,12 +3,12 @@
 
 use burn::tensor::Device;
 use fairgrasp_env::presets;
-use fairgrasp_rl::agent::{ACT_DIM, AgentConfig};
-use fairgrasp_rl::checkpoint;
-use fairgrasp_rl::grasp_env::GraspVecEnv;
+use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
+use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
 use fairgrasp_rl::ppo::PpoConfig;
-use fairgrasp_rl::train::{TrainConfig, TrainError, train};
-use fairgrasp_rl::vec_api::{VecEnvError, VecEnvironment};
+use fairgrasp_rl::ppo::vec_api::{VecEnvError, VecEnvironment};
+use fairgrasp_rl::run::checkpoint;
+use fairgrasp_rl::run::train::{TrainConfig, TrainError, train};
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-rl-{name}-{}", std::process::id()));
@@ -37,7 +37,7 @@ fn a_diverging_run_stops_with_the_update_and_keeps_a_loadable_finite_latest() {
             ent_coef: 100.0,
             ..PpoConfig::default()
         },
-        model: fairgrasp_rl::model::ModelConfig {
+        model: fairgrasp_rl::ppo::model::ModelConfig {
             log_std_init: 2.0,
             ..TrainConfig::default().model
         },

@@ -1,6 +1,6 @@
 //! GAE against values computed by hand.
 
-use fairgrasp_rl::gae::{compute_gae, explained_variance, normalize};
+use fairgrasp_rl::ppo::gae::{compute_gae, explained_variance, normalize};
 
 #[test]
 fn gae_matches_a_hand_computation_on_one_env() {

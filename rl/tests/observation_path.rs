@@ -6,10 +6,10 @@
 use fairgrasp_env::policy::Policy;
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
-use fairgrasp_rl::agent::{ACT_DIM, AgentConfig};
-use fairgrasp_rl::grasp_env::GraspVecEnv;
-use fairgrasp_rl::script::Script;
-use fairgrasp_rl::vec_api::VecEnvironment;
+use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
+use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
+use fairgrasp_rl::agent::script::Script;
+use fairgrasp_rl::ppo::vec_api::VecEnvironment;
 
 const N_ENVS: usize = 2;
 const BASE_SEED: u64 = 40;

@@ -1,15 +1,15 @@
 //! PPO: the losses against hand computations, config refusals, and learning a small task.
 
 use burn::tensor::{Device, Tensor, TensorData};
-use fairgrasp_rl::agent::ACT_DIM;
+use fairgrasp_rl::agent::grasp_agent::ACT_DIM;
 use fairgrasp_rl::bench::FreeEnv;
-use fairgrasp_rl::model::{ActorCritic, ModelConfig};
-use fairgrasp_rl::normalizer::RunningNorm;
-use fairgrasp_rl::point_mass::{HORIZON, PointMass};
+use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
+use fairgrasp_rl::ppo::normalizer::RunningNorm;
+use fairgrasp_rl::ppo::point_mass::{HORIZON, PointMass};
+use fairgrasp_rl::ppo::vec_api::VecEnvironment;
 use fairgrasp_rl::ppo::{
     Ppo, PpoConfig, PpoConfigError, clipped_surrogate, ratio_diagnostics, value_loss,
 };
-use fairgrasp_rl::vec_api::VecEnvironment;
 
 fn t1(v: &[f32]) -> Tensor<1> {
     Tensor::from_data(TensorData::new(v.to_vec(), [v.len()]), &Device::flex())

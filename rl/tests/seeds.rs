@@ -5,7 +5,7 @@ use fairgrasp_env::GraspEnv;
 use fairgrasp_env::presets;
 use fairgrasp_env::randomize::scenario_set;
 use fairgrasp_env::vec_env::VecEnv;
-use fairgrasp_rl::train::TRAINING_SEEDS;
+use fairgrasp_rl::run::train::TRAINING_SEEDS;
 
 #[test]
 fn training_and_evaluation_scenario_seeds_are_disjoint() {

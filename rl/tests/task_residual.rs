@@ -8,14 +8,14 @@ use fairgrasp_env::randomize::scenario_set;
 use fairgrasp_env::{GraspEnv, presets};
 use fairgrasp_planner::residual::FEATURE_DIM;
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
-use fairgrasp_rl::agent::{ACT_DIM, AgentConfig, Mode, OBS_DIM};
-use fairgrasp_rl::checkpoint::{self, CheckpointMeta};
-use fairgrasp_rl::grasp_env::GraspVecEnv;
-use fairgrasp_rl::model::{ActorCritic, ModelConfig};
-use fairgrasp_rl::normalizer::RunningNorm;
+use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig, Mode, OBS_DIM};
+use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
 use fairgrasp_rl::ppo::PpoConfig;
-use fairgrasp_rl::train::{TrainConfig, agent_policy, train};
-use fairgrasp_rl::vec_api::VecEnvironment;
+use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
+use fairgrasp_rl::ppo::normalizer::RunningNorm;
+use fairgrasp_rl::ppo::vec_api::VecEnvironment;
+use fairgrasp_rl::run::checkpoint::{self, CheckpointMeta};
+use fairgrasp_rl::run::train::{TrainConfig, agent_policy, train};
 
 fn task_residual() -> AgentConfig {
     AgentConfig {

@@ -11,7 +11,7 @@ use fairgrasp_report::{Input, StagedFolder, write_report};
 use fairgrasp_rl::compare::{
     CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, run_comparison,
 };
-use fairgrasp_rl::shipped;
+use fairgrasp_rl::run::shipped;
 use fairgrasp_types::{ArmSimulation, write_atomic};
 
 use super::baseline::{ArmArg, preset_config, progress_bar};

@@ -7,8 +7,8 @@ use anyhow::Context;
 use burn::tensor::Device;
 use clap::Args;
 use fairgrasp_env::EnvConfig;
-use fairgrasp_rl::checkpoint;
-use fairgrasp_rl::train::{TrainConfig, agent_policy, train_with};
+use fairgrasp_rl::run::checkpoint;
+use fairgrasp_rl::run::train::{TrainConfig, agent_policy, train_with};
 
 use super::baseline::{ArmArg, ScenarioArgs, evaluate_and_print, print_report};
 
@@ -67,7 +67,7 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
         }
     }
     if a.resume
-        && !fairgrasp_rl::resume::has_checkpoint(&run_dir)
+        && !fairgrasp_rl::run::resume::has_checkpoint(&run_dir)
         && run_dir.join("config.toml").exists()
     {
         eprintln!(
@@ -82,7 +82,7 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
         )?
         .progress_chars("=> "),
     );
-    let options = fairgrasp_rl::resume::ResumeOptions {
+    let options = fairgrasp_rl::run::resume::ResumeOptions {
         resume: a.resume,
         accept_config_changes: a.accept_config_changes,
     };
@@ -144,7 +144,7 @@ pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
     // The shipped residual policy is built into the binary: found from any folder.
     let policy = match &a.policy {
         Some(p) => p.clone(),
-        None => fairgrasp_rl::shipped::default_policy()
+        None => fairgrasp_rl::run::shipped::default_policy()
             .context("unpacking the shipped residual policy")?,
     };
     let (meta, model) = checkpoint::load_model(&policy, &Device::flex())

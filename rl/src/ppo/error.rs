@@ -1,7 +1,7 @@
 //! Why a PPO iteration stops: environment errors and divergence (non-finite outputs, losses or
 //! parameters), each naming what was found.
 
-use crate::vec_api::VecEnvError;
+use crate::ppo::vec_api::VecEnvError;
 
 /// Why a PPO iteration stopped.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -11,10 +11,10 @@
 use fairgrasp_env::vec_env::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, EnvError, Observation};
 
-use crate::action_map::ActionMap;
-use crate::agent::{ACT_DIM, AgentConfig};
-use crate::script::Script;
-use crate::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
+use crate::agent::action_map::ActionMap;
+use crate::agent::grasp_agent::{ACT_DIM, AgentConfig};
+use crate::agent::script::Script;
+use crate::ppo::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 
 /// Vectorised grasp envs plus one script per env (residual mode).
 pub struct GraspVecEnv {

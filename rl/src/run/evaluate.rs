@@ -4,10 +4,11 @@ use burn::tensor::Device;
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::policy::{EvalReport, evaluate_seeded};
 
-use crate::agent::GraspAgent;
-use crate::checkpoint::CheckpointMeta;
-use crate::model::ActorCritic;
-use crate::train::{TrainConfig, TrainError};
+use crate::agent::grasp_agent::GraspAgent;
+use crate::ppo::model::ActorCritic;
+use crate::run::checkpoint::CheckpointMeta;
+use crate::run::config::TrainConfig;
+use crate::run::error::TrainError;
 
 /// Seed of the scenario set a training run is evaluated on; training scenarios never use it.
 pub const EVAL_SEED: u64 = 1_000_000;

@@ -4,7 +4,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use crate::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
+use crate::ppo::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 
 /// Time step [s].
 const DT: f32 = 0.1;

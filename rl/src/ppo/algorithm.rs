@@ -4,7 +4,7 @@
 //! Storage is one preallocated flat buffer per quantity ([`RolloutBuffer`]: `obs`, `actions`,
 //! `logprobs`, `rewards`, `terminated`, `truncated`, `values`, `advantages`, `returns`);
 //! minibatches gather the rows they index (`mb_*` tensors), as CleanRL's `b_obs[mb_inds]`.
-//! One log-probability ([`crate::gaussian::log_prob`]) serves the rollout and the update.
+//! One log-probability ([`crate::ppo::gaussian::log_prob`]) serves the rollout and the update.
 //! Where this follows SB3 rather than CleanRL: the optional `target_kl` stop (checked per
 //! minibatch) and observation normalisation (`VecNormalize`'s running statistics).
 
@@ -18,17 +18,17 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use serde::Serialize;
 
-use crate::gae::{explained_variance, normalize};
-use crate::gaussian;
-use crate::model::ActorCritic;
-use crate::normalizer::RunningNorm;
-pub use crate::ppo_error::PpoError;
-use crate::ppo_error::finite_output;
-pub use crate::ppo_loss::{RatioDiagnostics, clipped_surrogate, ratio_diagnostics, value_loss};
-use crate::rollout::{RolloutBuffer, RolloutShape, gather, gather_rows};
-use crate::vec_api::{EpisodeStats, VecEnvError, VecEnvironment, check_finite};
+use crate::ppo::error::PpoError;
+use crate::ppo::error::finite_output;
+use crate::ppo::gae::{explained_variance, normalize};
+use crate::ppo::gaussian;
+use crate::ppo::loss::{clipped_surrogate, ratio_diagnostics, value_loss};
+use crate::ppo::model::ActorCritic;
+use crate::ppo::normalizer::RunningNorm;
+use crate::ppo::rollout::{RolloutBuffer, RolloutShape, gather, gather_rows};
+use crate::ppo::vec_api::{EpisodeStats, VecEnvError, VecEnvironment, check_finite};
 
-pub use crate::ppo_config::{PpoConfig, PpoConfigError};
+use crate::ppo::config::PpoConfig;
 
 /// Diagnostics of one update, as CleanRL logs them.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]

@@ -7,10 +7,10 @@ use fairgrasp_env::presets;
 use fairgrasp_env::{ArmModelKind, EnvConfig};
 use serde::{Deserialize, Serialize};
 
-use crate::agent::AgentConfig;
-use crate::checkpoint;
-use crate::model::ModelConfig;
+use crate::agent::grasp_agent::AgentConfig;
 use crate::ppo::PpoConfig;
+use crate::ppo::model::ModelConfig;
+use crate::run::error::{TrainError, io};
 
 /// The most parallel environments a run may step (each holds a physics world, ~1 MB).
 pub const MAX_ENVS: usize = 4096;
@@ -20,10 +20,6 @@ pub const MAX_THREADS: usize = 256;
 pub const MAX_TIMESTEPS: u64 = 10_000_000_000;
 /// The most scenarios per evaluation.
 pub const MAX_EVAL_EPISODES: usize = 100_000;
-/// The most hidden layers, and the widest one: a 4096 × 4096 layer is 64 MB of f32 weights
-/// plus Adam's two moments; wider networks do not fit this kind of machine's training loop.
-pub const MAX_LAYERS: usize = 8;
-pub const MAX_WIDTH: usize = 4096;
 
 /// Everything a training run needs; saved as `config.toml` in the run folder.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -103,44 +99,6 @@ impl Default for TrainConfig {
     }
 }
 
-/// Why a run could not start or go on.
-#[derive(Debug, thiserror::Error)]
-pub enum TrainError {
-    #[error("{0}")]
-    Config(String),
-    #[error(transparent)]
-    Checkpoint(#[from] checkpoint::CheckpointError),
-    #[error(transparent)]
-    Env(#[from] fairgrasp_env::EnvError),
-    #[error(
-        "update {update} failed: {cause}; checkpoints/latest keeps the last good network (update {last_good}); continue with --resume (after a divergence: lower learning_rate first and add --accept-config-changes)"
-    )]
-    Update {
-        /// The update that failed (1 = the first of this run folder).
-        update: u64,
-        /// The update `checkpoints/latest` holds.
-        last_good: u64,
-        /// What went wrong (in the message, not a separate `source`, so it is printed once).
-        cause: Box<TrainError>,
-    },
-    #[error(transparent)]
-    Ppo(#[from] crate::ppo::PpoError),
-    #[error(transparent)]
-    VecEnv(#[from] crate::vec_api::VecEnvError),
-    #[error("{path}: {source}")]
-    Io {
-        path: String,
-        source: std::io::Error,
-    },
-}
-
-pub(crate) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> TrainError + '_ {
-    move |source| TrainError::Io {
-        path: path.display().to_string(),
-        source,
-    }
-}
-
 impl TrainConfig {
     /// Reads and checks a TOML file.
     pub fn from_toml_file(path: &Path) -> Result<Self, TrainError> {
@@ -191,23 +149,7 @@ impl TrainConfig {
                 self.eval_episodes
             ));
         }
-        let widths_ok = self
-            .model
-            .hidden
-            .iter()
-            .all(|w| (1..=MAX_WIDTH).contains(w));
-        if self.model.hidden.is_empty() || self.model.hidden.len() > MAX_LAYERS || !widths_ok {
-            return Err(format!(
-                "model.hidden = {:?}: give 1 to {MAX_LAYERS} layer widths, each in 1..={MAX_WIDTH}",
-                self.model.hidden
-            ));
-        }
-        if !(-20.0..=2.0).contains(&self.model.log_std_init) {
-            return Err(format!(
-                "model.log_std_init = {}: must be in [-20, 2] (σ from 2e-9 to 7.4)",
-                self.model.log_std_init
-            ));
-        }
+        self.model.check()?;
         if !(self.agent.residual_scale > 0.0 && self.agent.residual_scale <= 10.0) {
             return Err(format!(
                 "agent.residual_scale = {}: must be in (0, 10]",

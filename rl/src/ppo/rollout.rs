@@ -3,8 +3,8 @@
 //! `q[i * dim..(i + 1) * dim]`; minibatches gather the rows they index, nothing is cloned per
 //! sample.
 
-use crate::gae::compute_gae_into;
-use crate::vec_api::EpisodeStats;
+use crate::ppo::gae::compute_gae_into;
+use crate::ppo::vec_api::EpisodeStats;
 
 /// Sizes of a rollout.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

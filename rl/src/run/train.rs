@@ -17,16 +17,18 @@ use fairgrasp_env::policy::EvalReport;
 use fairgrasp_env::randomize::scenario_set;
 use fairgrasp_env::trajectory::write_atomic;
 
-use crate::agent::ACT_DIM;
-use crate::checkpoint::{self, CheckpointMeta};
-pub use crate::evaluate::{agent_policy, evaluate_model};
-use crate::grasp_env::GraspVecEnv;
-use crate::model::ActorCritic;
-use crate::normalizer::RunningNorm;
+use crate::agent::grasp_agent::ACT_DIM;
+use crate::agent::grasp_env::GraspVecEnv;
+use crate::ppo::model::ActorCritic;
+use crate::ppo::normalizer::RunningNorm;
 use crate::ppo::{Ppo, UpdateStats};
-use crate::resume::{self, ResumeOptions};
-use crate::train_config::io;
-pub use crate::train_config::{TrainConfig, TrainError};
+use crate::run::checkpoint::{self, CheckpointMeta};
+pub use crate::run::config::TrainConfig;
+use crate::run::crash;
+pub use crate::run::error::TrainError;
+use crate::run::error::io;
+pub use crate::run::evaluate::{agent_policy, evaluate_model};
+use crate::run::resume::{self, ResumeOptions};
 
 /// The bit every training episode's scenario seed has set (and no evaluation seed has).
 pub const TRAINING_SEEDS: u64 = 1 << 63;
@@ -43,7 +45,7 @@ fn metrics_row(
     eval: Option<f64>,
 ) -> String {
     let n = s.episodes.len().max(1) as f64;
-    let mean = |f: &dyn Fn(&crate::vec_api::EpisodeStats) -> f64| {
+    let mean = |f: &dyn Fn(&crate::ppo::vec_api::EpisodeStats) -> f64| {
         s.episodes.iter().map(f).sum::<f64>() / n
     };
     format!(
@@ -156,22 +158,18 @@ impl Run<'_> {
         self.meta.metrics_row = Some(row.clone());
         self.meta.curriculum_stage = self.curriculum.as_ref().map(Curriculum::stage);
         let update = self.meta.updates;
-        resume::crash_point("before_checkpoint", update);
+        crash::point("before_checkpoint", update);
         self.save_latest()?;
-        resume::crash_point("before_row", update);
+        crash::point("before_row", update);
         let metrics_path = self.run_dir.join("metrics.csv");
         let mut f = std::fs::OpenOptions::new()
             .append(true)
             .open(&metrics_path)
             .map_err(io(&metrics_path))?;
-        if resume::crash_requested("torn_row", update) {
-            // A kill in the middle of the append: half the row, no newline.
-            let _ = f.write_all(&row.as_bytes()[..row.len() / 2]);
-            std::process::abort();
-        }
+        crash::torn_write("torn_row", update, &mut f, row.as_bytes());
         writeln!(f, "{row}").map_err(io(&metrics_path))?;
         f.sync_data().map_err(io(&metrics_path))?;
-        resume::crash_point("after_row", update);
+        crash::point("after_row", update);
         report(Progress {
             timesteps: self.meta.timesteps,
             total: config.total_timesteps,
@@ -257,7 +255,7 @@ pub fn train(
 }
 
 /// [`train`] with the resume options spelled out: a resume checks the config against the run's
-/// `config.toml` (see [`crate::resume`]), repairs `metrics.csv` to match `checkpoints/latest`
+/// `config.toml` (see [`crate::run::resume`]), repairs `metrics.csv` to match `checkpoints/latest`
 /// and carries the best score over; a resume of a folder with no checkpoint starts fresh.
 pub fn train_with(
     config: &TrainConfig,

@@ -11,22 +11,9 @@ use std::path::Path;
 
 use fairgrasp_env::trajectory::write_atomic;
 
-use crate::checkpoint::{self, CheckpointMeta};
-use crate::train_config::{TrainConfig, TrainError, io};
-
-/// Fault injection for the kill tests: when the environment variable `FAIRGRASP_CRASH_AT`
-/// equals `POINT@UPDATE` (e.g. `before_row@2`), the process aborts at that point of that update,
-/// as a kill would (no destructors, no flushing). Does nothing otherwise.
-pub fn crash_point(point: &str, update: u64) {
-    if crash_requested(point, update) {
-        std::process::abort();
-    }
-}
-
-/// Whether `FAIRGRASP_CRASH_AT` asks for a crash at `point` of `update`.
-pub fn crash_requested(point: &str, update: u64) -> bool {
-    std::env::var("FAIRGRASP_CRASH_AT").is_ok_and(|t| t == format!("{point}@{update}"))
-}
+use crate::run::checkpoint::{self, CheckpointMeta};
+use crate::run::config::TrainConfig;
+use crate::run::error::{TrainError, io};
 
 /// Fields a resume may change without `--accept-config-changes`: how long to run and on how many
 /// threads (results do not depend on the thread count).

@@ -17,9 +17,9 @@ use burn::optim::ModuleOptimizer;
 use burn::tensor::Device;
 use serde::{Deserialize, Serialize};
 
-use crate::agent::{ACT_DIM, AgentConfig};
-use crate::model::{ActorCritic, ModelConfig};
-use crate::normalizer::RunningNorm;
+use crate::agent::grasp_agent::{ACT_DIM, AgentConfig};
+use crate::ppo::model::{ActorCritic, ModelConfig};
+use crate::ppo::normalizer::RunningNorm;
 
 /// Everything in `meta.json`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -133,14 +133,14 @@ pub fn save(
     let name = dir
         .file_name()
         .map_or(String::new(), |n| n.to_string_lossy().into_owned());
-    crate::resume::crash_point(&format!("{name}:checkpoint_written"), meta.updates);
+    crate::run::crash::point(&format!("{name}:checkpoint_written"), meta.updates);
     // `old` may be the only good copy (a kill came after the last save moved `dir` aside): it
     // is replaced only when `dir` exists to take its place.
     if dir.exists() {
         let _ = std::fs::remove_dir_all(&old);
         std::fs::rename(dir, &old).map_err(|e| err(dir, e))?;
     }
-    crate::resume::crash_point(&format!("{name}:checkpoint_moved_aside"), meta.updates);
+    crate::run::crash::point(&format!("{name}:checkpoint_moved_aside"), meta.updates);
     std::fs::rename(&tmp, dir).map_err(|e| err(dir, e))?;
     let _ = std::fs::remove_dir_all(&old);
     Ok(())
@@ -230,19 +230,10 @@ pub fn load_model(
             ));
         }
     }
-    use crate::train_config::{MAX_LAYERS, MAX_WIDTH};
-    let widths_ok = meta
-        .model
-        .hidden
-        .iter()
-        .all(|w| (1..=MAX_WIDTH).contains(w));
-    if meta.model.hidden.is_empty() || meta.model.hidden.len() > MAX_LAYERS || !widths_ok {
+    if let Err(reason) = meta.model.check() {
         return Err(err(
             &dir.join("meta.json"),
-            format!(
-                "model.hidden = {:?}: not a network this tool writes",
-                meta.model.hidden
-            ),
+            format!("{reason}: not a network this tool writes"),
         ));
     }
     // The fresh weights are replaced by the file's: any seed will do.

@@ -6,17 +6,17 @@
 //! policy's own output, not a correction.
 //! Residual mode, `action_space = "tcp"` (the residual with authority): the policy sees
 //! `obs ⊕ script features` and its output is the rate of a task-space correction of the script
-//! plus the close's timing ([`crate::script`], [`fairgrasp_planner::residual`]).
+//! plus the close's timing ([`crate::agent::script`], [`fairgrasp_planner::residual`]).
 //! Either way the actor's output layer can start at zero, so an untrained agent *is* the script.
 //! Pure mode (the seed's setup): `input = obs`, the env receives `clip(a_policy)`, or in `tcp`
-//! mode the TCP velocity it commands ([`crate::action_map`]).
+//! mode the TCP velocity it commands ([`crate::agent::action_map`]).
 
 use fairgrasp_env::config::ActionSpace;
 use fairgrasp_env::policy::Policy;
 use fairgrasp_env::{Action, EnvConfig, Observation};
 
-use crate::action_map::ActionMap;
-use crate::script::Script;
+use crate::agent::action_map::ActionMap;
+use crate::agent::script::Script;
 use fairgrasp_planner::residual::FEATURE_DIM;
 use serde::{Deserialize, Serialize};
 
@@ -72,8 +72,8 @@ pub struct AgentConfig {
     pub gripper: GripperMode,
     /// What the policy's output commands: `joint` velocities (the seed's; in residual mode, a
     /// correction of the baseline's), or in task space (`tcp`): the TCP's velocity and yaw rate
-    /// in pure mode ([`crate::action_map`]), the rate of a correction of the script's grasp in
-    /// residual mode ([`crate::script`]).
+    /// in pure mode ([`crate::agent::action_map`]), the rate of a correction of the script's grasp in
+    /// residual mode ([`crate::agent::script`]).
     pub action_space: ActionSpace,
 }
 

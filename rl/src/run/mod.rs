@@ -1,0 +1,22 @@
+//! Training runs and their files: the config, the run folder (`config.toml`, `metrics.csv`,
+//! `checkpoints/`, `eval.json`), checkpoints and resume, evaluation of a trained network, and
+//! the shipped policies. Builds on [`crate::ppo`] and [`crate::agent`].
+//!
+//! - [`config`] and [`error`]: what a run needs, and why it could not start or go on.
+//! - [`train`]: the training loop over a run folder.
+//! - [`checkpoint`]: saving and loading a network with its metadata, atomically and checked.
+//! - [`resume`]: continuing a run folder safely; [`crash`]: the kill tests' fault injection.
+//! - [`evaluate`]: a checkpoint as a policy, evaluated on a preset.
+//! - [`shipped`]: the policies built into the binary.
+
+pub mod checkpoint;
+pub mod config;
+pub mod crash;
+pub mod error;
+pub mod evaluate;
+pub mod resume;
+pub mod shipped;
+pub mod train;
+
+pub use config::TrainConfig;
+pub use error::TrainError;
