@@ -7,7 +7,7 @@
 
 use std::process::Command;
 
-use fairgrasp_env::{Action, GraspEnv, presets};
+use fairgrasp_env::{Action, GraspEnv, config::presets};
 
 /// One `full` episode from scenario 11 under smooth deterministic actions: the seed, the actions,
 /// the observations (as the f64 values of their f32s, so JSON carries them exactly) and rewards.

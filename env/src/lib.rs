@@ -13,52 +13,17 @@
 //! [`config`] and [`validate`] for settings; [`vec_env`], [`trajectory`], [`policy`] for
 //! parallel stepping, episode export and evaluation.
 
-pub mod bench;
+pub mod cell;
 pub mod config;
-pub mod config_numbers;
-pub mod contacts;
-pub mod convert;
-pub mod curriculum;
-pub mod diagnostics;
 pub mod env;
-pub mod families;
-pub mod finger_drive;
-pub mod free_space;
-pub mod mount;
-pub mod nudge;
-pub mod obs;
-pub mod part;
-pub mod perception;
-pub mod policy;
-pub mod presets;
-pub mod randomize;
-pub mod reward;
+pub mod episode;
 pub mod robot;
-pub mod scene;
-pub mod shapes;
+pub mod scenario;
 pub mod sim;
-mod snapshot;
-pub mod soak;
-pub mod spaces;
-pub mod step;
 pub mod task;
-pub mod tcp_action;
-pub mod trajectory;
-pub mod validate;
-pub mod vec_env;
-mod vec_worker;
+pub mod vec;
 
-pub use config::{ArmModelKind, ConfigError, EnvConfig};
+pub use cell::mount::Mount;
+pub use config::{ArmSimulation, ConfigError, EnvConfig, HOME_JOINTS};
+pub use env::obs::Observation;
 pub use env::{Action, EnvError, GraspEnv, Info, Step};
-pub use mount::Mount;
-pub use obs::Observation;
-
-/// Home joints [rad]: the TCP 0.30 m in front of the base (+x), 0.25 m above it, pointing down.
-pub const HOME_JOINTS: [f64; 6] = [
-    0.3469,
-    -1.3981,
-    -1.4294,
-    -1.8850,
-    std::f64::consts::FRAC_PI_2,
-    0.0,
-];

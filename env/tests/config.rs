@@ -108,7 +108,7 @@ fn the_shipped_presets_equal_the_rust_presets() {
         ("hard", RandomizationConfig::hard()),
     ];
     for (name, randomization) in expected {
-        let config = fairgrasp_env::presets::load(name).unwrap();
+        let config = fairgrasp_env::config::presets::load(name).unwrap();
         assert_eq!(config.randomization, randomization, "{name}");
         assert_eq!(config.physics, EnvConfig::default().physics, "{name}");
         let file = format!(
@@ -117,7 +117,7 @@ fn the_shipped_presets_equal_the_rust_presets() {
         );
         assert_eq!(EnvConfig::from_toml_file(file).unwrap(), config, "{name}");
     }
-    let err = fairgrasp_env::presets::load("easy")
+    let err = fairgrasp_env::config::presets::load("easy")
         .unwrap_err()
         .to_string();
     assert!(err.contains("fixed, seed, wide, full, hard"), "{err}");

@@ -4,13 +4,13 @@
 mod common;
 
 use fairgrasp_env::task::Failure;
-use fairgrasp_env::{Action, ArmModelKind, EnvConfig, EnvError, GraspEnv};
+use fairgrasp_env::{Action, ArmSimulation, EnvConfig, EnvError, GraspEnv};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-const ARMS: [ArmModelKind; 2] = [ArmModelKind::Servo, ArmModelKind::Multibody];
+const ARMS: [ArmSimulation; 2] = [ArmSimulation::Servo, ArmSimulation::Multibody];
 
-fn make_env(arm: ArmModelKind) -> GraspEnv {
+fn make_env(arm: ArmSimulation) -> GraspEnv {
     let mut cfg = EnvConfig::default();
     cfg.arm.model = arm;
     GraspEnv::new(cfg).unwrap()
@@ -138,7 +138,7 @@ fn ten_thousand_random_action_steps_stay_finite_in_both_arm_models() {
 
 #[test]
 fn a_non_finite_physics_state_truncates_the_episode_and_the_next_reset_recovers() {
-    let mut env = make_env(ArmModelKind::Servo);
+    let mut env = make_env(ArmSimulation::Servo);
     env.reset(0).unwrap();
     {
         let (world, handles) = env.world_mut();
@@ -162,7 +162,7 @@ fn a_non_finite_physics_state_truncates_the_episode_and_the_next_reset_recovers(
 
 #[test]
 fn a_nan_action_is_an_error_naming_the_component_and_out_of_range_values_are_clipped() {
-    let mut env = make_env(ArmModelKind::Servo);
+    let mut env = make_env(ArmSimulation::Servo);
     env.reset(0).unwrap();
     let mut a = Action::hold_open();
     a.0[3] = f64::NAN;
@@ -173,8 +173,8 @@ fn a_nan_action_is_an_error_naming_the_component_and_out_of_range_values_are_cli
     );
     assert!(err.to_string().contains("action[3]"), "{err}");
     // 5.0 moves joint 1 exactly as fast as 1.0 does.
-    let mut big = make_env(ArmModelKind::Servo);
-    let mut one = make_env(ArmModelKind::Servo);
+    let mut big = make_env(ArmSimulation::Servo);
+    let mut one = make_env(ArmSimulation::Servo);
     big.reset(0).unwrap();
     one.reset(0).unwrap();
     let s_big = big
@@ -189,7 +189,7 @@ fn a_nan_action_is_an_error_naming_the_component_and_out_of_range_values_are_cli
 
 #[test]
 fn stepping_before_reset_is_an_error() {
-    let mut env = make_env(ArmModelKind::Servo);
+    let mut env = make_env(ArmSimulation::Servo);
     assert_eq!(
         env.step(&Action::hold_open()).unwrap_err(),
         EnvError::EpisodeOver
@@ -198,7 +198,7 @@ fn stepping_before_reset_is_an_error() {
 
 #[test]
 fn a_joint_velocity_action_moves_the_joint_at_the_scaled_speed() {
-    let mut env = make_env(ArmModelKind::Servo);
+    let mut env = make_env(ArmSimulation::Servo);
     let (obs, _) = env.reset(0).unwrap();
     let mut last = obs.joints[0];
     for n in 0..6 {

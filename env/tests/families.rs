@@ -2,10 +2,10 @@
 //! validate, bad values refused by name, the camera error applied exactly, the push carried out
 //! once, by the drawn amount, onto the table, at rest, never near the gripper; reproducible.
 
-use fairgrasp_env::families::CameraOffset;
-use fairgrasp_env::nudge::NudgeEvent;
-use fairgrasp_env::randomize::scenario_set;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, presets};
+use fairgrasp_env::scenario::families::CameraOffset;
+use fairgrasp_env::scenario::nudge::NudgeEvent;
+use fairgrasp_env::scenario::scenario_set;
+use fairgrasp_env::{Action, EnvConfig, GraspEnv, config::presets};
 use fairgrasp_kinematics::Pose;
 
 const FAMILIES: [&str; 3] = ["miscalibrated", "miscalibrated_b", "nudged"];

@@ -3,11 +3,11 @@
 
 mod common;
 
-use fairgrasp_env::free_space::joint_reach;
-use fairgrasp_env::{Action, ArmModelKind, EnvConfig, GraspEnv, Step};
+use fairgrasp_env::env::free_space::joint_reach;
+use fairgrasp_env::{Action, ArmSimulation, EnvConfig, GraspEnv, Step};
 
 fn env_with(free_space: bool) -> GraspEnv {
-    let mut config = common::config(ArmModelKind::Servo);
+    let mut config = common::config(ArmSimulation::Servo);
     config.physics.free_space = free_space;
     GraspEnv::new(config).unwrap()
 }
@@ -123,7 +123,7 @@ fn the_free_space_switch_is_deterministic_seed_replays_are_bit_identical() {
 #[test]
 fn the_multibody_arm_always_simulates() {
     let mut config = EnvConfig::default();
-    config.arm.model = ArmModelKind::Multibody;
+    config.arm.model = ArmSimulation::Multibody;
     let mut env = GraspEnv::new(config).unwrap();
     env.reset(0).unwrap();
     for _ in 0..5 {

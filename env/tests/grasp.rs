@@ -3,9 +3,9 @@
 
 mod common;
 
-use fairgrasp_env::{ArmModelKind, GraspEnv};
+use fairgrasp_env::{ArmSimulation, GraspEnv};
 
-fn lift_and_hold(arm: ArmModelKind) {
+fn lift_and_hold(arm: ArmSimulation) {
     let mut env = GraspEnv::new(common::config(arm)).unwrap();
     env.reset(0).unwrap();
     let (grasp, above) = common::grasp_targets(&env);
@@ -65,17 +65,17 @@ fn lift_and_hold(arm: ArmModelKind) {
 
 #[test]
 fn servo_arm_lifts_the_cube_10_cm_and_holds_it_2_s_without_slip_or_sinking() {
-    lift_and_hold(ArmModelKind::Servo);
+    lift_and_hold(ArmSimulation::Servo);
 }
 
 #[test]
 fn multibody_arm_lifts_the_cube_10_cm_and_holds_it_2_s_without_slip_or_sinking() {
-    lift_and_hold(ArmModelKind::Multibody);
+    lift_and_hold(ArmSimulation::Multibody);
 }
 
 #[test]
 fn open_fingers_let_go_and_the_cube_falls_back_to_the_table() {
-    let mut env = GraspEnv::new(common::config(ArmModelKind::Servo)).unwrap();
+    let mut env = GraspEnv::new(common::config(ArmSimulation::Servo)).unwrap();
     env.reset(0).unwrap();
     let rest_z = env.object_in_base().xyz()[2];
     let (grasp, above) = common::grasp_targets(&env);

@@ -5,7 +5,7 @@ mod common;
 
 use fairgrasp_env::config::TaskConfig;
 use fairgrasp_env::task::{Failure, TaskState, judge_protective_stop};
-use fairgrasp_env::{ArmModelKind, ConfigError, EnvConfig, GraspEnv, Step};
+use fairgrasp_env::{ArmSimulation, ConfigError, EnvConfig, GraspEnv, Step};
 
 /// The cube centre's height in `world` [m].
 fn object_world_z(env: &GraspEnv) -> f64 {
@@ -17,7 +17,7 @@ fn object_world_z(env: &GraspEnv) -> f64 {
 /// Closes the gripper above the cube, then drives the closed fingers straight down to the grasp
 /// pose (TCP at the cube's centre): the pads land on the cube's top and press it into the table.
 /// Returns the last step and how far the cube centre went below its resting height [m].
-fn press_closed_fingers_onto_the_cube(arm: ArmModelKind, threshold: f64) -> (Step, f64) {
+fn press_closed_fingers_onto_the_cube(arm: ArmSimulation, threshold: f64) -> (Step, f64) {
     let mut config = common::config(arm);
     config.task.protective_stop_force = threshold;
     let mut env = GraspEnv::new(config).unwrap();
@@ -38,7 +38,7 @@ fn press_closed_fingers_onto_the_cube(arm: ArmModelKind, threshold: f64) -> (Ste
     (step, sink.max(rest_z - object_world_z(&env)))
 }
 
-fn a_press_onto_the_cube_is_stopped(arm: ArmModelKind) {
+fn a_press_onto_the_cube_is_stopped(arm: ArmSimulation) {
     let threshold = TaskConfig::default().protective_stop_force;
     let (step, sink) = press_closed_fingers_onto_the_cube(arm, threshold);
     eprintln!(
@@ -93,12 +93,12 @@ fn a_press_onto_the_cube_is_stopped(arm: ArmModelKind) {
 
 #[test]
 fn a_servo_arm_pressing_the_cube_is_stopped() {
-    a_press_onto_the_cube_is_stopped(ArmModelKind::Servo);
+    a_press_onto_the_cube_is_stopped(ArmSimulation::Servo);
 }
 
 #[test]
 fn a_multibody_arm_pressing_the_cube_is_stopped() {
-    a_press_onto_the_cube_is_stopped(ArmModelKind::Multibody);
+    a_press_onto_the_cube_is_stopped(ArmSimulation::Multibody);
 }
 
 #[test]
@@ -140,7 +140,7 @@ fn a_protective_stop_is_never_a_success_even_when_lifted_and_held() {
 
 #[test]
 fn a_finger_hitting_the_table_stops_the_robot_even_without_collision_termination() {
-    let mut config = common::config(ArmModelKind::Servo);
+    let mut config = common::config(ArmSimulation::Servo);
     config.task.terminate_on_collision = false;
     let mut env = GraspEnv::new(config).unwrap();
     env.reset(0).unwrap();

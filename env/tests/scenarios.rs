@@ -1,8 +1,8 @@
 //! Randomisation presets, scenario sets, the curriculum.
 
 use fairgrasp_env::config::RandomizationConfig;
-use fairgrasp_env::curriculum::{Curriculum, CurriculumConfig};
-use fairgrasp_env::randomize::{Scenario, object_pose_in_base, scenario_set, top_down_grasp};
+use fairgrasp_env::scenario::curriculum::{Curriculum, CurriculumConfig};
+use fairgrasp_env::scenario::{Scenario, object_pose_in_base, scenario_set, top_down_grasp};
 use fairgrasp_env::{EnvConfig, GraspEnv, HOME_JOINTS, Mount};
 use fairgrasp_kinematics::{ArmKind, Pose};
 use rand::{Rng, SeedableRng};
@@ -314,7 +314,7 @@ fn with_both_sides_a_one_sided_policy_stays_in_its_stage() {
 
 #[test]
 fn perception_noise_shifts_only_the_observed_cube_and_is_fixed_per_episode() {
-    let config = fairgrasp_env::presets::load("hard").unwrap();
+    let config = fairgrasp_env::config::presets::load("hard").unwrap();
     let mut env = GraspEnv::new(config).unwrap();
     let (obs, info) = env.reset(3).unwrap();
     let scenario = info.scenario.unwrap();

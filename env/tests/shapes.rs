@@ -9,10 +9,10 @@
 //! queries (see [`Reference`] for which is exact where), for clearance `parry::query::distance`.
 //! No physics step runs, so nothing moves between the two answers.
 
-use fairgrasp_env::contacts::CollisionFilter;
-use fairgrasp_env::convert::{from_rapier, to_rapier};
-use fairgrasp_env::scene::{Part, finger_in_tool0};
-use fairgrasp_env::shapes::{CheckedPairs, RobotShapes};
+use fairgrasp_env::sim::contacts::CollisionFilter;
+use fairgrasp_env::sim::convert::{from_rapier, to_rapier};
+use fairgrasp_env::sim::scene::{Part, finger_in_tool0};
+use fairgrasp_env::sim::shapes::{CheckedPairs, RobotShapes};
 use fairgrasp_env::{EnvConfig, GraspEnv};
 use fairgrasp_kinematics::geometry::Cuboid;
 use fairgrasp_kinematics::{EndFrame, Pose};

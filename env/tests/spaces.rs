@@ -1,9 +1,9 @@
 //! The published spaces: every observation a rollout produces lies inside the observation
 //! space, whose bounds are all finite.
 
-use fairgrasp_env::config::{ArmModelKind, RandomizationConfig};
-use fairgrasp_env::obs::{OBS_DIM, OBS_NAMES};
-use fairgrasp_env::spaces::{ACT_DIM, action_space, observation_space};
+use fairgrasp_env::config::{ArmSimulation, RandomizationConfig};
+use fairgrasp_env::env::obs::{OBS_DIM, OBS_NAMES};
+use fairgrasp_env::env::spaces::{ACT_DIM, action_space, observation_space};
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -25,7 +25,7 @@ fn the_spaces_name_every_entry_with_finite_bounds() {
     }
     let act = action_space();
     assert_eq!((act.len(), act.low[0], act.high[6]), (ACT_DIM, -1.0, 1.0));
-    let tcp = fairgrasp_env::spaces::action_space_of(fairgrasp_env::config::ActionSpace::Tcp);
+    let tcp = fairgrasp_env::env::spaces::action_space_of(fairgrasp_env::config::ActionSpace::Tcp);
     assert_eq!(tcp.names[3], "tcp_yaw_rate");
     assert_eq!(tcp.units[0], "tcp_speed·m/s");
     assert_eq!((tcp.len(), tcp.names[6]), (ACT_DIM, "gripper"));
@@ -33,7 +33,7 @@ fn the_spaces_name_every_entry_with_finite_bounds() {
 
 #[test]
 fn random_rollouts_on_both_arm_models_stay_inside_the_observation_space() {
-    for arm in [ArmModelKind::Servo, ArmModelKind::Multibody] {
+    for arm in [ArmSimulation::Servo, ArmSimulation::Multibody] {
         let mut cfg = EnvConfig {
             randomization: RandomizationConfig::full(),
             ..EnvConfig::default()

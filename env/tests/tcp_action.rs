@@ -3,10 +3,10 @@
 mod common;
 
 use fairgrasp_env::config::{ActionSpace, RewardKind};
-use fairgrasp_env::{Action, ArmModelKind, EnvConfig, GraspEnv};
+use fairgrasp_env::{Action, ArmSimulation, EnvConfig, GraspEnv};
 
 fn tcp_env(reward: RewardKind) -> GraspEnv {
-    let mut config: EnvConfig = common::config(ArmModelKind::Servo);
+    let mut config: EnvConfig = common::config(ArmSimulation::Servo);
     config.arm.action_space = ActionSpace::Tcp;
     config.task.reward = reward;
     GraspEnv::new(config).unwrap()
@@ -89,7 +89,7 @@ fn the_staged_reward_grows_as_the_gripper_nears_the_cube() {
 /// yaw, descend with the gripper open, close, lift.
 #[test]
 fn a_scripted_task_space_grasp_lifts_the_cube() {
-    let mut config: EnvConfig = fairgrasp_env::presets::load("seed").unwrap();
+    let mut config: EnvConfig = fairgrasp_env::config::presets::load("seed").unwrap();
     config.arm.action_space = ActionSpace::Tcp;
     let mut env = GraspEnv::new(config).unwrap();
     let mut successes = 0;

@@ -1,7 +1,7 @@
 //! The vectorised env (auto-reset, thread-count independence) and trajectory export.
 
-use fairgrasp_env::trajectory::Trajectory;
-use fairgrasp_env::vec_env::VecEnv;
+use fairgrasp_env::episode::trajectory::Trajectory;
+use fairgrasp_env::vec::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
 
 fn cfg() -> EnvConfig {

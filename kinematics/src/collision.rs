@@ -135,7 +135,8 @@ impl ArmModel {
     }
 
     /// Is the pair never checked (adjacent links, the model's ignored pairs, the gripper's own
-    /// parts and its mount)?
+    /// parts — palm, fingers, pads — and its mount)? The one rule: the env's contact filter
+    /// asks it too (`env/src/sim/collision_filter.rs`).
     pub fn collision_ignored(&self, a: &str, b: &str) -> bool {
         let index = |n: &str| self.links.iter().position(|l| *l == n);
         if let (Some(i), Some(j)) = (index(a), index(b))
@@ -143,8 +144,17 @@ impl ArmModel {
         {
             return true;
         }
-        let gripper =
-            |n: &str| matches!(n, "palm" | "finger_left" | "finger_right" | "wrist3_link");
+        let gripper = |n: &str| {
+            matches!(
+                n,
+                "palm"
+                    | "finger_left"
+                    | "finger_right"
+                    | "finger_left_pad"
+                    | "finger_right_pad"
+                    | "wrist3_link"
+            )
+        };
         if gripper(a) && gripper(b) {
             return true;
         }

@@ -10,7 +10,7 @@
 //! [`CloseTiming`] may close the gripper during the descent or hold it open a little longer.
 //! With no correction and [`CloseTiming::Script`] the script is exactly the open-loop baseline.
 
-use fairgrasp_env::policy::{Outcome, Policy};
+use fairgrasp_env::episode::{Outcome, Policy};
 use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 use fairgrasp_kinematics::{ArmKind, ArmModel};
 use serde::Serialize;

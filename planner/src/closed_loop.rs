@@ -11,8 +11,8 @@
 //! - the **oracle** is the same closed loop fed the cube's true pose
 //!   ([`Policy::observe_truth`]) instead of the observed one: the ceiling.
 
-use fairgrasp_env::perception::ObservedObject;
-use fairgrasp_env::policy::{Outcome, Policy};
+use fairgrasp_env::episode::{Outcome, Policy};
+use fairgrasp_env::scenario::perception::ObservedObject;
 use fairgrasp_env::{Action, EnvConfig, Observation};
 use fairgrasp_kinematics::analytic_ik::wrap_pi;
 use serde::Serialize;

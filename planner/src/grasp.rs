@@ -9,7 +9,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use fairgrasp_env::Mount;
-use fairgrasp_env::randomize::{collision_free, top_down_in_base};
+use fairgrasp_env::scenario::graspable::{collision_free, feasible_solutions, top_down_in_base};
 use fairgrasp_kinematics::analytic_ik::{joint_distance, wrap_pi};
 use fairgrasp_kinematics::{AnalyticIkOptions, ArmModel, EndFrame, Pose, QpIkOptions};
 use serde::Serialize;
@@ -79,21 +79,18 @@ pub fn grasp_poses(
     }
 }
 
-/// IK for `pose` nearest to `near`: the closed-form branch within the limits and free of
-/// collisions (self and table; `table`: the table frame in `base_link`), else the QP IK started
-/// from `near`. Returns the joints and whether the QP was used.
+/// IK for `pose` nearest to `near`: the feasible closed-form branch (the env's definition of
+/// graspable, `feasible_solutions`; `table`: the table frame in `base_link`) nearest to `near`,
+/// else the QP IK started from `near`, if collision-free. Returns the joints and whether the QP was used.
 fn solve(model: &ArmModel, pose: &Pose, near: &[f64; 6], table: &Pose) -> Option<([f64; 6], bool)> {
     let options = AnalyticIkOptions {
         wrist_singular_q6: near[5],
         ..AnalyticIkOptions::default()
     };
     if let Ok(solutions) = model.ik_analytic(pose, EndFrame::Tcp, &options)
-        && let Some(best) = solutions
-            .iter()
-            .filter(|s| s.in_limits && collision_free(model, &s.joints, table))
-            .min_by(|a, b| {
-                joint_distance(&a.joints, near).total_cmp(&joint_distance(&b.joints, near))
-            })
+        && let Some(best) = feasible_solutions(model, &solutions, table).min_by(|a, b| {
+            joint_distance(&a.joints, near).total_cmp(&joint_distance(&b.joints, near))
+        })
     {
         return Some((best.joints, false));
     }

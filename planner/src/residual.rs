@@ -26,8 +26,8 @@
 //! sees the cube ([`Observation::wrist_camera`]), how far its view is from the planned-on cube
 //! (all zero without a wrist view).
 
-use fairgrasp_env::perception::ObservedObject;
-use fairgrasp_env::policy::{Outcome, Policy};
+use fairgrasp_env::episode::{Outcome, Policy};
+use fairgrasp_env::scenario::perception::ObservedObject;
 use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 use std::f64::consts::FRAC_PI_2;
 

@@ -1,9 +1,9 @@
 //! The scripted baseline: success on the easy presets, limits respected, clear IK failures,
 //! reproducible outcomes.
 
-use fairgrasp_env::policy::{EvalReport, Outcome, run_episode};
-use fairgrasp_env::presets;
-use fairgrasp_env::randomize::{Scenario, scenario_set};
+use fairgrasp_env::config::presets;
+use fairgrasp_env::episode::{EvalReport, Outcome, run_episode};
+use fairgrasp_env::scenario::{Scenario, scenario_set};
 use fairgrasp_env::{EnvConfig, GraspEnv, HOME_JOINTS};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
@@ -85,9 +85,9 @@ fn planned_trajectories_stay_within_the_fr3_velocity_and_acceleration_limits() {
     let mut checked = 0;
     for s in &scenarios {
         let (mut obs, _) = env.reset_to(s);
-        fairgrasp_env::policy::Policy::reset(&mut policy, s.seed);
+        fairgrasp_env::episode::Policy::reset(&mut policy, s.seed);
         for _ in 0..200 {
-            let action = fairgrasp_env::policy::Policy::act(&mut policy, &obs);
+            let action = fairgrasp_env::episode::Policy::act(&mut policy, &obs);
             if let Some(traj) = policy.trajectory() {
                 let n = 200;
                 for k in 0..=n {

@@ -2,10 +2,10 @@
 //! family (the tuning claim), the oracle at ≥ 97 %, the closed loop fixing the push but not the
 //! miscalibration; every push made far from the gripper; reproducible episodes.
 
-use fairgrasp_env::nudge::NudgeEvent;
-use fairgrasp_env::policy::{EpisodeResult, EvalReport, Outcome, Policy, run_episode};
-use fairgrasp_env::presets;
-use fairgrasp_env::randomize::scenario_set;
+use fairgrasp_env::config::presets;
+use fairgrasp_env::episode::{EpisodeResult, EvalReport, Outcome, Policy, run_episode};
+use fairgrasp_env::scenario::nudge::NudgeEvent;
+use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{EnvConfig, GraspEnv};
 use fairgrasp_planner::grasp::{candidate_yaws, tcp_yaw};
 use fairgrasp_planner::{

@@ -3,8 +3,8 @@
 //! other's 95 % Wilson interval, and almost every episode ends the same way.
 //! (All five presets at 200 episodes: `scripts/free_space_equivalence.sh`, figures in the README.)
 
-use fairgrasp_env::policy::{EvalReport, evaluate_seeded};
-use fairgrasp_env::presets;
+use fairgrasp_env::config::presets;
+use fairgrasp_env::episode::{EvalReport, evaluate_seeded};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
 fn baseline(preset: &str, free_space: bool, episodes: usize) -> EvalReport {

@@ -3,8 +3,8 @@
 //! base's pose.
 
 use fairgrasp_env::EnvConfig;
-use fairgrasp_env::policy::{EvalReport, evaluate_seeded};
-use fairgrasp_env::presets;
+use fairgrasp_env::config::presets;
+use fairgrasp_env::episode::{EvalReport, evaluate_seeded};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
 fn evaluate(config: &EnvConfig, seed: u64, n: usize) -> EvalReport {

@@ -2,9 +2,9 @@
 //! on `hard` (where a finger sometimes lands on the cube) no episode presses the cube more than
 //! 2 mm into the table — the required test.
 
-use fairgrasp_env::policy::{Outcome, Policy, evaluate_seeded};
-use fairgrasp_env::presets;
-use fairgrasp_env::randomize::{Scenario, scenario_set};
+use fairgrasp_env::config::presets;
+use fairgrasp_env::episode::{Outcome, Policy, evaluate_seeded};
+use fairgrasp_env::scenario::{Scenario, scenario_set};
 use fairgrasp_env::task::Failure;
 use fairgrasp_env::{EnvConfig, GraspEnv};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};

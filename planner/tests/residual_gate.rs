@@ -3,9 +3,9 @@
 //! advanced and delayed; and the gate of issue 13 — a hand-written residual that knows the true
 //! pose reaches ≥ 97 % on each family through the same interface.
 
-use fairgrasp_env::policy::{EvalReport, Outcome, Policy, run_episode};
-use fairgrasp_env::presets;
-use fairgrasp_env::randomize::scenario_set;
+use fairgrasp_env::config::presets;
+use fairgrasp_env::episode::{EvalReport, Outcome, Policy, run_episode};
+use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
 use fairgrasp_planner::residual::{FEATURE_DIM, ResidualScript};
 use fairgrasp_planner::{BaselineConfig, OracleResidual, Phase, ScriptedGrasp, TaskCorrection};

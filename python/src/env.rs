@@ -2,9 +2,9 @@
 
 use std::sync::Mutex;
 
-use fairgrasp_env::obs::OBS_DIM;
-use fairgrasp_env::policy::Policy;
-use fairgrasp_env::trajectory::Trajectory;
+use fairgrasp_env::env::obs::OBS_DIM;
+use fairgrasp_env::episode::Policy;
+use fairgrasp_env::episode::trajectory::Trajectory;
 use fairgrasp_env::{GraspEnv, Observation};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_report::charts::replay::{SIZE, replay_frame_rgb};
@@ -106,7 +106,7 @@ impl Env {
     /// The observation space as JSON: names, units, low and high per entry (all finite).
     fn observation_space_json(&self) -> PyResult<String> {
         let env = self.env.lock().map_err(value_error)?;
-        let space = fairgrasp_env::spaces::observation_space(env.config(), env.model());
+        let space = fairgrasp_env::env::spaces::observation_space(env.config(), env.model());
         serde_json::to_string(&space).map_err(value_error)
     }
 
@@ -114,7 +114,7 @@ impl Env {
     /// gripper, per the config's `arm.action_space`), each in [−1, 1].
     fn action_space_json(&self) -> PyResult<String> {
         let env = self.env.lock().map_err(value_error)?;
-        let space = fairgrasp_env::spaces::action_space_of(env.config().arm.action_space);
+        let space = fairgrasp_env::env::spaces::action_space_of(env.config().arm.action_space);
         serde_json::to_string(&space).map_err(value_error)
     }
 

@@ -5,7 +5,7 @@
 //!
 //! ```
 //! // The module's action size is the env's.
-//! assert_eq!(_native::ACT_DIM, fairgrasp_env::spaces::ACT_DIM);
+//! assert_eq!(_native::ACT_DIM, fairgrasp_env::env::spaces::ACT_DIM);
 //! ```
 
 use pyo3::exceptions::PyValueError;
@@ -28,23 +28,17 @@ pub(crate) fn env_config(
 ) -> PyResult<fairgrasp_env::EnvConfig> {
     let mut config = match config_toml {
         Some(text) => fairgrasp_env::EnvConfig::from_toml_str(text).map_err(value_error)?,
-        None => fairgrasp_env::presets::load(preset).map_err(value_error)?,
+        None => fairgrasp_env::config::presets::load(preset).map_err(value_error)?,
     };
-    config.arm.model = match arm {
-        "servo" => fairgrasp_env::ArmModelKind::Servo,
-        "multibody" => fairgrasp_env::ArmModelKind::Multibody,
-        other => {
-            return Err(value_error(format!(
-                "arm = {other:?}: choose \"servo\" or \"multibody\""
-            )));
-        }
-    };
+    config.arm.model = arm
+        .parse::<fairgrasp_env::ArmSimulation>()
+        .map_err(|e| value_error(format!("arm = {arm:?}: {e}")))?;
     Ok(config)
 }
 
 /// Checks an action's values: the right count and every value finite; names the index.
 pub(crate) fn checked_action(values: &[f64], what: &str) -> PyResult<fairgrasp_env::Action> {
-    let dim = fairgrasp_env::spaces::ACT_DIM;
+    let dim = fairgrasp_env::env::spaces::ACT_DIM;
     if values.len() != dim {
         return Err(value_error(format!(
             "{what} has {} values, expected {dim}",
@@ -65,14 +59,14 @@ pub(crate) fn checked_action(values: &[f64], what: &str) -> PyResult<fairgrasp_e
 /// The names of the shipped presets, in order.
 #[pyfunction]
 fn preset_names() -> Vec<&'static str> {
-    fairgrasp_env::presets::PRESETS
+    fairgrasp_env::config::presets::PRESETS
         .iter()
         .map(|(name, _, _)| *name)
         .collect()
 }
 
 /// Values per action (as exported to Python).
-pub const ACT_DIM: usize = fairgrasp_env::spaces::ACT_DIM;
+pub const ACT_DIM: usize = fairgrasp_env::env::spaces::ACT_DIM;
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -81,7 +75,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<vector::VecEnv>()?;
     m.add_function(wrap_pyfunction!(preset_names, m)?)?;
     kinematics::register(m)?;
-    m.add("OBS_DIM", fairgrasp_env::obs::OBS_DIM)?;
+    m.add("OBS_DIM", fairgrasp_env::env::obs::OBS_DIM)?;
     m.add("ACT_DIM", ACT_DIM)?;
     Ok(())
 }

@@ -3,8 +3,8 @@
 
 use std::sync::Mutex;
 
-use fairgrasp_env::obs::OBS_DIM;
-use fairgrasp_env::vec_env;
+use fairgrasp_env::env::obs::OBS_DIM;
+use fairgrasp_env::vec;
 use numpy::{
     IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods,
 };
@@ -27,7 +27,7 @@ type VecStepTuple<'py> = (
 /// derived from (`seed`, i, k), reported in each info's `scenario.seed`.
 #[pyclass(module = "fairgrasp._native")]
 pub struct VecEnv {
-    inner: Mutex<vec_env::VecEnv>,
+    inner: Mutex<vec::VecEnv>,
     n: usize,
 }
 
@@ -63,7 +63,7 @@ impl VecEnv {
             )));
         }
         let config = env_config(preset, arm, config_toml)?;
-        let inner = vec_env::VecEnv::new(&config, n, threads, seed).map_err(value_error)?;
+        let inner = vec::VecEnv::new(&config, n, threads, seed).map_err(value_error)?;
         Ok(Self {
             inner: Mutex::new(inner),
             n,
@@ -79,7 +79,7 @@ impl VecEnv {
     /// Starts every env's next episode: (obs [n, 23], infos JSON).
     fn reset<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyArray2<f32>>, Vec<String>)> {
         let mut guard = self.inner.lock().map_err(value_error)?;
-        let inner: &mut vec_env::VecEnv = &mut guard;
+        let inner: &mut vec::VecEnv = &mut guard;
         let out = py
             .detach(|| {
                 inner.reset()?;
@@ -112,7 +112,7 @@ impl VecEnv {
             .map(|(i, row)| checked_action(row, &format!("actions[{i}]")))
             .collect::<PyResult<Vec<_>>>()?;
         let mut guard = self.inner.lock().map_err(value_error)?;
-        let inner: &mut vec_env::VecEnv = &mut guard;
+        let inner: &mut vec::VecEnv = &mut guard;
         let out = py
             .detach(|| inner.step(&actions).cloned())
             .map_err(value_error)?;

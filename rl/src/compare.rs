@@ -10,13 +10,13 @@
 use std::path::{Path, PathBuf};
 
 use burn::tensor::Device;
-use fairgrasp_env::policy::{EvalReport, Policy, evaluate, run_episode};
-use fairgrasp_env::randomize::{Scenario, scenario_set};
-use fairgrasp_env::trajectory::Trajectory;
+use fairgrasp_env::episode::trajectory::Trajectory;
+use fairgrasp_env::episode::{EvalReport, Policy, evaluate, run_episode};
+use fairgrasp_env::scenario::{Scenario, scenario_set};
 use fairgrasp_env::{EnvConfig, EnvError, GraspEnv};
 use fairgrasp_planner::{BaselineConfig, ClosedLoopGrasp, ScriptedGrasp};
 use fairgrasp_types::fs::slug;
-use fairgrasp_types::{ArmSimulation, Comparison, MethodResult, RecordedEpisode};
+use fairgrasp_types::{Comparison, MethodResult, RecordedEpisode};
 
 use crate::ppo::model::ActorCritic;
 use crate::run::checkpoint::{self, CheckpointError, CheckpointMeta};
@@ -223,10 +223,10 @@ impl Policy for Boxed {
     fn act(&mut self, obs: &fairgrasp_env::Observation) -> fairgrasp_env::Action {
         self.0.act(obs)
     }
-    fn observe_truth(&mut self, truth: &fairgrasp_env::perception::ObservedObject) {
+    fn observe_truth(&mut self, truth: &fairgrasp_env::scenario::perception::ObservedObject) {
         self.0.observe_truth(truth);
     }
-    fn gave_up(&self) -> Option<fairgrasp_env::policy::Outcome> {
+    fn gave_up(&self) -> Option<fairgrasp_env::episode::Outcome> {
         self.0.gave_up()
     }
 }
@@ -278,7 +278,7 @@ pub fn run_comparison(
             results.push(MethodResult {
                 method: method.clone(),
                 preset: preset.name.clone(),
-                arm: ArmSimulation::from(preset.config.arm.model),
+                arm: preset.config.arm.model,
                 seed: spec.seed,
                 policy: i
                     .checked_sub(SCRIPTS.len())

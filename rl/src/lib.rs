@@ -6,10 +6,9 @@
 //! - [`run`]: training runs, checkpoints, resume, evaluation, the shipped policies;
 //! - [`compare`]: every method on the same scenario sets (the `compare` experiment).
 //!
-//! [`bench`] holds the `bench ppo` measurement.
+//! The `bench ppo` measurement lives in the `fairgrasp-bench` crate (`bench/`).
 
 pub mod agent;
-pub mod bench;
 pub mod compare;
 pub mod ppo;
 pub mod run;

@@ -1,7 +1,7 @@
 //! The pure agent's task-space action and the training-only `[env]` settings of a run config.
 
+use fairgrasp_env::config::presets;
 use fairgrasp_env::config::{ActionSpace, RewardKind};
-use fairgrasp_env::presets;
 use fairgrasp_env::{Action, GraspEnv};
 use fairgrasp_rl::agent::action_map::ActionMap;
 use fairgrasp_rl::agent::grasp_agent::Mode;

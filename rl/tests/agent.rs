@@ -2,9 +2,9 @@
 //! refused clearly, and a resumed run continues where it stopped.
 
 use burn::tensor::Device;
-use fairgrasp_env::policy::Policy;
-use fairgrasp_env::randomize::scenario_set;
-use fairgrasp_env::{GraspEnv, presets};
+use fairgrasp_env::episode::Policy;
+use fairgrasp_env::scenario::scenario_set;
+use fairgrasp_env::{GraspEnv, config::presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
 use fairgrasp_rl::ppo::PpoConfig;

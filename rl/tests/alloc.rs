@@ -12,9 +12,9 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use fairgrasp_env::policy::Policy;
-use fairgrasp_env::vec_env::VecEnv;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, presets};
+use fairgrasp_env::episode::Policy;
+use fairgrasp_env::vec::VecEnv;
+use fairgrasp_env::{Action, EnvConfig, GraspEnv, config::presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig, Mode};
 use fairgrasp_rl::agent::grasp_env::GraspVecEnv;

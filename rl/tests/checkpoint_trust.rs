@@ -151,7 +151,7 @@ fn a_resume_with_a_changed_config_is_refused_listing_the_differences_unless_acce
 fn the_curriculum_stage_is_carried_over_a_resume() {
     let dir = temp_dir("stage");
     let mut config = tiny();
-    config.curriculum = Some(fairgrasp_env::curriculum::CurriculumConfig::default());
+    config.curriculum = Some(fairgrasp_env::scenario::curriculum::CurriculumConfig::default());
     train(&config, &dir, false, &mut |_| {}).unwrap();
     // An untrained agent never passes a stage here, so record a run that had reached stage 2.
     let path = dir.join("checkpoints/latest/meta.json");

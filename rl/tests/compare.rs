@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use fairgrasp_env::presets;
+use fairgrasp_env::config::presets;
 use fairgrasp_rl::compare::{
     CompareError, CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, SCRIPTS, run_comparison,
 };

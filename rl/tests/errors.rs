@@ -2,7 +2,7 @@
 //! loadable, finite `checkpoints/latest`; a non-finite action is refused naming the env.
 
 use burn::tensor::Device;
-use fairgrasp_env::presets;
+use fairgrasp_env::config::presets;
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
 use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
 use fairgrasp_rl::ppo::PpoConfig;

@@ -3,8 +3,8 @@
 //! same scenario seeds with the same actions, give bit-identical baseline actions and policy
 //! inputs, at every step, at episode ends and after auto-resets.
 
-use fairgrasp_env::policy::Policy;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, presets};
+use fairgrasp_env::episode::Policy;
+use fairgrasp_env::{Action, EnvConfig, GraspEnv, config::presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
 use fairgrasp_rl::agent::grasp_env::GraspVecEnv;

@@ -2,7 +2,7 @@
 
 use burn::tensor::{Device, Tensor, TensorData};
 use fairgrasp_rl::agent::grasp_agent::ACT_DIM;
-use fairgrasp_rl::bench::FreeEnv;
+use fairgrasp_rl::ppo::free_env::FreeEnv;
 use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
 use fairgrasp_rl::ppo::normalizer::RunningNorm;
 use fairgrasp_rl::ppo::point_mass::{HORIZON, PointMass};
@@ -219,7 +219,7 @@ fn the_ppo_ratio_is_exactly_one_on_the_first_minibatch_of_every_update() {
         );
         assert!(stats.approx_kl > 0.0, "the updates move the policy");
     }
-    let mut free = FreeEnv::new(4, 30);
+    let mut free = FreeEnv::new(4, 30, ACT_DIM);
     assert_eq!(free.act_dim(), ACT_DIM);
     let mut ppo = ppo_for(&free, 32);
     for update in 0..3 {

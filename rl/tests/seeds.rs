@@ -2,9 +2,9 @@
 //! with the top bit set, evaluation sets from seeds without it.
 
 use fairgrasp_env::GraspEnv;
-use fairgrasp_env::presets;
-use fairgrasp_env::randomize::scenario_set;
-use fairgrasp_env::vec_env::VecEnv;
+use fairgrasp_env::config::presets;
+use fairgrasp_env::scenario::scenario_set;
+use fairgrasp_env::vec::VecEnv;
 use fairgrasp_rl::run::train::TRAINING_SEEDS;
 
 #[test]

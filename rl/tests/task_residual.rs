@@ -3,9 +3,9 @@
 
 use burn::tensor::Device;
 use fairgrasp_env::config::ActionSpace;
-use fairgrasp_env::policy::{Policy, run_episode};
-use fairgrasp_env::randomize::scenario_set;
-use fairgrasp_env::{GraspEnv, presets};
+use fairgrasp_env::episode::{Policy, run_episode};
+use fairgrasp_env::scenario::scenario_set;
+use fairgrasp_env::{GraspEnv, config::presets};
 use fairgrasp_planner::residual::FEATURE_DIM;
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig, Mode, OBS_DIM};

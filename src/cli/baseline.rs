@@ -5,36 +5,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
-use fairgrasp_env::policy::{EvalReport, Policy, evaluate_seeded};
-use fairgrasp_env::presets::{self, PRESETS};
-use fairgrasp_env::{ArmModelKind, EnvConfig};
+use fairgrasp_env::EnvConfig;
+use fairgrasp_env::config::presets::{self, PRESETS};
+use fairgrasp_env::episode::{EvalReport, Policy, evaluate_seeded};
 use fairgrasp_planner::{BaselineConfig, ClosedLoopGrasp, ScriptedGrasp};
 use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
-
-/// Arm simulation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ArmArg {
-    /// Kinematic links placed by FK (fast; the default).
-    Servo,
-    /// rapier multibody with the FR3 masses and joint motors.
-    Multibody,
-}
-
-impl From<ArmArg> for ArmModelKind {
-    fn from(a: ArmArg) -> Self {
-        match a {
-            ArmArg::Servo => ArmModelKind::Servo,
-            ArmArg::Multibody => ArmModelKind::Multibody,
-        }
-    }
-}
-
-impl From<ArmArg> for ArmSimulation {
-    fn from(a: ArmArg) -> Self {
-        ArmModelKind::from(a).into()
-    }
-}
 
 fn preset_help() -> String {
     let names: Vec<String> = PRESETS
@@ -57,7 +33,7 @@ pub struct ScenarioArgs {
     pub seed: u64,
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
-    pub arm: ArmArg,
+    pub arm: ArmSimulation,
     /// Worker threads, 1–256 (default: all cores).
     #[arg(long, value_parser = crate::cli::args::thread_count)]
     pub threads: Option<usize>,
@@ -133,9 +109,9 @@ pub fn evaluate_and_print<P: Policy>(
 }
 
 /// The environment config for a preset and arm.
-pub fn preset_config(preset: &str, arm: ArmArg) -> anyhow::Result<EnvConfig> {
+pub fn preset_config(preset: &str, arm: ArmSimulation) -> anyhow::Result<EnvConfig> {
     let mut config = presets::load(preset)?;
-    config.arm.model = arm.into();
+    config.arm.model = arm;
     Ok(config)
 }
 
@@ -158,14 +134,14 @@ pub fn progress_bar(len: u64, json: bool, label: &str) -> ProgressBar {
 pub fn report_json(
     method: &str,
     preset: &str,
-    arm: ArmArg,
+    arm: ArmSimulation,
     seed: u64,
     r: &EvalReport,
 ) -> anyhow::Result<serde_json::Value> {
     Ok(serde_json::to_value(MethodResult {
         method: method.to_string(),
         preset: preset.to_string(),
-        arm: arm.into(),
+        arm,
         seed,
         policy: None,
         report: r.clone(),
@@ -173,11 +149,10 @@ pub fn report_json(
 }
 
 /// The report as text.
-pub fn print_report(method: &str, preset: &str, arm: ArmArg, seed: u64, r: &EvalReport) {
+pub fn print_report(method: &str, preset: &str, arm: ArmSimulation, seed: u64, r: &EvalReport) {
     println!(
         "{method} on preset `{preset}` ({} arm), {} episodes from seed {seed}",
-        ArmSimulation::from(arm),
-        r.episodes
+        arm, r.episodes
     );
     println!(
         "  success rate          {:5.1} %  (95 % Wilson CI {:.1}–{:.1} %)",

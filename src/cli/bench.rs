@@ -1,13 +1,11 @@
-//! `fairgrasp bench env` (the measurement is `fairgrasp_env::bench`) and `fairgrasp bench ppo`.
+//! `fairgrasp bench env` (the measurement is `fairgrasp_bench::env`) and `fairgrasp bench ppo`.
 
 use std::process::ExitCode;
 
 use clap::{Args, Subcommand};
+use fairgrasp_bench::env::{EnvBenchSpec, bench_env};
 use fairgrasp_env::EnvConfig;
-use fairgrasp_env::bench::{EnvBenchSpec, bench_env};
 use fairgrasp_types::ArmSimulation;
-
-use super::baseline::ArmArg;
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
@@ -45,7 +43,7 @@ pub struct PpoBenchArgs {
 pub struct EnvBenchArgs {
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
-    arm: ArmArg,
+    arm: ArmSimulation,
     /// Threads stepping environments in parallel.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=64))]
     threads: u16,
@@ -77,7 +75,7 @@ pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
 
 fn run_env(a: &EnvBenchArgs) -> anyhow::Result<ExitCode> {
     let mut config = match &a.preset {
-        Some(p) => fairgrasp_env::presets::load(p)?,
+        Some(p) => fairgrasp_env::config::presets::load(p)?,
         None => {
             let mut c = EnvConfig::default();
             c.randomization.position = true;
@@ -85,7 +83,7 @@ fn run_env(a: &EnvBenchArgs) -> anyhow::Result<ExitCode> {
             c
         }
     };
-    config.arm.model = a.arm.into();
+    config.arm.model = a.arm;
     let spec = EnvBenchSpec {
         config,
         threads: usize::from(a.threads),
@@ -93,7 +91,7 @@ fn run_env(a: &EnvBenchArgs) -> anyhow::Result<ExitCode> {
         steps: a.steps as usize,
         resets: a.resets as usize,
     };
-    let arm = ArmSimulation::from(a.arm);
+    let arm = a.arm;
     let announce = || {
         if !a.json {
             eprintln!(

@@ -1,8 +1,8 @@
-//! `fairgrasp bench ppo`: runs `fairgrasp_rl::bench::bench_ppo` and prints its figures.
+//! `fairgrasp bench ppo`: runs `fairgrasp_bench::ppo::bench_ppo` and prints its figures.
 
 use std::process::ExitCode;
 
-use fairgrasp_rl::bench::bench_ppo;
+use fairgrasp_bench::ppo::bench_ppo;
 
 /// Peak resident set size of this process [MB] (getrusage `ru_maxrss`, kB on Linux).
 pub fn peak_rss_mb() -> f64 {

@@ -14,7 +14,7 @@ use fairgrasp_rl::compare::{
 use fairgrasp_rl::run::shipped;
 use fairgrasp_types::{ArmSimulation, write_atomic};
 
-use super::baseline::{ArmArg, preset_config, progress_bar};
+use super::baseline::{preset_config, progress_bar};
 use super::report::existing_rule;
 
 #[derive(Args, Debug)]
@@ -38,7 +38,7 @@ pub struct CompareArgs {
     seed: u64,
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
-    arm: ArmArg,
+    arm: ArmSimulation,
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
@@ -146,9 +146,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
         }
         println!(
             "\n{} episodes per preset from seed {}, {} arm; 95 % Wilson intervals.",
-            a.episodes,
-            a.seed,
-            ArmSimulation::from(a.arm)
+            a.episodes, a.seed, a.arm
         );
         println!("Written to {}:", a.out.display());
         let names = ["compare.csv", "compare.json"]

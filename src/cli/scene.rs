@@ -4,10 +4,10 @@
 use std::process::ExitCode;
 
 use clap::Args;
-use fairgrasp_env::diagnostics::diagnose_scene;
+use fairgrasp_env::env::diagnostics::diagnose_scene;
 use fairgrasp_types::ArmSimulation;
 
-use super::baseline::{ArmArg, preset_config};
+use super::baseline::preset_config;
 
 #[derive(Args, Debug)]
 pub struct SceneArgs {
@@ -16,7 +16,7 @@ pub struct SceneArgs {
     preset: String,
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
-    arm: ArmArg,
+    arm: ArmSimulation,
     /// Reset seed of the scene shown in detail.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -43,9 +43,7 @@ pub fn run(a: &SceneArgs) -> anyhow::Result<ExitCode> {
         let p = &config.physics;
         println!(
             "Scene of `{}` ({} arm), reset seed {}",
-            a.preset,
-            ArmSimulation::from(a.arm),
-            a.seed
+            a.preset, a.arm, a.seed
         );
         println!(
             "  table    top {:.3} m above the floor, {:.2} × {:.2} m, friction {}",

@@ -1,5 +1,5 @@
 //! `fairgrasp bench soak`: every preset's env stepped with seeded random actions for a long
-//! time (`fairgrasp_env::soak`), presets spread over threads; the table counts anything
+//! time (`fairgrasp_bench::soak`), presets spread over threads; the table counts anything
 //! non-finite, physics faults and env errors (any of them: exit 1) and shows resident memory
 //! after the first 10 % and at the end, to compare by eye.
 
@@ -8,9 +8,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use anyhow::Context;
 use clap::Args;
-use fairgrasp_env::policy::Policy;
-use fairgrasp_env::presets::{self, PRESETS};
-use fairgrasp_env::soak::{SoakReport, ZeroActions, soak};
+use fairgrasp_bench::soak::{SoakReport, ZeroActions, soak};
+use fairgrasp_env::config::presets::{self, PRESETS};
+use fairgrasp_env::episode::Policy;
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
 #[derive(Args, Debug)]
@@ -34,7 +34,7 @@ pub struct SoakArgs {
     noise: f64,
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
-    arm: super::baseline::ArmArg,
+    arm: fairgrasp_types::ArmSimulation,
     /// Threads (presets run side by side, one env each), 1–256.
     #[arg(long, default_value_t = 2, value_parser = super::args::thread_count)]
     threads: usize,
@@ -66,7 +66,7 @@ pub fn run(a: &SoakArgs) -> anyhow::Result<ExitCode> {
         .iter()
         .map(|n| {
             let mut c = presets::load(n).with_context(|| format!("preset {n}"))?;
-            c.arm.model = a.arm.into();
+            c.arm.model = a.arm;
             Ok(c)
         })
         .collect::<anyhow::Result<Vec<_>>>()?;

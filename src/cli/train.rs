@@ -10,7 +10,7 @@ use fairgrasp_env::EnvConfig;
 use fairgrasp_rl::run::checkpoint;
 use fairgrasp_rl::run::train::{TrainConfig, agent_policy, train_with};
 
-use super::baseline::{ArmArg, ScenarioArgs, evaluate_and_print, print_report};
+use super::baseline::{ScenarioArgs, evaluate_and_print, print_report};
 
 #[derive(Args, Debug)]
 pub struct TrainArgs {
@@ -111,18 +111,11 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
     print_report(
         "trained agent",
         &config.preset,
-        arm_arg(&config),
+        config.arm,
         1_000_000,
         &report,
     );
     Ok(ExitCode::SUCCESS)
-}
-
-fn arm_arg(c: &TrainConfig) -> ArmArg {
-    match c.arm {
-        fairgrasp_env::ArmModelKind::Servo => ArmArg::Servo,
-        fairgrasp_env::ArmModelKind::Multibody => ArmArg::Multibody,
-    }
 }
 
 #[derive(Args, Debug)]

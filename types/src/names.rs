@@ -112,11 +112,15 @@ named_enum!(
     ]
 );
 
-/// How the arm is simulated (the environment's `arm.model` setting).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+/// How the arm is simulated (the environment's `arm.model` setting, the CLI's `--arm`, Python's
+/// `arm=`): the one enum for it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "snake_case")]
 pub enum ArmSimulation {
-    /// Joint angles integrate the commanded velocities; links are kinematic bodies placed by FK.
+    /// Kinematic links placed by FK (fast; the default): joint angles integrate the commanded
+    /// velocities.
+    #[default]
     Servo,
     /// A rapier multibody with joint velocity motors and the arm's mass properties.
     Multibody,

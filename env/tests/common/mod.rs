@@ -1,8 +1,8 @@
 //! A minimal scripted grasp for the tests: joint-space P control toward IK targets.
 #![allow(dead_code)]
 
-use fairgrasp_env::randomize::top_down_grasp;
-use fairgrasp_env::{Action, ArmModelKind, EnvConfig, GraspEnv, Step};
+use fairgrasp_env::scenario::top_down_grasp;
+use fairgrasp_env::{Action, ArmSimulation, EnvConfig, GraspEnv, Step};
 
 /// Action driving the joints toward `target` [rad] with gripper command `grip`.
 pub fn toward(env: &GraspEnv, target: [f64; 6], grip: f64) -> Action {
@@ -17,7 +17,7 @@ pub fn toward(env: &GraspEnv, target: [f64; 6], grip: f64) -> Action {
 }
 
 /// A config for the given arm model in which success never ends the episode (lift 1 m).
-pub fn config(arm: ArmModelKind) -> EnvConfig {
+pub fn config(arm: ArmSimulation) -> EnvConfig {
     let mut cfg = EnvConfig::default();
     cfg.arm.model = arm;
     cfg.task.lift_height = 1.0;

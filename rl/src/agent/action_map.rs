@@ -1,14 +1,14 @@
 //! The agent's task-space action (`agent.action_space = "tcp"`): the policy outputs a TCP
 //! velocity and a yaw rate in the table frame (entries 0–3, the gripper at 6, 4–5 unused), and
 //! this map turns it into the env's joint-velocity action through the kinematics
-//! ([`fairgrasp_env::tcp_action`]), at the joints the observation reports.
+//! ([`fairgrasp_env::robot::tcp_action`]), at the joints the observation reports.
 //!
 //! The env's joint action is `q̇ / arm.action_scale`; if any joint would need more than 1, the
 //! whole joint action is scaled down so that the TCP keeps its direction. The gripper is binary,
 //! as in Isaac Lab's lift task: open below 0, closed from 0 up. (A continuous command between
 //! −1 and 1 leaves the fingers half closed, and an exploring policy then lands them on the cube.)
 
-use fairgrasp_env::tcp_action::{TcpCommand, joint_velocities};
+use fairgrasp_env::robot::tcp_action::{TcpCommand, joint_velocities};
 use fairgrasp_env::{Action, EnvConfig, Mount};
 use fairgrasp_kinematics::{ArmKind, ArmModel};
 

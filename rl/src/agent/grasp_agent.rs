@@ -12,7 +12,7 @@
 //! mode the TCP velocity it commands ([`crate::agent::action_map`]).
 
 use fairgrasp_env::config::ActionSpace;
-use fairgrasp_env::policy::Policy;
+use fairgrasp_env::episode::Policy;
 use fairgrasp_env::{Action, EnvConfig, Observation};
 
 use crate::agent::action_map::ActionMap;
@@ -89,7 +89,7 @@ impl Default for AgentConfig {
 }
 
 /// Env observation size.
-pub const OBS_DIM: usize = fairgrasp_env::obs::OBS_DIM;
+pub const OBS_DIM: usize = fairgrasp_env::env::obs::OBS_DIM;
 /// Env action size.
 pub const ACT_DIM: usize = 7;
 
@@ -109,7 +109,7 @@ impl AgentConfig {
     }
 
     /// Writes the policy input for a typed observation into `out` (`input_dim` values: the
-    /// observation's flat view in the order of `fairgrasp_env::obs::OBS_NAMES`, then in residual
+    /// observation's flat view in the order of `fairgrasp_env::env::obs::OBS_NAMES`, then in residual
     /// mode the script's part ([`Script::write_input`]: the baseline's 7 action values, 0 if
     /// none, or the task script's features)).
     ///
@@ -136,10 +136,10 @@ impl AgentConfig {
     }
 
     /// The names of the policy input's entries, in order: the observation's
-    /// ([`fairgrasp_env::obs::OBS_NAMES`]), then the script's part (`baseline_action_0` … `_6`,
+    /// ([`fairgrasp_env::env::obs::OBS_NAMES`]), then the script's part (`baseline_action_0` … `_6`,
     /// or [`fairgrasp_planner::residual::FEATURE_NAMES`]).
     pub fn input_names(&self) -> Vec<String> {
-        let mut names: Vec<String> = fairgrasp_env::obs::OBS_NAMES
+        let mut names: Vec<String> = fairgrasp_env::env::obs::OBS_NAMES
             .iter()
             .map(|n| n.to_string())
             .collect();
@@ -297,7 +297,7 @@ impl Policy for GraspAgent {
         )
     }
 
-    fn gave_up(&self) -> Option<fairgrasp_env::policy::Outcome> {
+    fn gave_up(&self) -> Option<fairgrasp_env::episode::Outcome> {
         self.script.as_ref().and_then(|s| s.gave_up())
     }
 }

@@ -8,7 +8,7 @@
 //! same observation by [`AgentConfig::write_input`]. Every buffer is sized in `new` and refilled in
 //! place: a step allocates nothing here.
 
-use fairgrasp_env::vec_env::VecEnv;
+use fairgrasp_env::vec::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, EnvError, Observation};
 
 use crate::agent::action_map::ActionMap;

@@ -8,8 +8,8 @@
 //!   timing ([`fairgrasp_planner::residual`]); the script's phase, the cube's motion since the
 //!   plan and the correction so far are appended to the policy input.
 
-use fairgrasp_env::policy::Outcome;
-use fairgrasp_env::policy::Policy;
+use fairgrasp_env::episode::Outcome;
+use fairgrasp_env::episode::Policy;
 use fairgrasp_env::{Action, EnvConfig, Observation};
 use fairgrasp_planner::residual::{FEATURE_DIM, ResidualScript};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};

@@ -9,11 +9,13 @@
 //!   [`gaussian`]: the policy's distribution, its one log-probability.
 //! - [`rollout`]: the rollout buffer; [`gae`]: advantages, normalisation, explained variance;
 //!   [`normalizer`]: running observation statistics.
-//! - [`vec_api`]: the environment interface; [`point_mass`]: a small task PPO must solve.
+//! - [`vec_api`]: the environment interface; [`point_mass`]: a small task PPO must solve;
+//!   [`free_env`]: one that costs nothing (for timing PPO alone).
 
 pub mod algorithm;
 pub mod config;
 pub mod error;
+pub mod free_env;
 pub mod gae;
 pub mod gaussian;
 pub mod init;

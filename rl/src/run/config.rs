@@ -2,9 +2,9 @@
 
 use std::path::Path;
 
-use fairgrasp_env::curriculum::CurriculumConfig;
-use fairgrasp_env::presets;
-use fairgrasp_env::{ArmModelKind, EnvConfig};
+use fairgrasp_env::config::presets;
+use fairgrasp_env::scenario::curriculum::CurriculumConfig;
+use fairgrasp_env::{ArmSimulation, EnvConfig};
 use serde::{Deserialize, Serialize};
 
 use crate::agent::grasp_agent::AgentConfig;
@@ -28,7 +28,7 @@ pub struct TrainConfig {
     /// Environment preset (`fixed`, `seed`, `wide`, `full`, `hard`) or a .toml file.
     pub preset: String,
     /// Arm simulation.
-    pub arm: ArmModelKind,
+    pub arm: ArmSimulation,
     /// Seed of the network initialisation, the sampling and the episodes.
     pub seed: u64,
     /// Environment steps to train for.
@@ -74,7 +74,7 @@ impl Default for TrainConfig {
     fn default() -> Self {
         Self {
             preset: "hard".into(),
-            arm: ArmModelKind::Servo,
+            arm: ArmSimulation::Servo,
             seed: 0,
             total_timesteps: 200_000,
             max_wall_time_s: None,
@@ -104,7 +104,7 @@ impl TrainConfig {
     pub fn from_toml_file(path: &Path) -> Result<Self, TrainError> {
         let text = std::fs::read_to_string(path).map_err(io(path))?;
         let config: TrainConfig = toml::from_str(&text).map_err(|e| {
-            let message = fairgrasp_env::validate::toml_error_message(&text, &e);
+            let message = fairgrasp_env::config::validate::toml_error_message(&text, &e);
             TrainError::Config(format!("{}: {message}", path.display()))
         })?;
         config
@@ -115,7 +115,8 @@ impl TrainConfig {
 
     /// Checks every part; the message names the field, the value and the allowed range.
     pub fn validate(&self) -> Result<(), String> {
-        if let Some((field, value, rule)) = fairgrasp_env::validate::first_bad_number(self) {
+        if let Some((field, value, rule)) = fairgrasp_env::config::validate::first_bad_number(self)
+        {
             return Err(format!("{field} = {value}: {rule}"));
         }
         if !(1..=MAX_ENVS).contains(&self.n_envs) {

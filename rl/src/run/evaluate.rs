@@ -2,7 +2,7 @@
 
 use burn::tensor::Device;
 use fairgrasp_env::EnvConfig;
-use fairgrasp_env::policy::{EvalReport, evaluate_seeded};
+use fairgrasp_env::episode::{EvalReport, evaluate_seeded};
 
 use crate::agent::grasp_agent::GraspAgent;
 use crate::ppo::model::ActorCritic;

@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use fairgrasp_env::trajectory::write_atomic;
+use fairgrasp_env::episode::trajectory::write_atomic;
 
 use crate::run::checkpoint::{self, CheckpointMeta};
 use crate::run::config::TrainConfig;

@@ -12,10 +12,10 @@ use std::time::Instant;
 
 use burn::tensor::Device;
 use fairgrasp_env::GraspEnv;
-use fairgrasp_env::curriculum::Curriculum;
-use fairgrasp_env::policy::EvalReport;
-use fairgrasp_env::randomize::scenario_set;
-use fairgrasp_env::trajectory::write_atomic;
+use fairgrasp_env::episode::EvalReport;
+use fairgrasp_env::episode::trajectory::write_atomic;
+use fairgrasp_env::scenario::curriculum::Curriculum;
+use fairgrasp_env::scenario::scenario_set;
 
 use crate::agent::grasp_agent::ACT_DIM;
 use crate::agent::grasp_env::GraspVecEnv;

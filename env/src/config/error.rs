@@ -1,0 +1,14 @@
+//! Why a configuration was refused.
+
+/// A configuration value that is out of its allowed range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConfigError {
+    #[error("{field} = {value}: {rule}")]
+    Invalid {
+        field: String,
+        value: String,
+        rule: &'static str,
+    },
+    #[error("{path}: {message}")]
+    File { path: String, message: String },
+}

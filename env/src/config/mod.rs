@@ -1,0 +1,23 @@
+//! The environment's configuration: plain serde data with defaults ([`env_config`], the
+//! families' settings in [`families`], the staged reward's weights in [`reward`]), loaded from
+//! TOML and checked with messages that name the field ([`validate`], [`numbers`], [`error`]),
+//! and the named presets ([`presets`]).
+//!
+//! A leaf: nothing here imports the env's behaviour (only the frame arithmetic of
+//! `crate::cell`, which needs no config), so every other room may import it.
+//!
+//! Frames: `world` is z-up with the table top at `scene.table_height`; the arm's `base_link` sits
+//! at `arm.base_xyz` / `arm.base_rpy` in the world. Units: metres, radians, kilograms, seconds.
+
+pub mod env_config;
+pub mod error;
+pub mod families;
+pub mod numbers;
+pub mod presets;
+pub mod range;
+pub mod reward;
+pub mod validate;
+
+pub use env_config::*;
+pub use error::ConfigError;
+pub use range::Range;

@@ -1,0 +1,372 @@
+//! Loading and checking an [`EnvConfig`]: TOML in and out, and refusals that name the field.
+
+use std::path::Path;
+
+use crate::config::env_config::{EnvConfig, Range};
+pub use crate::config::error::ConfigError;
+pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
+
+/// The largest tilt of the base from upright that the env accepts [rad] (15°).
+pub const MAX_BASE_TILT: f64 = 15.0 * std::f64::consts::PI / 180.0;
+
+fn check(
+    ok: bool,
+    field: &str,
+    value: impl std::fmt::Debug,
+    rule: &'static str,
+) -> Result<(), ConfigError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(ConfigError::Invalid {
+            field: field.to_string(),
+            value: format!("{value:?}"),
+            rule,
+        })
+    }
+}
+
+/// Refuses any non-finite number or out-of-range integer in a configuration, naming the field.
+pub fn check_all_finite(config: &impl serde::Serialize) -> Result<(), ConfigError> {
+    match first_bad_number(config) {
+        Some((field, value, rule)) => Err(ConfigError::Invalid { field, value, rule }),
+        None => Ok(()),
+    }
+}
+
+/// The most physics substeps per env step the env accepts (each costs a full rigid-body step).
+pub const MAX_SUBSTEPS: usize = 200;
+/// The most solver iterations per substep the env accepts.
+pub const MAX_SOLVER_ITERATIONS: usize = 100;
+/// The longest episode the env accepts [steps].
+pub const MAX_EPISODE_STEPS: usize = 100_000;
+
+fn check_range(range: &Range, field: &'static str, lowest: f64) -> Result<(), ConfigError> {
+    check(
+        range.iter().all(|v| v.is_finite()),
+        field,
+        range,
+        "must be finite",
+    )?;
+    check(
+        range[0] <= range[1],
+        field,
+        range,
+        "min must not exceed max",
+    )?;
+    check(range[0] >= lowest, field, range, "must not be negative")
+}
+
+impl EnvConfig {
+    /// Reads a TOML file; missing fields take their defaults, unknown fields are refused.
+    pub fn from_toml_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
+        let path_str = path.as_ref().display().to_string();
+        let text = std::fs::read_to_string(path.as_ref()).map_err(|e| ConfigError::File {
+            path: path_str.clone(),
+            message: e.to_string(),
+        })?;
+        Self::from_toml_str(&text).map_err(|e| match e {
+            ConfigError::File { message, .. } => ConfigError::File {
+                path: path_str,
+                message,
+            },
+            ConfigError::Invalid { field, value, rule } => ConfigError::File {
+                path: path_str,
+                message: format!("{field} = {value}: {rule}"),
+            },
+        })
+    }
+
+    /// Parses TOML text and validates it.
+    pub fn from_toml_str(text: &str) -> Result<Self, ConfigError> {
+        let config: EnvConfig = toml::from_str(text).map_err(|e| ConfigError::File {
+            path: "<string>".into(),
+            message: toml_error_message(text, &e),
+        })?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// The exact TOML of this configuration (for run folders).
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).expect("EnvConfig always serialises")
+    }
+
+    /// Refuses values outside their allowed ranges, naming the field.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        check_all_finite(self)?;
+        let p = &self.physics;
+        check(
+            p.dt > 0.0 && p.dt <= 0.05,
+            "physics.dt",
+            p.dt,
+            "must be in (0, 0.05] s",
+        )?;
+        check(
+            (1..=MAX_SUBSTEPS).contains(&p.substeps),
+            "physics.substeps",
+            p.substeps,
+            "must be in 1..=200",
+        )?;
+        check(
+            (1..=MAX_SOLVER_ITERATIONS).contains(&p.solver_iterations),
+            "physics.solver_iterations",
+            p.solver_iterations,
+            "must be in 1..=100",
+        )?;
+        check(
+            p.contact_natural_frequency > 0.0 && p.contact_natural_frequency <= 10_000.0,
+            "physics.contact_natural_frequency",
+            p.contact_natural_frequency,
+            "must be in (0, 10000] Hz (default 120)",
+        )?;
+        let a = &self.arm;
+        check(
+            a.action_scale > 0.0 && a.action_scale <= 3.15,
+            "arm.action_scale",
+            a.action_scale,
+            "must be in (0, 3.15] rad/s (the FR3 velocity limit)",
+        )?;
+        check(
+            a.max_acceleration > 0.0 && a.max_acceleration <= 1000.0,
+            "arm.max_acceleration",
+            a.max_acceleration,
+            "must be in (0, 1000] rad/s² (default 10)",
+        )?;
+        check(
+            a.tcp_speed > 0.0 && a.tcp_speed <= 1.0,
+            "arm.tcp_speed",
+            a.tcp_speed,
+            "must be in (0, 1] m/s",
+        )?;
+        check(
+            a.tcp_yaw_rate > 0.0 && a.tcp_yaw_rate <= 3.2,
+            "arm.tcp_yaw_rate",
+            a.tcp_yaw_rate,
+            "must be in (0, 3.2] rad/s (the FR3's wrist velocity limit)",
+        )?;
+        check(
+            a.base_xyz.iter().chain(&a.base_rpy).all(|v| v.is_finite()),
+            "arm.base_xyz/base_rpy",
+            (a.base_xyz, a.base_rpy),
+            "must be finite",
+        )?;
+        let tilt = crate::cell::mount::Mount::new(
+            fairgrasp_kinematics::Pose::from_xyz_rpy(a.base_xyz, a.base_rpy),
+            self.scene.table_height,
+        )
+        .tilt();
+        check(
+            tilt <= MAX_BASE_TILT + 1e-9,
+            "arm.base_rpy",
+            format_args!("{:?} (tilt {:.1}°)", a.base_rpy, tilt.to_degrees()),
+            "tilts the base more than 15° from upright: a wedge mount may tilt at most 15° \
+             (roll and pitch together), with any yaw",
+        )?;
+        let model = crate::cell::arm::arm_model();
+        check(
+            model.in_limits(&a.home_joints, 0.0),
+            "arm.home_joints",
+            a.home_joints,
+            "must be within the FR3 joint limits",
+        )?;
+        let g = &self.gripper;
+        check(
+            g.force > 0.0 && g.force <= 100.0,
+            "gripper.force",
+            g.force,
+            "must be in (0, 100] N",
+        )?;
+        check(
+            (0.0..=10.0).contains(&g.pad_friction),
+            "gripper.pad_friction",
+            g.pad_friction,
+            "must be in [0, 10]",
+        )?;
+        let s = &self.scene;
+        check(
+            (0.0..=2.0).contains(&s.table_height),
+            "scene.table_height",
+            s.table_height,
+            "must be in [0, 2] m",
+        )?;
+        check(
+            s.table_size.iter().all(|v| *v > 0.2 && *v <= 10.0),
+            "scene.table_size",
+            s.table_size,
+            "each side must be in (0.2, 10] m",
+        )?;
+        check(
+            (0.0..=10.0).contains(&s.table_friction),
+            "scene.table_friction",
+            s.table_friction,
+            "must be in [0, 10]",
+        )?;
+        check(
+            s.cube_size >= 0.01 && s.cube_size <= 0.08,
+            "scene.cube_size",
+            s.cube_size,
+            "must be in [0.01, 0.08] m (the gripper opens 0.085 m)",
+        )?;
+        check(
+            s.cube_mass > 0.0 && s.cube_mass <= 3.0,
+            "scene.cube_mass",
+            s.cube_mass,
+            "must be in (0, 3] kg (the FR3's payload)",
+        )?;
+        check(
+            (0.0..=10.0).contains(&s.cube_friction),
+            "scene.cube_friction",
+            s.cube_friction,
+            "must be in [0, 10]",
+        )?;
+        let t = &self.task;
+        check(
+            (1..=MAX_EPISODE_STEPS).contains(&t.max_steps),
+            "task.max_steps",
+            t.max_steps,
+            "must be in 1..=100000",
+        )?;
+        check(
+            t.lift_height > 0.0 && t.lift_height <= 2.0,
+            "task.lift_height",
+            t.lift_height,
+            "must be in (0, 2] m (default 0.03; a height the arm cannot reach means no success)",
+        )?;
+        check(
+            t.protective_stop_force.is_finite() && t.protective_stop_force > 0.0,
+            "task.protective_stop_force",
+            t.protective_stop_force,
+            "must be a finite force in (0, inf) N (default 35 N)",
+        )?;
+        let w = &t.staged;
+        for (value, field) in [
+            (w.reach, "task.staged.reach"),
+            (w.grasp, "task.staged.grasp"),
+            (w.lift, "task.staged.lift"),
+            (w.reach_sharpness, "task.staged.reach_sharpness"),
+            (w.lift_sharpness, "task.staged.lift_sharpness"),
+        ] {
+            check(
+                value.is_finite() && value >= 0.0,
+                field,
+                value,
+                "must be a non-negative number",
+            )?;
+        }
+        check(
+            w.reach + w.grasp + w.lift > 0.0,
+            "task.staged",
+            w.reach + w.grasp + w.lift,
+            "reach + grasp + lift must be positive (the per-step normaliser)",
+        )?;
+        for (value, field) in [
+            (w.success, "task.staged.success"),
+            (w.collision, "task.staged.collision"),
+        ] {
+            check(value.is_finite(), field, value, "must be a finite number")?;
+        }
+        let r = &self.randomization;
+        check_range(&r.radius, "randomization.radius", 0.0)?;
+        check_range(&r.angle, "randomization.angle", -std::f64::consts::PI)?;
+        if let Some(f) = &r.friction {
+            check_range(f, "randomization.friction", 0.0)?;
+        }
+        if let Some(m) = &r.mass_scale {
+            check_range(m, "randomization.mass_scale", 0.0)?;
+            check(
+                m[0] > 0.0,
+                "randomization.mass_scale",
+                m,
+                "must be positive",
+            )?;
+        }
+        check(
+            r.joint_noise >= 0.0 && r.joint_noise.is_finite(),
+            "randomization.joint_noise",
+            r.joint_noise,
+            "must be a non-negative number",
+        )?;
+        for (value, field) in [
+            (
+                r.observed_position_noise,
+                "randomization.observed_position_noise",
+            ),
+            (r.observed_yaw_noise, "randomization.observed_yaw_noise"),
+        ] {
+            check(
+                value >= 0.0 && value.is_finite(),
+                field,
+                value,
+                "must be a non-negative number",
+            )?;
+        }
+        self.validate_families()
+    }
+
+    /// The scenario families' fields ([`crate::scenario::families`]).
+    fn validate_families(&self) -> Result<(), ConfigError> {
+        use crate::config::families::{
+            MAX_CAMERA_SHIFT, MAX_CAMERA_YAW, MAX_NUDGE, MAX_WRIST_RANGE, MIN_TCP_DISTANCE,
+        };
+        let r = &self.randomization;
+        if let Some(w) = &r.wrist_camera {
+            check(
+                w.range.is_finite() && w.range > 0.0 && w.range <= MAX_WRIST_RANGE,
+                "randomization.wrist_camera.range",
+                w.range,
+                "must be in (0, 0.5] m",
+            )?;
+        }
+        if let Some(c) = &r.camera_offset {
+            check(
+                c.origin.iter().all(|v| v.is_finite() && v.abs() <= 2.0),
+                "randomization.camera_offset.origin",
+                c.origin,
+                "must be finite and within 2 m of the base [m]",
+            )?;
+            check(
+                c.xyz
+                    .iter()
+                    .all(|v| v.is_finite() && v.abs() <= MAX_CAMERA_SHIFT),
+                "randomization.camera_offset.xyz",
+                c.xyz,
+                "each component must be finite and within ±0.05 m",
+            )?;
+            check(
+                c.yaw.is_finite() && c.yaw.abs() <= MAX_CAMERA_YAW,
+                "randomization.camera_offset.yaw",
+                c.yaw,
+                "must be finite and within ±0.2618 rad (15°)",
+            )?;
+        }
+        if let Some(n) = &r.nudge {
+            check_range(&n.distance, "randomization.nudge.distance", 0.0)?;
+            check(
+                n.distance[0] > 0.0 && n.distance[1] <= MAX_NUDGE,
+                "randomization.nudge.distance",
+                n.distance,
+                "must lie in (0, 0.15] m",
+            )?;
+            check(
+                n.step[0] <= n.step[1] && n.step[1] < self.task.max_steps,
+                "randomization.nudge.step",
+                n.step,
+                "min must not exceed max, and max must be below task.max_steps",
+            )?;
+            check(
+                n.min_tcp_distance.is_finite() && n.min_tcp_distance >= MIN_TCP_DISTANCE,
+                "randomization.nudge.min_tcp_distance",
+                n.min_tcp_distance,
+                "must be at least 0.12 m (5 cm of gap plus the cube and the open fingers)",
+            )?;
+            check(
+                r.position,
+                "randomization.nudge",
+                "set",
+                "needs randomization.position = true (the push stays in its radius range)",
+            )?;
+        }
+        Ok(())
+    }
+}

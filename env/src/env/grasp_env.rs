@@ -1,0 +1,393 @@
+//! `GraspEnv`: the gym-style interface. `reset(seed)` and `step(&Action)`.
+//!
+//! An action is 6 joint-velocity commands and 1 gripper command, each in [-1, 1]: joints move at
+//! `action · arm.action_scale` rad/s (or, with `arm.action_space = "tcp"`, entries 0–3 are the
+//! TCP's velocity and yaw rate, see [`crate::robot::tcp_action`]); the gripper closes toward travel
+//! `(g + 1)/2 · 42.5 mm` (−1 open, +1 closed) with a limited force. `terminated` means success or failure, `truncated`
+//! the time limit or a physics fault; never both.
+
+use crate::cell::mount::Mount;
+use crate::config::{ActionSpace, ArmSimulation, EnvConfig};
+use crate::env::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
+use crate::env::obs::Observation;
+pub use crate::env::step::{Action, EnvError, Info, Step};
+use crate::robot::Robot;
+use crate::robot::tcp_action::{TcpCommand, joint_velocities};
+use crate::scenario::Scenario;
+use crate::scenario::nudge::{NudgeEvent, NudgeHook};
+use crate::scenario::perception::{observe_object, wrist_view};
+use crate::sim::Sim;
+use crate::sim::contacts::ContactReport;
+use crate::task::{Failure, TaskState, judge, judge_protective_stop};
+use fairgrasp_kinematics::{ArmKind, ArmModel, Pose};
+use nalgebra::Isometry3;
+use rapier3d::prelude::PhysicsWorld;
+
+use crate::sim::scene::SceneHandles;
+
+/// Physics substeps run at reset so the object settles on the table.
+const SETTLE_SUBSTEPS: usize = 24;
+
+/// The FR3 grasping environment: the robot, the task and the episode's scenario, composed over
+/// the simulator facade.
+pub struct GraspEnv {
+    config: EnvConfig,
+    mount: Mount,
+    sim: Sim,
+    robot: Robot,
+    free_space: FreeSpace,
+    /// The simulator's bodies are where the robot is (false after free-space steps).
+    sim_in_sync: bool,
+    /// What the latest step (or reset) found touching.
+    contacts: ContactReport,
+    object_rest_z: f64,
+    steps: usize,
+    done: bool,
+    scenario: Option<Scenario>,
+    /// This episode's push of the cube (the `nudged` family).
+    nudge: NudgeHook,
+}
+
+impl GraspEnv {
+    /// Builds the world once (validating the config); call [`GraspEnv::reset`] before stepping.
+    pub fn new(config: EnvConfig) -> Result<Self, EnvError> {
+        config.validate()?;
+        let model = ArmKind::Fr3.model();
+        let mount = Mount::from_config(&config);
+        let sim = Self::build_sim(&config, &model, &mount);
+        Ok(Self {
+            free_space: FreeSpace::new(&config, &model),
+            robot: Robot::new(&config, model, mount.base_in_world),
+            sim_in_sync: true,
+            contacts: ContactReport::default(),
+            config,
+            mount,
+            sim,
+            object_rest_z: 0.0,
+            steps: 0,
+            done: true,
+            scenario: None,
+            nudge: NudgeHook::default(),
+        })
+    }
+
+    fn build_sim(config: &EnvConfig, model: &ArmModel, mount: &Mount) -> Sim {
+        let cube_world = Self::spawn_pose_in_world(config, mount, config.scene.cube_xy, 0.0);
+        let base = &mount.base_in_world;
+        Sim::build(config, model, base, &config.arm.home_joints, &cube_world)
+    }
+
+    /// Where a cube resting at `xy` [m], `yaw` [rad] (table frame) spawns in the world: 1 mm
+    /// above the table top, along the world vertical, so that it settles onto it.
+    fn spawn_pose_in_world(
+        config: &EnvConfig,
+        mount: &Mount,
+        xy: [f64; 2],
+        yaw: f64,
+    ) -> Isometry3<f64> {
+        let resting = mount.resting_object_in_base(xy, yaw, config.scene.cube_size);
+        Isometry3::translation(0.0, 0.0, 0.001) * mount.base_in_world.iso * resting.iso
+    }
+
+    /// Replaces the randomisation (e.g. from a curriculum); takes effect at the next reset.
+    pub fn set_randomization(
+        &mut self,
+        randomization: crate::config::RandomizationConfig,
+    ) -> Result<(), EnvError> {
+        let mut config = self.config.clone();
+        config.randomization = randomization;
+        config.validate()?;
+        self.config = config;
+        Ok(())
+    }
+
+    /// The configuration in force.
+    pub fn config(&self) -> &EnvConfig {
+        &self.config
+    }
+
+    /// The arm model.
+    pub fn model(&self) -> &ArmModel {
+        &self.robot.model
+    }
+
+    /// `base_link` in the world.
+    pub fn base_in_world(&self) -> &Pose {
+        &self.mount.base_in_world
+    }
+
+    /// The arm's mount: the base and the table frame in the world and in `base_link`.
+    pub fn mount(&self) -> &Mount {
+        &self.mount
+    }
+
+    /// The scenario of the current episode (`None` before the first reset).
+    pub fn scenario(&self) -> Option<&Scenario> {
+        self.scenario.as_ref()
+    }
+
+    /// What became of this episode's push of the cube, if the scenario has one and its step has
+    /// come ([`crate::scenario::families::Nudge`]).
+    pub fn nudge_event(&self) -> Option<NudgeEvent> {
+        self.nudge.event()
+    }
+
+    /// Soft reset to the scenario drawn from `seed`.
+    pub fn reset(&mut self, seed: u64) -> Result<(Observation, Info), EnvError> {
+        let scenario =
+            Scenario::sample(&self.config, &self.robot.model, self.base_in_world(), seed)?;
+        Ok(self.reset_to(&scenario))
+    }
+
+    /// Hard reset: rebuilds the world from nothing, then resets to the scenario of `seed`.
+    pub fn hard_reset(&mut self, seed: u64) -> Result<(Observation, Info), EnvError> {
+        self.sim = Self::build_sim(&self.config, &self.robot.model, &self.mount);
+        self.reset(seed)
+    }
+
+    /// Soft reset to a given scenario: restores the built world, then places the arm, fingers
+    /// and object and lets the object settle.
+    pub fn reset_to(&mut self, scenario: &Scenario) -> (Observation, Info) {
+        self.sim.restore();
+        let object = Self::spawn_pose_in_world(
+            &self.config,
+            &self.mount,
+            scenario.object_xy,
+            scenario.object_yaw,
+        );
+        self.sim
+            .place_object(&object, scenario.friction, scenario.mass);
+        self.robot.teleport(&mut self.sim, &scenario.start_joints);
+        for _ in 0..SETTLE_SUBSTEPS {
+            self.physics_substep(&[0.0; 6]);
+        }
+        self.sim_in_sync = true;
+        self.object_rest_z = self.sim.object_pose().translation.z;
+        self.steps = 0;
+        self.done = false;
+        self.scenario = Some(*scenario);
+        self.nudge.reset();
+        let info = Info {
+            scenario: Some(*scenario),
+            simulated: true,
+            ..Info::default()
+        };
+        self.contacts = self.sim.contacts();
+        (self.observe([0.0; 6], &self.contacts), info)
+    }
+
+    /// One physics step; returns why the robot stopped if a robot contact with the cube or the
+    /// table pushed harder than `task.protective_stop_force` [N] in it: a protective stop, or,
+    /// on the table, the collision that any robot–table touch is.
+    fn physics_substep(&mut self, joint_command: &[f64; 6]) -> Option<Failure> {
+        self.robot
+            .substep(&mut self.sim, joint_command, self.config.physics.dt);
+        self.sim.step();
+        self.robot.sync(&self.sim);
+        let contact = self.sim.strongest_robot_contact()?;
+        (contact.force > self.config.task.protective_stop_force).then(|| {
+            let model = &self.robot.model;
+            let (robot, other) = (contact.robot.name(model), contact.other.name(model));
+            if contact.other == crate::sim::scene::Part::Table {
+                Failure::Collision(other.to_string(), robot.to_string())
+            } else {
+                Failure::ProtectiveStop {
+                    robot_part: robot.to_string(),
+                    other_part: other.to_string(),
+                    force_n: contact.force,
+                }
+            }
+        })
+    }
+
+    /// Applies one action for `physics.substeps` physics steps.
+    pub fn step(&mut self, action: &Action) -> Result<Step, EnvError> {
+        if self.done {
+            return Err(EnvError::EpisodeOver);
+        }
+        let tcp = self.robot.tcp_in_world().xyz();
+        let (scenario, mount) = (self.scenario.as_ref(), &self.mount);
+        (self.nudge).before_step(self.steps, scenario, mount, &mut self.sim, tcp);
+        let command = self.apply_action(action)?;
+        let q_before = self.robot.q;
+        let free = self.free_step(&command);
+        let simulated = free.is_none();
+        let mut stop = None;
+        if simulated {
+            if !self.sim_in_sync {
+                self.robot.hand_over(&mut self.sim, self.config.physics.dt);
+                self.sim_in_sync = true;
+            }
+            // The protective stop is watched every substep and halts the arm at once.
+            stop = (0..self.config.physics.substeps).find_map(|_| self.physics_substep(&command));
+        }
+        self.steps += 1;
+        let env_dt = self.config.physics.dt * self.config.physics.substeps as f64;
+        let velocities = std::array::from_fn(|i| (self.robot.q[i] - q_before[i]) / env_dt);
+        let mut info = Info {
+            step: self.steps,
+            scenario: self.scenario,
+            simulated,
+            ..Info::default()
+        };
+        if let Some(fault) = self.sim.fault().or_else(|| self.robot.fault()) {
+            self.done = true;
+            info.physics_fault = Some(fault);
+            let obs = self.observe([0.0; 6], &ContactReport::default());
+            return Ok(Step {
+                obs,
+                reward: 0.0,
+                terminated: false,
+                truncated: true,
+                info,
+            });
+        }
+        // One contact report serves the observation and the collision check.
+        let contacts = free.unwrap_or_else(|| self.sim.contacts());
+        self.contacts = contacts.clone();
+        let obs = self.observe(velocities, &contacts);
+        let collision = contacts.collision.map(|(a, b, depth)| {
+            info.collision_depth_m = Some(depth);
+            let model = &self.robot.model;
+            Failure::Collision(a.name(model).to_string(), b.name(model).to_string())
+        });
+        let state = self.task_state(&contacts);
+        let judgement = match stop {
+            Some(stop) => judge_protective_stop(&state, collision, stop, &self.config.task),
+            None => judge(&state, collision, &self.config.task),
+        };
+        info.success = judgement.success;
+        info.failure = judgement.failure;
+        let truncated = !judgement.terminated && self.steps >= self.config.task.max_steps;
+        self.done = judgement.terminated || truncated;
+        Ok(Step {
+            obs,
+            reward: judgement.reward,
+            terminated: judgement.terminated,
+            truncated,
+            info,
+        })
+    }
+
+    /// A free-space step ([`FreeSpace`]) if the config allows it, the arm is the servo arm, the
+    /// object rests and the previous step found no collision; `None` when the step must run
+    /// physics (the robot is then unchanged).
+    fn free_step(&mut self, command: &[f64; 6]) -> Option<ContactReport> {
+        let allowed = self.config.physics.free_space
+            && self.robot.kind == ArmSimulation::Servo
+            && self.contacts.collision.is_none()
+            && self.sim.object_at_rest(REST_SPEED, REST_TURN_RATE);
+        if !allowed {
+            return None;
+        }
+        let report = self.free_space.try_step(
+            &mut self.robot,
+            &self.sim.object_pose(),
+            command,
+            self.config.physics.dt,
+            self.config.physics.substeps,
+        )?;
+        self.sim_in_sync = false;
+        Some(report)
+    }
+
+    /// Checks an action and hands it to the robot: returns the joint-velocity command [rad/s]
+    /// (from joint velocities, or from the TCP command through the Jacobian in `tcp` mode).
+    fn apply_action(&mut self, action: &Action) -> Result<[f64; 6], EnvError> {
+        if let Some((index, &value)) = action.0.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(EnvError::NonFiniteAction { index, value });
+        }
+        let clipped = action.0.map(|v| v.clamp(-1.0, 1.0));
+        self.robot.gripper_command = clipped[6];
+        let arm = &self.config.arm;
+        Ok(match arm.action_space {
+            ActionSpace::Joint => std::array::from_fn(|i| clipped[i] * arm.action_scale),
+            ActionSpace::Tcp => {
+                let command = TcpCommand::from_action(&clipped, arm.tcp_speed, arm.tcp_yaw_rate);
+                joint_velocities(
+                    &self.robot.model,
+                    &self.mount.table_in_base,
+                    &self.robot.q,
+                    &command,
+                )
+            }
+        })
+    }
+
+    /// The facts the task judges, in `world` [m].
+    fn task_state(&self, contacts: &ContactReport) -> TaskState {
+        let object = self.sim.object_pose().translation.vector;
+        let tcp = self.robot.tcp_in_world().xyz();
+        let base_xy = self.mount.base_in_world.xyz();
+        TaskState {
+            object: [object.x, object.y, object.z],
+            object_rest_z: self.object_rest_z,
+            tcp,
+            pad_contact: contacts.pad_contact,
+            gripper_opening: self.robot.gripper_opening(),
+            object_size: self.config.scene.cube_size,
+            table_height: self.config.scene.table_height,
+            object_xy_from_table_centre: [object.x - base_xy[0], object.y - base_xy[1]],
+            table_half_size: self.config.scene.table_size.map(|s| s / 2.0),
+        }
+    }
+
+    /// The observation: the robot's state and the object as the perception model reports it,
+    /// in `base_link`.
+    fn observe(&self, joint_velocities: [f64; 6], contacts: &ContactReport) -> Observation {
+        let tcp = self.robot.tcp_in_base().xyz();
+        let truth = self.object_in_base();
+        let seen = observe_object(&self.mount, &truth, self.scenario.as_ref());
+        let wrist = self.config.randomization.wrist_camera.as_ref();
+        let wrist_camera = wrist_view(wrist, &self.mount, &truth, tcp);
+        Observation {
+            joints: self.robot.q,
+            joint_velocities,
+            object_rel_tcp: [0, 1, 2].map(|i| seen.position[i] - tcp[i]),
+            gripper_opening: self.robot.gripper_opening(),
+            object_yaw: seen.yaw,
+            tcp_position: tcp,
+            pad_contact: contacts.pad_contact,
+            wrist_camera,
+        }
+    }
+
+    /// The object pose in `base_link` (the truth, not what is observed).
+    pub fn object_in_base(&self) -> Pose {
+        Pose {
+            iso: self.mount.base_in_world.iso.inverse() * self.sim.object_pose(),
+        }
+    }
+
+    /// The TCP pose in `base_link` at the current joints.
+    pub fn tcp_in_base(&self) -> Pose {
+        self.robot.tcp_in_base()
+    }
+
+    /// Current finger travels [m] (0 open … 0.0425 closed).
+    pub fn finger_travel(&self) -> [f64; 2] {
+        self.robot.fingers.map(|f| f.travel)
+    }
+
+    /// What the latest step (or reset) found touching: collisions, pad contacts, pad
+    /// penetration (from the narrow phase, or from the exact shapes in a free-space step).
+    pub fn contacts(&self) -> ContactReport {
+        self.contacts.clone()
+    }
+
+    /// Every touching pair of the narrow phase as of the latest step that ran physics (or the
+    /// reset), deepest first, with how it is judged.
+    pub fn touching_pairs(&self) -> Vec<crate::sim::contacts::TouchingPair> {
+        self.sim.touching_pairs()
+    }
+
+    /// Current joint angles [rad].
+    pub fn joints(&self) -> [f64; 6] {
+        self.robot.q
+    }
+
+    /// Test and debugging access to the physics world.
+    pub fn world_mut(&mut self) -> (&mut PhysicsWorld, &SceneHandles) {
+        self.sim.world_mut()
+    }
+}

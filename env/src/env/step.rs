@@ -1,0 +1,79 @@
+//! The values that cross the Env API: actions, step results, info, errors.
+
+use serde::Serialize;
+
+use crate::config::validate::ConfigError;
+use crate::env::obs::Observation;
+use crate::scenario::{Scenario, UngraspableRegion};
+use crate::task::Failure;
+
+/// One action: joint-velocity commands j1 … j6 and the gripper command, each in [-1, 1].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Action(pub [f64; 7]);
+
+impl Action {
+    /// Hold the joints, gripper open.
+    pub fn hold_open() -> Self {
+        Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0])
+    }
+
+    /// From any slice of 7 numbers (e.g. a policy's `f32` output).
+    pub fn from_slice(values: &[f32]) -> Result<Self, EnvError> {
+        let array: [f32; 7] = values
+            .try_into()
+            .map_err(|_| EnvError::ActionLength(values.len()))?;
+        Ok(Action(array.map(f64::from)))
+    }
+}
+
+/// What else happened in a step.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Info {
+    /// Steps taken in this episode.
+    pub step: usize,
+    /// The object is lifted and held.
+    pub success: bool,
+    /// Why the episode failed, if it did.
+    pub failure: Option<Failure>,
+    /// Deepest penetration of the reported collision [m].
+    pub collision_depth_m: Option<f64>,
+    /// A non-finite physics state ended the episode (as truncated): what was found.
+    pub physics_fault: Option<String>,
+    /// This step ran rigid-body physics (false: a free-space step, see `physics.free_space`).
+    pub simulated: bool,
+    /// The scenario this episode started from.
+    pub scenario: Option<Scenario>,
+}
+
+/// The result of `step`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    pub obs: Observation,
+    pub reward: f64,
+    pub terminated: bool,
+    pub truncated: bool,
+    pub info: Info,
+}
+
+/// Misuse of the environment.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EnvError {
+    #[error(
+        "action[{index}] = {value} is not finite (actions are 6 joint velocities + 1 gripper command, each in [-1, 1])"
+    )]
+    NonFiniteAction { index: usize, value: f64 },
+    #[error("an action has 7 values (6 joints + gripper), got {0}")]
+    ActionLength(usize),
+    #[error("the episode has ended (terminated or truncated): call reset first")]
+    EpisodeOver,
+    #[error("a vectorised step takes one action per environment: {expected} expected, got {got}")]
+    ActionCount { expected: usize, got: usize },
+    #[error("an environment worker thread stopped (it panicked): the vectorised env cannot go on")]
+    WorkerLost,
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    #[error("cannot write: {0}")]
+    Io(String),
+    #[error(transparent)]
+    Ungraspable(#[from] UngraspableRegion),
+}

@@ -1,0 +1,153 @@
+//! The `Policy` trait shared by every controller (the scripted baseline, the PPO agent), and the
+//! evaluation loop that runs any policy on a list of scenarios the same way.
+
+use crate::env::obs::Observation;
+use crate::env::{Action, EnvError, GraspEnv};
+use crate::episode::trajectory::Trajectory;
+use crate::scenario::Scenario;
+use crate::scenario::perception::{ObservedObject, true_object};
+use crate::task::Failure;
+
+/// The result types, shared with the report crate through `fairgrasp-types` (one schema).
+pub use fairgrasp_types::{EpisodeResult, EvalReport, Outcome, wilson_interval};
+
+/// A controller: observations in, actions out.
+pub trait Policy {
+    /// Called at the start of every episode, with the episode's seed.
+    fn reset(&mut self, seed: u64);
+    /// The action for this observation.
+    fn act(&mut self, obs: &Observation) -> Action;
+    /// The object's true pose, given by [`run_episode`] before every `act` (the env's truth, not
+    /// the perception model's report). Only an oracle uses it (the ceiling a controller could
+    /// reach); every other policy ignores it (the default).
+    fn observe_truth(&mut self, _truth: &ObservedObject) {}
+    /// Set when the policy itself has given up (the baseline: no IK solution).
+    fn gave_up(&self) -> Option<Outcome> {
+        None
+    }
+}
+
+/// Runs one episode of `policy` from `scenario`; records it into `trajectory` if given.
+pub fn run_episode(
+    env: &mut GraspEnv,
+    policy: &mut dyn Policy,
+    scenario: &Scenario,
+    mut trajectory: Option<&mut Trajectory>,
+) -> Result<EpisodeResult, EnvError> {
+    let (mut obs, _) = env.reset_to(scenario);
+    policy.reset(scenario.seed);
+    if let Some(t) = trajectory.as_deref_mut() {
+        t.record_reset(env, obs.gripper_opening);
+    }
+    let cube = env.config().scene.cube_size;
+    let rest_z = env.object_in_base().xyz()[2];
+    let (mut held, mut lifted_while_held, mut closed_past_cube) = (false, false, false);
+    let mut episode_return = 0.0;
+    loop {
+        policy.observe_truth(&true_object(env.mount(), &env.object_in_base()));
+        let action = policy.act(&obs);
+        let step = env.step(&action)?;
+        if let Some(t) = trajectory.as_deref_mut() {
+            t.record_step(env, &action, &step);
+        }
+        episode_return += step.reward;
+        let both = step.obs.pad_contact[0] && step.obs.pad_contact[1];
+        held |= both;
+        lifted_while_held |= both && env.object_in_base().xyz()[2] - rest_z > 0.01;
+        closed_past_cube |= step.obs.gripper_opening < cube - 0.005;
+        obs = step.obs;
+        if step.terminated || step.truncated {
+            let outcome = if step.info.success {
+                Outcome::Success
+            } else if step.info.physics_fault.is_some() {
+                Outcome::PhysicsFault
+            } else if let Some(Failure::Collision(..)) = step.info.failure {
+                Outcome::Collision
+            } else if let Some(Failure::ProtectiveStop { .. }) = step.info.failure {
+                Outcome::ProtectiveStop
+            } else if let Some(reason) = policy.gave_up() {
+                reason
+            } else if lifted_while_held {
+                Outcome::SlipOrDrop
+            } else if step.info.failure == Some(Failure::ObjectOffTable) {
+                Outcome::ObjectOffTable
+            } else if closed_past_cube && !held {
+                Outcome::MissedGrasp
+            } else {
+                Outcome::Timeout
+            };
+            return Ok(EpisodeResult {
+                seed: scenario.seed,
+                outcome,
+                steps: step.info.step,
+                episode_return,
+                object_xy: scenario.object_xy,
+            });
+        }
+    }
+}
+
+/// Evaluates a fresh policy from `make` on every scenario, spread over `threads` threads (each
+/// with its own env), in scenario order. Records each episode as `episode_NNNN.csv/.json` in
+/// `record` if given; calls `progress` after each episode.
+pub fn evaluate<P: Policy>(
+    config: &crate::config::EnvConfig,
+    scenarios: &[Scenario],
+    threads: usize,
+    record: Option<&std::path::Path>,
+    make: &(dyn Fn() -> P + Sync),
+    progress: &(dyn Fn() + Sync),
+) -> Result<EvalReport, EnvError> {
+    let chunk = scenarios.len().div_ceil(threads.max(1)).max(1);
+    let mut results = Vec::with_capacity(scenarios.len());
+    std::thread::scope(|scope| -> Result<(), EnvError> {
+        let handles: Vec<_> = scenarios
+            .chunks(chunk)
+            .enumerate()
+            .map(|(c, part)| {
+                scope.spawn(move || -> Result<Vec<EpisodeResult>, EnvError> {
+                    let mut env = GraspEnv::new(config.clone())?;
+                    let mut policy = make();
+                    let mut out = Vec::with_capacity(part.len());
+                    for (j, scenario) in part.iter().enumerate() {
+                        let mut trajectory = record.map(|_| Trajectory::default());
+                        out.push(run_episode(
+                            &mut env,
+                            &mut policy,
+                            scenario,
+                            trajectory.as_mut(),
+                        )?);
+                        if let (Some(dir), Some(t)) = (record, &trajectory) {
+                            t.save(dir, &format!("episode_{:04}", c * chunk + j))
+                                .map_err(|e| EnvError::Io(format!("{}: {e}", dir.display())))?;
+                        }
+                        progress();
+                    }
+                    Ok(out)
+                })
+            })
+            .collect();
+        for h in handles {
+            results.extend(h.join().expect("an evaluation thread panicked")?);
+        }
+        Ok(())
+    })?;
+    Ok(EvalReport::from_results(results))
+}
+
+/// Evaluates a fresh policy from `make` on the `n` scenarios that `seed` draws for `config` (the
+/// set every method meets for this seed), like [`evaluate`].
+pub fn evaluate_seeded<P: Policy>(
+    config: &crate::config::EnvConfig,
+    seed: u64,
+    n: usize,
+    threads: usize,
+    record: Option<&std::path::Path>,
+    make: &(dyn Fn() -> P + Sync),
+    progress: &(dyn Fn() + Sync),
+) -> Result<EvalReport, EnvError> {
+    let env = GraspEnv::new(config.clone())?;
+    let scenarios =
+        crate::scenario::scenario_set(config, env.model(), env.base_in_world(), seed, n)?;
+    evaluate(config, &scenarios, threads, record, make, progress)
+}

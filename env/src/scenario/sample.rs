@@ -1,0 +1,233 @@
+//! Per-episode scenarios: object position, yaw, friction, mass and joint noise, drawn from a seed,
+//! each one checked to admit a top-down grasp within the FR3's joint limits.
+use std::f64::consts::TAU;
+
+use fairgrasp_kinematics::{ArmModel, Pose};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use serde::Serialize;
+
+use crate::cell::mount::Mount;
+use crate::config::EnvConfig;
+use crate::scenario::graspable::top_down_grasp;
+
+/// Redraws allowed before a scenario is given up as ungraspable.
+const MAX_DRAWS: usize = 1000;
+
+/// One episode's starting conditions. Positions and yaws are in the table frame (see
+/// [`Mount`]: on the table top under the base, z up, x along the base's heading), which for a
+/// level base is `base_link`'s x, y.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Scenario {
+    /// The seed it was drawn from.
+    pub seed: u64,
+    /// Object centre x, y in the table frame [m].
+    pub object_xy: [f64; 2],
+    /// Object yaw about the world vertical, relative to the base's heading [rad].
+    pub object_yaw: f64,
+    /// Object friction coefficient.
+    pub friction: f64,
+    /// Object mass [kg].
+    pub mass: f64,
+    /// Home joints plus noise [rad].
+    pub start_joints: [f64; 6],
+    /// Error added to the observed object position, in the table frame [m] (perception noise).
+    pub observed_position_error: [f64; 3],
+    /// Error added to the observed object yaw [rad] (perception noise).
+    pub observed_yaw_error: f64,
+    /// The push the cube gets during the approach (the `nudged` family), if any.
+    pub nudge: Option<crate::scenario::families::Nudge>,
+    /// The cell's camera calibration error (`randomization.camera_offset`, the same for every
+    /// episode of a config), applied to what is observed.
+    pub camera_offset: Option<crate::scenario::families::CameraOffset>,
+}
+
+/// The object pose in `base_link` for a scenario: resting on the table top at `xy` in the table
+/// frame, turned by `yaw` about the world vertical (a config's mount, see [`Mount`]).
+pub fn object_pose_in_base(config: &EnvConfig, base: &Pose, xy: [f64; 2], yaw: f64) -> Pose {
+    Mount::new(*base, config.scene.table_height).resting_object_in_base(
+        xy,
+        yaw,
+        config.scene.cube_size,
+    )
+}
+
+/// Why no scenario could be drawn.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{}", self.describe())]
+pub struct UngraspableRegion {
+    pub draws: usize,
+    pub radius: [f64; 2],
+    pub angle: [f64; 2],
+    /// The fixed object position when `randomization.position` is off.
+    pub fixed_xy: Option<[f64; 2]>,
+    /// Height of the base origin above the table top [m] (negative: below it).
+    pub base_height_above_table: f64,
+    /// Tilt of the base from upright [rad].
+    pub base_tilt: f64,
+}
+
+impl UngraspableRegion {
+    fn describe(&self) -> String {
+        let what = match self.fixed_xy {
+            Some(xy) => format!(
+                "scene.cube_xy {xy:?} (randomization.position = false) has no collision-free \
+                 top-down grasp within the FR3's joint limits, or the cube would spawn inside \
+                 the arm; move it (the shipped presets use 0.25–0.45 m from the base)"
+            ),
+            None => format!(
+                "no graspable object position in {} draws: randomization.radius {:?} / angle \
+                 {:?} lies outside what the FR3 reaches top-down",
+                self.draws, self.radius, self.angle
+            ),
+        };
+        let level = self.base_tilt < 1e-6 && self.base_height_above_table.abs() < 1e-6;
+        if level {
+            return what;
+        }
+        format!(
+            "{what}. The mount may be the cause: the base stands {:.3} m {} the table top, \
+             tilted {:.1}° from upright (arm.base_xyz / arm.base_rpy); the shipped presets \
+             stand it level on the table top",
+            self.base_height_above_table.abs(),
+            if self.base_height_above_table < 0.0 {
+                "below"
+            } else {
+                "above"
+            },
+            self.base_tilt.to_degrees()
+        )
+    }
+}
+
+impl Scenario {
+    /// The config's own values with nothing drawn and nothing checked: the cube at
+    /// `scene.cube_xy`, yaw 0, the arm at home. For diagnosing a scene that [`Scenario::sample`]
+    /// refuses (`fairgrasp scene`).
+    pub fn unchecked(config: &EnvConfig, seed: u64) -> Scenario {
+        Scenario {
+            seed,
+            object_xy: config.scene.cube_xy,
+            object_yaw: 0.0,
+            friction: config.scene.cube_friction,
+            mass: config.scene.cube_mass,
+            start_joints: config.arm.home_joints,
+            observed_position_error: [0.0; 3],
+            observed_yaw_error: 0.0,
+            nudge: None,
+            camera_offset: None,
+        }
+    }
+
+    /// Draws the scenario for `seed` (redrawing ungraspable positions with the same generator).
+    pub fn sample(
+        config: &EnvConfig,
+        model: &ArmModel,
+        base: &Pose,
+        seed: u64,
+    ) -> Result<Scenario, UngraspableRegion> {
+        let r = &config.randomization;
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mount = Mount::new(*base, config.scene.table_height);
+        for _ in 0..MAX_DRAWS {
+            let object_xy = if r.position {
+                // Uniform over the sector's area: radius ~ sqrt(U(r0², r1²)).
+                let rad = rng
+                    .random_range(r.radius[0].powi(2)..=r.radius[1].powi(2))
+                    .sqrt();
+                let angle = rng.random_range(r.angle[0]..=r.angle[1]);
+                [rad * angle.cos(), rad * angle.sin()]
+            } else {
+                config.scene.cube_xy
+            };
+            let object_yaw = if r.yaw {
+                rng.random_range(0.0..TAU)
+            } else {
+                0.0
+            };
+            let friction = r.friction.map_or(config.scene.cube_friction, |f| {
+                rng.random_range(f[0]..=f[1])
+            });
+            let mass = config.scene.cube_mass
+                * r.mass_scale.map_or(1.0, |m| rng.random_range(m[0]..=m[1]));
+            let noise = Normal::new(0.0, r.joint_noise.max(1e-12)).expect("positive sigma");
+            let mut start_joints = config.arm.home_joints;
+            if r.joint_noise > 0.0 {
+                for (q, spec) in start_joints.iter_mut().zip(&model.joints) {
+                    *q = (*q + noise.sample(&mut rng)).clamp(spec.lower, spec.upper);
+                }
+            }
+            let gauss = |rng: &mut ChaCha8Rng, sigma: f64| {
+                if sigma > 0.0 {
+                    Normal::new(0.0, sigma).expect("positive sigma").sample(rng)
+                } else {
+                    0.0
+                }
+            };
+            let p = r.observed_position_noise;
+            // Perception noise lies on the table plane: the cube's height is known.
+            let observed_position_error = [gauss(&mut rng, p), gauss(&mut rng, p), 0.0];
+            let observed_yaw_error = gauss(&mut rng, r.observed_yaw_noise);
+            let pose = mount.resting_object_in_base(object_xy, object_yaw, config.scene.cube_size);
+            if top_down_grasp(model, &mount, &pose, &start_joints).is_some() {
+                let nudge = r.nudge.as_ref().and_then(|n| {
+                    crate::scenario::families::draw_nudge(
+                        n,
+                        config,
+                        model,
+                        &mount,
+                        seed,
+                        object_xy,
+                        object_yaw,
+                        &start_joints,
+                    )
+                });
+                return Ok(Scenario {
+                    seed,
+                    object_xy,
+                    object_yaw,
+                    friction,
+                    mass,
+                    start_joints,
+                    observed_position_error,
+                    observed_yaw_error,
+                    nudge,
+                    camera_offset: r.camera_offset,
+                });
+            }
+            if !r.position {
+                break; // a fixed position will not become graspable by redrawing
+            }
+        }
+        Err(UngraspableRegion {
+            draws: MAX_DRAWS,
+            radius: r.radius,
+            angle: r.angle,
+            fixed_xy: (!r.position).then_some(config.scene.cube_xy),
+            base_height_above_table: mount.base_height_above_table(),
+            base_tilt: mount.tilt(),
+        })
+    }
+}
+
+/// A seeded list of `n` scenarios, identical for every policy evaluated on it: scenario `i` is
+/// drawn from seed `seed · 1 000 003 + i`.
+pub fn scenario_set(
+    config: &EnvConfig,
+    model: &ArmModel,
+    base: &Pose,
+    seed: u64,
+    n: usize,
+) -> Result<Vec<Scenario>, UngraspableRegion> {
+    (0..n as u64)
+        .map(|i| {
+            Scenario::sample(
+                config,
+                model,
+                base,
+                seed.wrapping_mul(1_000_003).wrapping_add(i),
+            )
+        })
+        .collect()
+}

@@ -1,0 +1,109 @@
+//! Success, failure and reward: pure functions of the state, testable without physics.
+
+use serde::Serialize;
+
+use crate::config::{RewardKind, TaskConfig};
+use crate::task::state::{TaskState, tcp_object_distance};
+
+/// Why an episode ended without success.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum Failure {
+    /// Arm or gripper hit the table or itself: the two parts.
+    Collision(String, String),
+    /// The object fell off the table.
+    ObjectOffTable,
+    /// A robot part pushed on the cube or the table harder than `task.protective_stop_force`:
+    /// the robot's part, the other part and the contact force [N].
+    ProtectiveStop {
+        robot_part: String,
+        other_part: String,
+        force_n: f64,
+    },
+}
+
+/// Lifted at least `lift_height` above rest, with both pads on it and the TCP within 3 cm.
+pub fn is_success(s: &TaskState, cfg: &TaskConfig) -> bool {
+    let lifted = s.object[2] - s.object_rest_z >= cfg.lift_height;
+    lifted && s.pad_contact[0] && s.pad_contact[1] && tcp_object_distance(s) < 0.03
+}
+
+/// Has the object left the table (fallen below its top, or past its edge)?
+pub fn is_off_table(s: &TaskState) -> bool {
+    s.object[2] < s.table_height - 0.02
+        || (0..2).any(|i| s.object_xy_from_table_centre[i].abs() > s.table_half_size[i])
+}
+
+/// The reward of the config's [`RewardKind`] for a step that ended in state `s`.
+pub fn reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
+    match cfg.reward {
+        RewardKind::Seed => seed_reward(s, success, collision, cfg),
+        RewardKind::Staged => {
+            crate::task::reward::staged_reward(s, success, collision, cfg.lift_height, &cfg.staged)
+        }
+    }
+}
+
+/// The seed's rescaled reward: `success_reward` on success, `collision_reward` on a collision,
+/// else `distance_reward · |TCP − object|`.
+pub fn seed_reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
+    if success {
+        cfg.success_reward
+    } else if collision {
+        cfg.collision_reward
+    } else {
+        cfg.distance_reward * tcp_object_distance(s)
+    }
+}
+
+/// What the task makes of one step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Judgement {
+    /// Lifted and held ([`is_success`]).
+    pub success: bool,
+    /// Why the episode failed, if it did (never together with success).
+    pub failure: Option<Failure>,
+    /// The episode ends here (success, an ending collision, a protective stop, the object off
+    /// the table).
+    pub terminated: bool,
+    pub reward: f64,
+}
+
+/// Judges a step: success, failure (a `collision` the contact scan found, or the object off
+/// the table), whether the episode ends, and the reward.
+pub fn judge(s: &TaskState, collision: Option<Failure>, cfg: &TaskConfig) -> Judgement {
+    let success = is_success(s, cfg);
+    let collided = collision.is_some();
+    let failure = if success {
+        None
+    } else {
+        collision.or_else(|| is_off_table(s).then_some(Failure::ObjectOffTable))
+    };
+    let terminated = success
+        || (collided && cfg.terminate_on_collision)
+        || failure == Some(Failure::ObjectOffTable);
+    Judgement {
+        success,
+        failure,
+        terminated,
+        reward: reward(s, success, collided, cfg),
+    }
+}
+
+/// Judges a step that a protective stop ended: never a success, always terminated (the robot
+/// has stopped, whatever `terminate_on_collision`), and paid `collision_reward`. The failure is
+/// the contact scan's `collision` if the stopped state has one (a part in the table or in the
+/// arm: the diagnosis the env has always given), else `stop`: [`Failure::ProtectiveStop`] for
+/// the cube, [`Failure::Collision`] for the table (any robot–table touch is a collision).
+pub fn judge_protective_stop(
+    s: &TaskState,
+    collision: Option<Failure>,
+    stop: Failure,
+    cfg: &TaskConfig,
+) -> Judgement {
+    Judgement {
+        success: false,
+        failure: Some(collision.unwrap_or(stop)),
+        terminated: true,
+        reward: reward(s, false, true, cfg),
+    }
+}

@@ -1,0 +1,31 @@
+//! The state a step is judged on ([`TaskState`]), in the world frame.
+
+/// The facts the task is judged on, all in the world frame [m].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TaskState {
+    /// Object centre.
+    pub object: [f64; 3],
+    /// Object centre height at rest, before the episode.
+    pub object_rest_z: f64,
+    /// TCP position.
+    pub tcp: [f64; 3],
+    /// Left and right pads touching the object.
+    pub pad_contact: [bool; 2],
+    /// Distance between the pads' inner faces [m].
+    pub gripper_opening: f64,
+    /// The object's edge length [m].
+    pub object_size: f64,
+    /// Table top height.
+    pub table_height: f64,
+    /// Horizontal distance of the object from the table centre, per axis, and the half sizes.
+    pub object_xy_from_table_centre: [f64; 2],
+    pub table_half_size: [f64; 2],
+}
+
+/// Distance from the TCP to the object centre [m].
+pub fn tcp_object_distance(s: &TaskState) -> f64 {
+    (0..3)
+        .map(|i| (s.object[i] - s.tcp[i]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
