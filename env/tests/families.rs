@@ -13,9 +13,7 @@ const FAMILIES: [&str; 3] = ["miscalibrated", "miscalibrated_b", "nudged"];
 #[test]
 fn the_family_presets_load_validate_and_draw_the_full_presets_scenarios() {
     let full = presets::load("full").unwrap();
-    let env = GraspEnv::new(full.clone()).unwrap();
-    let base = *env.base_in_world();
-    let reference = scenario_set(&full, env.model(), &base, 0, 20).unwrap();
+    let reference = scenario_set(&full, 0, 20).unwrap();
     for name in FAMILIES {
         let config = presets::load(name).unwrap();
         config.validate().unwrap();
@@ -29,7 +27,7 @@ fn the_family_presets_load_validate_and_draw_the_full_presets_scenarios() {
         plain.camera_offset = None;
         plain.nudge = None;
         assert_eq!(plain, full.randomization, "{name}");
-        let scenarios = scenario_set(&config, env.model(), &base, 0, 20).unwrap();
+        let scenarios = scenario_set(&config, 0, 20).unwrap();
         for (s, r) in scenarios.iter().zip(&reference) {
             assert_eq!(
                 (s.object_xy, s.object_yaw, s.start_joints),

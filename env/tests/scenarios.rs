@@ -4,7 +4,7 @@ use fairgrasp_env::config::RandomizationConfig;
 use fairgrasp_env::scenario::curriculum::{Curriculum, CurriculumConfig};
 use fairgrasp_env::scenario::{Scenario, object_pose_in_base, scenario_set, top_down_grasp};
 use fairgrasp_env::{EnvConfig, GraspEnv, HOME_JOINTS, Mount};
-use fairgrasp_kinematics::{ArmKind, Pose};
+use fairgrasp_kinematics::ArmKind;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -77,7 +77,7 @@ fn scenarios_from_a_tilted_base_rest_flat_on_the_table_and_grasp_along_gravity()
         let mount = Mount::from_config(&cfg);
         let base = mount.base_in_world;
         for seed in 0..40 {
-            let s = Scenario::sample(&cfg, &model, &base, seed).unwrap();
+            let s = Scenario::sample(&cfg, seed).unwrap();
             let object = object_pose_in_base(&cfg, &base, s.object_xy, s.object_yaw);
             let in_world = base.compose(&object);
             // Resting on the table: centre half a cube above the top, faces level.
@@ -147,10 +147,9 @@ fn a_scenario_set_is_identical_for_the_same_seed_and_differs_for_another() {
         ..EnvConfig::default()
     };
     let model = ArmKind::Fr3.model();
-    let base = Pose::from_xyz_rpy(cfg.arm.base_xyz, cfg.arm.base_rpy);
-    let a = scenario_set(&cfg, &model, &base, 7, 50).unwrap();
-    let b = scenario_set(&cfg, &model, &base, 7, 50).unwrap();
-    let c = scenario_set(&cfg, &model, &base, 8, 50).unwrap();
+    let a = scenario_set(&cfg, 7, 50).unwrap();
+    let b = scenario_set(&cfg, 7, 50).unwrap();
+    let c = scenario_set(&cfg, 8, 50).unwrap();
     assert_eq!(a, b);
     assert_ne!(a, c);
     let r = &cfg.randomization;
@@ -172,7 +171,7 @@ fn reset_to_a_scenario_puts_the_cube_where_it_says_resting_on_the_table() {
     };
     cfg.arm.base_rpy = [0.0, 0.0, 0.7]; // a yawed, level base: positions are in its frame
     let mut env = GraspEnv::new(cfg.clone()).unwrap();
-    let scenario = Scenario::sample(&cfg, env.model(), env.base_in_world(), 4).unwrap();
+    let scenario = Scenario::sample(&cfg, 4).unwrap();
     env.reset_to(&scenario);
     let xyz = env.object_in_base().xyz();
     assert!(

@@ -10,9 +10,10 @@
 //! [`CloseTiming`] may close the gripper during the descent or hold it open a little longer.
 //! With no correction and [`CloseTiming::Script`] the script is exactly the open-loop baseline.
 
+use fairgrasp_env::cell::Cell;
 use fairgrasp_env::episode::{Outcome, Policy};
 use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
-use fairgrasp_kinematics::{ArmKind, ArmModel};
+use fairgrasp_kinematics::ArmModel;
 use serde::Serialize;
 
 pub use crate::correction::CloseTiming;
@@ -108,7 +109,7 @@ pub struct ScriptedGrasp {
 impl ScriptedGrasp {
     /// A baseline for the environment configured by `env`.
     pub fn new(env: &EnvConfig, config: BaselineConfig) -> Self {
-        let model = ArmKind::Fr3.model();
+        let Cell { model, mount, .. } = Cell::from_config(env);
         let v = env.arm.action_scale * config.velocity_fraction;
         let limits = MotionLimits {
             max_velocity: model.joints.map(|j| v.min(j.max_velocity)),
@@ -118,7 +119,7 @@ impl ScriptedGrasp {
         Self {
             step_dt: env.physics.dt * env.physics.substeps as f64,
             action_scale: env.arm.action_scale,
-            mount: Mount::from_config(env),
+            mount,
             config,
             model,
             limits,

@@ -26,6 +26,7 @@
 //! sees the cube ([`Observation::wrist_camera`]), how far its view is from the planned-on cube
 //! (all zero without a wrist view).
 
+use fairgrasp_env::cell::Cell;
 use fairgrasp_env::episode::{Outcome, Policy};
 use fairgrasp_env::scenario::perception::ObservedObject;
 use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
@@ -89,7 +90,7 @@ impl ResidualScript {
         Self {
             script: ScriptedGrasp::new(env, baseline),
             limits,
-            mount: Mount::from_config(env),
+            mount: Cell::from_config(env).mount,
             step_dt: env.physics.dt * env.physics.substeps as f64,
             close_signal: 0.0,
         }

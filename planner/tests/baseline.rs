@@ -9,7 +9,7 @@ use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
 fn evaluate(config: &EnvConfig, seed: u64, n: usize) -> EvalReport {
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let scenarios = scenario_set(config, env.model(), env.base_in_world(), seed, n).unwrap();
+    let scenarios = scenario_set(config, seed, n).unwrap();
     let mut policy = ScriptedGrasp::new(config, BaselineConfig::default());
     let results = scenarios
         .iter()
@@ -70,7 +70,7 @@ fn an_unreachable_object_is_an_ik_failure_not_a_panic() {
 fn planned_trajectories_stay_within_the_fr3_velocity_and_acceleration_limits() {
     let config = presets::load("seed").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let scenarios = scenario_set(&config, env.model(), env.base_in_world(), 3, 10).unwrap();
+    let scenarios = scenario_set(&config, 3, 10).unwrap();
     let model = env.model().clone();
     let mut policy = ScriptedGrasp::new(&config, BaselineConfig::default());
     let limits = *policy.limits();

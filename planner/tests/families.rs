@@ -21,7 +21,7 @@ fn run(
     policy: &mut dyn Policy,
 ) -> (Vec<EpisodeResult>, Vec<Option<NudgeEvent>>) {
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let scenarios = scenario_set(config, env.model(), env.base_in_world(), 0, EPISODES).unwrap();
+    let scenarios = scenario_set(config, 0, EPISODES).unwrap();
     scenarios
         .iter()
         .map(|s| {
@@ -107,7 +107,7 @@ fn the_same_seed_gives_the_same_family_episodes_for_every_script() {
     for name in ["miscalibrated", "nudged"] {
         let config = presets::load(name).unwrap();
         let mut env = GraspEnv::new(config.clone()).unwrap();
-        let scenarios = scenario_set(&config, env.model(), env.base_in_world(), 4, 3).unwrap();
+        let scenarios = scenario_set(&config, 4, 3).unwrap();
         let mut policies: Vec<Box<dyn Policy>> = vec![
             Box::new(ScriptedGrasp::new(&config, BaselineConfig::default())),
             Box::new(ClosedLoopGrasp::observed(&config)),
@@ -162,7 +162,7 @@ impl Policy for MisleadUntilClose {
 fn the_closed_loop_retries_a_missed_grasp_once_and_then_grasps() {
     let config = presets::load("full").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let scenarios = scenario_set(&config, env.model(), env.base_in_world(), 2, 4).unwrap();
+    let scenarios = scenario_set(&config, 2, 4).unwrap();
     let model = env.model().clone();
     let mount = *env.mount();
     for s in &scenarios {

@@ -51,8 +51,7 @@ fn run(env: &mut GraspEnv, policy: &mut ScriptedGrasp, scenario: &Scenario) -> E
 /// Every episode of the baseline on the `n` scenarios seed 0 draws (the CLI's default set),
 /// on two threads.
 fn baseline(config: &EnvConfig, n: usize) -> Vec<Episode> {
-    let env = GraspEnv::new(config.clone()).unwrap();
-    let scenarios = scenario_set(config, env.model(), env.base_in_world(), 0, n).unwrap();
+    let scenarios = scenario_set(config, 0, n).unwrap();
     std::thread::scope(|scope| {
         let handles: Vec<_> = scenarios
             .chunks(n.div_ceil(2))

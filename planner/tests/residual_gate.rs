@@ -72,7 +72,7 @@ impl Policy for Constant {
 fn a_zero_residual_is_the_open_loop_script_exactly() {
     let config = presets::load("miscalibrated").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let scenarios = scenario_set(&config, env.model(), env.base_in_world(), 3, 4).unwrap();
+    let scenarios = scenario_set(&config, 3, 4).unwrap();
     let mut script = ScriptedGrasp::new(&config, BaselineConfig::default());
     let mut zero = Constant::new(&config, [0.0; 7], 0);
     for s in &scenarios {
@@ -86,7 +86,7 @@ fn a_zero_residual_is_the_open_loop_script_exactly() {
 fn a_held_correction_moves_the_grasp_by_that_much_and_is_frozen_once_closed() {
     let config = presets::load("fixed").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let s = &scenario_set(&config, env.model(), env.base_in_world(), 0, 1).unwrap()[0];
+    let s = &scenario_set(&config, 0, 1).unwrap()[0];
     let mut plain = Constant::new(&config, [0.0; 7], 0);
     run_episode(&mut env, &mut plain, s, None).unwrap();
     // +3 cm along x (0.6 × the 5 cm limit), commanded all episode.
@@ -113,7 +113,7 @@ fn a_held_correction_moves_the_grasp_by_that_much_and_is_frozen_once_closed() {
 fn the_close_can_be_advanced_or_delayed() {
     let config = presets::load("fixed").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let s = &scenario_set(&config, env.model(), env.base_in_world(), 0, 1).unwrap()[0];
+    let s = &scenario_set(&config, 0, 1).unwrap()[0];
     let count = |p: &Constant, phase: Phase| p.phases.iter().filter(|x| **x == phase).count();
     let mut plain = Constant::new(&config, [0.0; 7], 0);
     assert_eq!(
@@ -148,7 +148,7 @@ fn the_close_can_be_advanced_or_delayed() {
 fn the_features_show_a_push_and_the_correction() {
     let config = presets::load("nudged").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let s = &scenario_set(&config, env.model(), env.base_in_world(), 1, 1).unwrap()[0];
+    let s = &scenario_set(&config, 1, 1).unwrap()[0];
     let (mut obs, _) = env.reset_to(s);
     let mut residual = ResidualScript::new(&config);
     residual.reset(s.seed);
@@ -178,8 +178,7 @@ fn the_oracle_residual_reaches_97_percent_on_each_family_through_the_interface()
     for name in ["miscalibrated", "miscalibrated_b", "nudged", "wrist_camera"] {
         let config = presets::load(name).unwrap();
         let mut env = GraspEnv::new(config.clone()).unwrap();
-        let scenarios =
-            scenario_set(&config, env.model(), env.base_in_world(), 0, EPISODES).unwrap();
+        let scenarios = scenario_set(&config, 0, EPISODES).unwrap();
         let mut oracle = OracleResidual::new(&config);
         let results = scenarios
             .iter()
@@ -199,7 +198,7 @@ fn the_wrist_view_enters_the_features_only_when_the_camera_sees_the_cube() {
     let config = presets::load("wrist_camera").unwrap();
     let range = config.randomization.wrist_camera.unwrap().range;
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let s = &scenario_set(&config, env.model(), env.base_in_world(), 2, 1).unwrap()[0];
+    let s = &scenario_set(&config, 2, 1).unwrap()[0];
     let (mut obs, _) = env.reset_to(s);
     let mut residual = ResidualScript::new(&config);
     residual.reset(s.seed);

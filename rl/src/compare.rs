@@ -233,15 +233,11 @@ impl Policy for Boxed {
 
 /// The seeded scenario set of one preset.
 fn scenarios_of(preset: &ComparePreset, spec: &CompareSpec) -> Result<Vec<Scenario>, CompareError> {
-    let env = GraspEnv::new(preset.config.clone())?;
-    scenario_set(
-        &preset.config,
-        env.model(),
-        env.base_in_world(),
-        spec.seed,
-        spec.episodes,
-    )
-    .map_err(|e| CompareError::Preset {
+    preset
+        .config
+        .validate()
+        .map_err(fairgrasp_env::EnvError::from)?;
+    scenario_set(&preset.config, spec.seed, spec.episodes).map_err(|e| CompareError::Preset {
         preset: preset.name.clone(),
         message: e.to_string(),
     })

@@ -51,7 +51,7 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
 fn a_fresh_residual_agent_acts_exactly_like_the_baseline() {
     let config = presets::load("seed").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let scenario = scenario_set(&config, env.model(), env.base_in_world(), 4, 1).unwrap()[0];
+    let scenario = scenario_set(&config, 4, 1).unwrap()[0];
     let (meta, model) = fresh_meta(AgentConfig::default());
     let mut agent = agent_policy(&meta, &model, &config);
     let mut baseline = ScriptedGrasp::new(&config, BaselineConfig::default());

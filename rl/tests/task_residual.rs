@@ -56,7 +56,7 @@ fn fresh(agent: AgentConfig, zero: bool) -> (CheckpointMeta, ActorCritic) {
 fn an_untrained_task_residual_is_the_open_loop_script_and_a_random_one_is_not() {
     let config = presets::load("miscalibrated").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let scenarios = scenario_set(&config, env.model(), env.base_in_world(), 9, 3).unwrap();
+    let scenarios = scenario_set(&config, 9, 3).unwrap();
     let (meta, model) = fresh(task_residual(), true);
     assert_eq!(meta.input_dim, OBS_DIM + FEATURE_DIM);
     let mut agent = agent_policy(&meta, &model, &config);
@@ -153,7 +153,7 @@ fn masking_the_wrist_view_changes_nothing_before_the_wrist_camera_sees_the_cube(
     // A random (non-zero) actor, so the features matter; the wrist camera preset.
     let config = presets::load("wrist_camera").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
-    let s = &scenario_set(&config, env.model(), env.base_in_world(), 3, 1).unwrap()[0];
+    let s = &scenario_set(&config, 3, 1).unwrap()[0];
     let (meta, model) = fresh(task_residual(), false);
     let wrist = meta.agent.input_indices("wrist").unwrap();
     let mut plain = agent_policy(&meta, &model, &config);

@@ -122,7 +122,7 @@ impl SceneDiagnosis {
 
 /// The scenario of `seed`, or the config's unchecked one and the reason it was refused.
 fn scenario_or_refusal(env: &GraspEnv, seed: u64) -> (Scenario, Option<String>) {
-    match Scenario::sample(env.config(), env.model(), env.base_in_world(), seed) {
+    match Scenario::sample_in(env.cell(), env.config(), seed) {
         Ok(s) => (s, None),
         Err(e) => (Scenario::unchecked(env.config(), seed), Some(e.to_string())),
     }

@@ -6,6 +6,7 @@
 //! `(g + 1)/2 · 42.5 mm` (−1 open, +1 closed) with a limited force. `terminated` means success or failure, `truncated`
 //! the time limit or a physics fault; never both.
 
+use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
 use crate::config::{ActionSpace, ArmSimulation, EnvConfig};
 use crate::env::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
@@ -19,7 +20,7 @@ use crate::scenario::perception::{observe_object, wrist_view};
 use crate::sim::Sim;
 use crate::sim::contacts::ContactReport;
 use crate::task::{Failure, TaskState, judge, judge_protective_stop};
-use fairgrasp_kinematics::{ArmKind, ArmModel, Pose};
+use fairgrasp_kinematics::{ArmModel, Pose};
 use nalgebra::Isometry3;
 use rapier3d::prelude::PhysicsWorld;
 
@@ -32,7 +33,8 @@ const SETTLE_SUBSTEPS: usize = 24;
 /// the simulator facade.
 pub struct GraspEnv {
     config: EnvConfig,
-    mount: Mount,
+    /// Which arm, mounted how, simulated how.
+    cell: Cell,
     sim: Sim,
     robot: Robot,
     free_space: FreeSpace,
@@ -52,16 +54,15 @@ impl GraspEnv {
     /// Builds the world once (validating the config); call [`GraspEnv::reset`] before stepping.
     pub fn new(config: EnvConfig) -> Result<Self, EnvError> {
         config.validate()?;
-        let model = ArmKind::Fr3.model();
-        let mount = Mount::from_config(&config);
-        let sim = Self::build_sim(&config, &model, &mount);
+        let cell = Cell::from_config(&config);
+        let sim = Self::build_sim(&config, &cell.model, &cell.mount);
         Ok(Self {
-            free_space: FreeSpace::new(&config, &model),
-            robot: Robot::new(&config, model, mount.base_in_world),
+            free_space: FreeSpace::new(&config, &cell.model),
+            robot: Robot::new(&config, cell.model.clone(), cell.mount.base_in_world),
             sim_in_sync: true,
             contacts: ContactReport::default(),
             config,
-            mount,
+            cell,
             sim,
             object_rest_z: 0.0,
             steps: 0,
@@ -108,17 +109,22 @@ impl GraspEnv {
 
     /// The arm model.
     pub fn model(&self) -> &ArmModel {
-        &self.robot.model
+        &self.cell.model
     }
 
     /// `base_link` in the world.
     pub fn base_in_world(&self) -> &Pose {
-        &self.mount.base_in_world
+        &self.cell.mount.base_in_world
     }
 
     /// The arm's mount: the base and the table frame in the world and in `base_link`.
     pub fn mount(&self) -> &Mount {
-        &self.mount
+        &self.cell.mount
+    }
+
+    /// The cell: arm model, mount and arm simulation.
+    pub fn cell(&self) -> &Cell {
+        &self.cell
     }
 
     /// The scenario of the current episode (`None` before the first reset).
@@ -134,14 +140,13 @@ impl GraspEnv {
 
     /// Soft reset to the scenario drawn from `seed`.
     pub fn reset(&mut self, seed: u64) -> Result<(Observation, Info), EnvError> {
-        let scenario =
-            Scenario::sample(&self.config, &self.robot.model, self.base_in_world(), seed)?;
+        let scenario = Scenario::sample_in(&self.cell, &self.config, seed)?;
         Ok(self.reset_to(&scenario))
     }
 
     /// Hard reset: rebuilds the world from nothing, then resets to the scenario of `seed`.
     pub fn hard_reset(&mut self, seed: u64) -> Result<(Observation, Info), EnvError> {
-        self.sim = Self::build_sim(&self.config, &self.robot.model, &self.mount);
+        self.sim = Self::build_sim(&self.config, &self.cell.model, &self.cell.mount);
         self.reset(seed)
     }
 
@@ -151,7 +156,7 @@ impl GraspEnv {
         self.sim.restore();
         let object = Self::spawn_pose_in_world(
             &self.config,
-            &self.mount,
+            &self.cell.mount,
             scenario.object_xy,
             scenario.object_yaw,
         );
@@ -206,7 +211,7 @@ impl GraspEnv {
             return Err(EnvError::EpisodeOver);
         }
         let tcp = self.robot.tcp_in_world().xyz();
-        let (scenario, mount) = (self.scenario.as_ref(), &self.mount);
+        let (scenario, mount) = (self.scenario.as_ref(), &self.cell.mount);
         (self.nudge).before_step(self.steps, scenario, mount, &mut self.sim, tcp);
         let command = self.apply_action(action)?;
         let q_before = self.robot.q;
@@ -306,7 +311,7 @@ impl GraspEnv {
                 let command = TcpCommand::from_action(&clipped, arm.tcp_speed, arm.tcp_yaw_rate);
                 joint_velocities(
                     &self.robot.model,
-                    &self.mount.table_in_base,
+                    &self.cell.mount.table_in_base,
                     &self.robot.q,
                     &command,
                 )
@@ -318,7 +323,7 @@ impl GraspEnv {
     fn task_state(&self, contacts: &ContactReport) -> TaskState {
         let object = self.sim.object_pose().translation.vector;
         let tcp = self.robot.tcp_in_world().xyz();
-        let base_xy = self.mount.base_in_world.xyz();
+        let base_xy = self.cell.mount.base_in_world.xyz();
         TaskState {
             object: [object.x, object.y, object.z],
             object_rest_z: self.object_rest_z,
@@ -337,9 +342,9 @@ impl GraspEnv {
     fn observe(&self, joint_velocities: [f64; 6], contacts: &ContactReport) -> Observation {
         let tcp = self.robot.tcp_in_base().xyz();
         let truth = self.object_in_base();
-        let seen = observe_object(&self.mount, &truth, self.scenario.as_ref());
+        let seen = observe_object(&self.cell.mount, &truth, self.scenario.as_ref());
         let wrist = self.config.randomization.wrist_camera.as_ref();
-        let wrist_camera = wrist_view(wrist, &self.mount, &truth, tcp);
+        let wrist_camera = wrist_view(wrist, &self.cell.mount, &truth, tcp);
         Observation {
             joints: self.robot.q,
             joint_velocities,
@@ -355,7 +360,7 @@ impl GraspEnv {
     /// The object pose in `base_link` (the truth, not what is observed).
     pub fn object_in_base(&self) -> Pose {
         Pose {
-            iso: self.mount.base_in_world.iso.inverse() * self.sim.object_pose(),
+            iso: self.cell.mount.base_in_world.iso.inverse() * self.sim.object_pose(),
         }
     }
 

@@ -146,8 +146,6 @@ pub fn evaluate_seeded<P: Policy>(
     make: &(dyn Fn() -> P + Sync),
     progress: &(dyn Fn() + Sync),
 ) -> Result<EvalReport, EnvError> {
-    let env = GraspEnv::new(config.clone())?;
-    let scenarios =
-        crate::scenario::scenario_set(config, env.model(), env.base_in_world(), seed, n)?;
+    let scenarios = crate::scenario::scenario_set(config, seed, n)?;
     evaluate(config, &scenarios, threads, record, make, progress)
 }

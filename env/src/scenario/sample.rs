@@ -2,12 +2,13 @@
 //! each one checked to admit a top-down grasp within the FR3's joint limits.
 use std::f64::consts::TAU;
 
-use fairgrasp_kinematics::{ArmModel, Pose};
+use fairgrasp_kinematics::Pose;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use serde::Serialize;
 
+use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
 use crate::config::EnvConfig;
 use crate::scenario::graspable::top_down_grasp;
@@ -120,16 +121,21 @@ impl Scenario {
         }
     }
 
-    /// Draws the scenario for `seed` (redrawing ungraspable positions with the same generator).
-    pub fn sample(
+    /// Draws the scenario for `seed` in the cell `config` describes (redrawing ungraspable
+    /// positions with the same generator). Needs no physics world.
+    pub fn sample(config: &EnvConfig, seed: u64) -> Result<Scenario, UngraspableRegion> {
+        Scenario::sample_in(&Cell::from_config(config), config, seed)
+    }
+
+    /// [`Scenario::sample`] for a cell already derived from `config`.
+    pub fn sample_in(
+        cell: &Cell,
         config: &EnvConfig,
-        model: &ArmModel,
-        base: &Pose,
         seed: u64,
     ) -> Result<Scenario, UngraspableRegion> {
         let r = &config.randomization;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let mount = Mount::new(*base, config.scene.table_height);
+        let (model, mount) = (&cell.model, cell.mount);
         for _ in 0..MAX_DRAWS {
             let object_xy = if r.position {
                 // Uniform over the sector's area: radius ~ sqrt(U(r0², r1²)).
@@ -215,19 +221,11 @@ impl Scenario {
 /// drawn from seed `seed · 1 000 003 + i`.
 pub fn scenario_set(
     config: &EnvConfig,
-    model: &ArmModel,
-    base: &Pose,
     seed: u64,
     n: usize,
 ) -> Result<Vec<Scenario>, UngraspableRegion> {
+    let cell = Cell::from_config(config);
     (0..n as u64)
-        .map(|i| {
-            Scenario::sample(
-                config,
-                model,
-                base,
-                seed.wrapping_mul(1_000_003).wrapping_add(i),
-            )
-        })
+        .map(|i| Scenario::sample_in(&cell, config, seed.wrapping_mul(1_000_003).wrapping_add(i)))
         .collect()
 }

@@ -11,7 +11,6 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use burn::tensor::Device;
-use fairgrasp_env::GraspEnv;
 use fairgrasp_env::episode::EvalReport;
 use fairgrasp_env::episode::trajectory::write_atomic;
 use fairgrasp_env::scenario::curriculum::Curriculum;
@@ -275,15 +274,11 @@ pub fn train_with(
         .map_err(|e| TrainError::Config(e.to_string()))?;
     let (meta, model, optimizer_from) = start_from(config, run_dir, resume, &device)?;
     // Fail here, with the reason, rather than inside the rollout if no scenario can be drawn.
-    let probe = GraspEnv::new(env_config.clone())?;
-    scenario_set(
-        &env_config,
-        probe.model(),
-        probe.base_in_world(),
-        config.seed,
-        1,
-    )
-    .map_err(|e| TrainError::Config(format!("preset {}: {e}", config.preset)))?;
+    env_config
+        .validate()
+        .map_err(fairgrasp_env::EnvError::from)?;
+    scenario_set(&env_config, config.seed, 1)
+        .map_err(|e| TrainError::Config(format!("preset {}: {e}", config.preset)))?;
     // Training scenarios live in the upper half of the seed space; evaluation scenario sets
     // (`scenario_set`, seeds `s · 1 000 003 + i`) stay in the lower half for any set seed below
     // 9 · 10¹², so no evaluation ever replays a training scenario.
