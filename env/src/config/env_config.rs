@@ -85,6 +85,36 @@ pub struct ArmConfig {
     pub tcp_speed: f64,
     /// Yaw rate for an action of 1.0 in `tcp` mode [rad/s].
     pub tcp_yaw_rate: f64,
+    /// In `tcp` mode, how a command that asks a joint for more than it may give is scaled
+    /// down (direction kept): to the FR3's `joint_limits` (default), or so that no joint
+    /// exceeds `arm.action_scale` (`action_scale`: what the pure PPO recipe uses).
+    pub tcp_saturation: TcpSaturation,
+    /// How action entry 6 drives the gripper: `continuous` (the fingers close in proportion,
+    /// the default) or `binary` (open below 0, closed from 0 up: the pure PPO recipe's).
+    pub gripper_command: GripperCommand,
+}
+
+/// How a task-space command is scaled down when a joint would exceed its allowed rate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum TcpSaturation {
+    /// Each joint's velocity limit (3.15–3.2 rad/s for the FR3).
+    #[default]
+    JointLimits,
+    /// `arm.action_scale` for every joint (the joint action space's own bound).
+    ActionScale,
+}
+
+/// How action entry 6 commands the gripper.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum GripperCommand {
+    /// −1 open … +1 closed, in proportion.
+    #[default]
+    Continuous,
+    /// Open below 0, closed from 0 up (as Isaac Lab's lift task: a half-closed gripper lands
+    /// an exploring policy's fingers on the cube).
+    Binary,
 }
 
 /// What the action's entries 0–5 command.
@@ -110,6 +140,8 @@ impl Default for ArmConfig {
             action_space: ActionSpace::Joint,
             tcp_speed: 0.15,
             tcp_yaw_rate: 1.0,
+            tcp_saturation: TcpSaturation::JointLimits,
+            gripper_command: GripperCommand::Continuous,
         }
     }
 }

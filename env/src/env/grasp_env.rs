@@ -13,7 +13,7 @@ use crate::env::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
 use crate::env::obs::Observation;
 pub use crate::env::step::{Action, EnvError, Info, Step};
 use crate::robot::Robot;
-use crate::robot::tcp_action::{TcpCommand, joint_velocities};
+use crate::robot::tcp_action::TaskSpaceAction;
 use crate::scenario::Scenario;
 use crate::scenario::nudge::{NudgeEvent, NudgeHook};
 use crate::scenario::perception::{observe_object, wrist_view};
@@ -35,6 +35,8 @@ pub struct GraspEnv {
     config: EnvConfig,
     /// Which arm, mounted how, simulated how.
     cell: Cell,
+    /// The task-space action (`arm.action_space = "tcp"`), None in joint mode.
+    task_space: Option<TaskSpaceAction>,
     sim: Sim,
     robot: Robot,
     free_space: FreeSpace,
@@ -61,6 +63,8 @@ impl GraspEnv {
             robot: Robot::new(&config, cell.model.clone(), cell.mount.base_in_world),
             sim_in_sync: true,
             contacts: ContactReport::default(),
+            task_space: (config.arm.action_space == ActionSpace::Tcp)
+                .then(|| TaskSpaceAction::new(&cell, &config.arm)),
             config,
             cell,
             sim,
@@ -303,20 +307,16 @@ impl GraspEnv {
             return Err(EnvError::NonFiniteAction { index, value });
         }
         let clipped = action.0.map(|v| v.clamp(-1.0, 1.0));
-        self.robot.gripper_command = clipped[6];
         let arm = &self.config.arm;
-        Ok(match arm.action_space {
-            ActionSpace::Joint => std::array::from_fn(|i| clipped[i] * arm.action_scale),
-            ActionSpace::Tcp => {
-                let command = TcpCommand::from_action(&clipped, arm.tcp_speed, arm.tcp_yaw_rate);
-                joint_velocities(
-                    &self.robot.model,
-                    &self.cell.mount.table_in_base,
-                    &self.robot.q,
-                    &command,
-                )
-            }
-        })
+        let (qd, gripper) = match &self.task_space {
+            None => (
+                std::array::from_fn(|i| clipped[i] * arm.action_scale),
+                clipped[6],
+            ),
+            Some(task_space) => task_space.joint_command(&self.robot.q, &clipped),
+        };
+        self.robot.gripper_command = gripper;
+        Ok(qd)
     }
 
     /// The facts the task judges, in `world` [m].

@@ -15,6 +15,9 @@
 use fairgrasp_kinematics::{ArmModel, EndFrame, Pose, damped_least_squares};
 use nalgebra::{Vector3, Vector6};
 
+use crate::cell::derived::Cell;
+use crate::config::env_config::{ArmConfig, GripperCommand, TcpSaturation};
+
 /// Damping λ of the least-squares map (mixed units: m and rad).
 pub const DAMPING: f64 = 0.01;
 /// How fast a tilted gripper is turned back to pointing down [1/s].
@@ -76,6 +79,90 @@ pub fn joint_velocities(
         *v /= over;
     }
     out
+}
+
+/// The task-space action with its options, for one cell: the one map from a `tcp` action to
+/// joint velocities and a gripper command. The env applies it in `tcp` mode; a policy that
+/// acts in task space on a `joint`-mode env hands its output through [`Self::to_joint_action`].
+#[derive(Clone, Debug)]
+pub struct TaskSpaceAction {
+    model: ArmModel,
+    /// The table frame in `base_link`.
+    table_in_base: Pose,
+    /// TCP speed per unit of action [m/s].
+    tcp_speed: f64,
+    /// Yaw rate per unit of action [rad/s].
+    tcp_yaw_rate: f64,
+    /// Joint velocity per unit of a joint action [rad/s].
+    action_scale: f64,
+    saturation: TcpSaturation,
+    gripper: GripperCommand,
+}
+
+impl TaskSpaceAction {
+    /// The action of `arm`'s settings (`tcp_speed`, `tcp_yaw_rate`, `action_scale`,
+    /// `tcp_saturation`, `gripper_command`) on `cell`'s arm and mount.
+    pub fn new(cell: &Cell, arm: &ArmConfig) -> Self {
+        Self {
+            model: cell.model.clone(),
+            table_in_base: cell.mount.table_in_base,
+            tcp_speed: arm.tcp_speed,
+            tcp_yaw_rate: arm.tcp_yaw_rate,
+            action_scale: arm.action_scale,
+            saturation: arm.tcp_saturation,
+            gripper: arm.gripper_command,
+        }
+    }
+
+    /// The gripper command in [-1, 1] for action entry `raw`.
+    pub fn gripper(&self, raw: f64) -> f64 {
+        match self.gripper {
+            GripperCommand::Continuous => raw.clamp(-1.0, 1.0),
+            GripperCommand::Binary if raw < 0.0 => -1.0,
+            GripperCommand::Binary => 1.0,
+        }
+    }
+
+    /// The joint-space action (`q̇ / arm.action_scale` per joint, and the gripper) that a
+    /// `joint`-mode env turns into the same motion as this task-space `action` at joints `q`
+    /// [rad] — exactly, for [`TcpSaturation::ActionScale`] (for `JointLimits` a joint-mode env
+    /// clips what exceeds `action_scale`).
+    pub fn to_joint_action(&self, q: &[f64; 6], action: &[f64; 7]) -> [f64; 7] {
+        let command = TcpCommand::from_action(action, self.tcp_speed, self.tcp_yaw_rate);
+        let qd = joint_velocities(&self.model, &self.table_in_base, q, &command);
+        let over = match self.saturation {
+            TcpSaturation::JointLimits => 1.0,
+            TcpSaturation::ActionScale => qd
+                .iter()
+                .map(|v| v.abs() / self.action_scale)
+                .fold(1.0, f64::max),
+        };
+        let mut out = [0.0; 7];
+        for i in 0..6 {
+            out[i] = qd[i] / self.action_scale / over;
+        }
+        out[6] = self.gripper(action[6]);
+        out
+    }
+
+    /// Joint velocities [rad/s] and the gripper command for the task-space `action` at joints
+    /// `q` [rad] (what the env's `tcp` mode applies).
+    pub fn joint_command(&self, q: &[f64; 6], action: &[f64; 7]) -> ([f64; 6], f64) {
+        match self.saturation {
+            TcpSaturation::JointLimits => {
+                let command = TcpCommand::from_action(action, self.tcp_speed, self.tcp_yaw_rate);
+                let qd = joint_velocities(&self.model, &self.table_in_base, q, &command);
+                (qd, self.gripper(action[6]))
+            }
+            // Through the joint action, as a joint-mode env would apply it, so that both ways
+            // give the same numbers to the last bit.
+            TcpSaturation::ActionScale => {
+                let a = self.to_joint_action(q, action);
+                let qd = std::array::from_fn(|i| a[i].clamp(-1.0, 1.0) * self.action_scale);
+                (qd, a[6])
+            }
+        }
+    }
 }
 
 #[cfg(test)]

@@ -9,13 +9,15 @@
 //! plus the close's timing ([`crate::agent::script`], [`fairgrasp_planner::residual`]).
 //! Either way the actor's output layer can start at zero, so an untrained agent *is* the script.
 //! Pure mode (the seed's setup): `input = obs`, the env receives `clip(a_policy)`, or in `tcp`
-//! mode the TCP velocity it commands ([`crate::agent::action_map`]).
+//! mode the TCP velocity it commands, through the env's task-space action
+//! ([`fairgrasp_env::robot::tcp_action::TaskSpaceAction`]).
 
-use fairgrasp_env::config::ActionSpace;
+use fairgrasp_env::cell::Cell;
+use fairgrasp_env::config::{ActionSpace, ArmConfig, GripperCommand, TcpSaturation};
 use fairgrasp_env::episode::Policy;
+use fairgrasp_env::robot::tcp_action::TaskSpaceAction;
 use fairgrasp_env::{Action, EnvConfig, Observation};
 
-use crate::agent::action_map::ActionMap;
 use crate::agent::script::Script;
 use fairgrasp_planner::residual::FEATURE_DIM;
 use serde::{Deserialize, Serialize};
@@ -72,7 +74,7 @@ pub struct AgentConfig {
     pub gripper: GripperMode,
     /// What the policy's output commands: `joint` velocities (the seed's; in residual mode, a
     /// correction of the baseline's), or in task space (`tcp`): the TCP's velocity and yaw rate
-    /// in pure mode ([`crate::agent::action_map`]), the rate of a correction of the script's grasp in
+    /// in pure mode (the env's `TaskSpaceAction`), the rate of a correction of the script's grasp in
     /// residual mode ([`crate::agent::script`]).
     pub action_space: ActionSpace,
 }
@@ -200,29 +202,38 @@ impl AgentConfig {
         }))
     }
 
-    /// The map from the policy's task-space output to joint actions (pure `tcp` mode only).
-    pub fn action_map(&self, env: &EnvConfig) -> Option<ActionMap> {
-        (self.mode == Mode::Pure && self.action_space == ActionSpace::Tcp)
-            .then(|| ActionMap::new(env))
+    /// The env's task-space action that turns the policy's output into joint actions (pure
+    /// `tcp` mode only): `env`'s speeds, saturated at `arm.action_scale`, a binary gripper.
+    /// An env configured with `action_space = "tcp"`, `tcp_saturation = "action_scale"` and
+    /// `gripper_command = "binary"` applies the same action itself.
+    pub fn task_space(&self, env: &EnvConfig) -> Option<TaskSpaceAction> {
+        (self.mode == Mode::Pure && self.action_space == ActionSpace::Tcp).then(|| {
+            let arm = ArmConfig {
+                tcp_saturation: TcpSaturation::ActionScale,
+                gripper_command: GripperCommand::Binary,
+                ..env.arm.clone()
+            };
+            TaskSpaceAction::new(&Cell::from_config(env), &arm)
+        })
     }
 
     /// The env action for the policy's output at observation `obs`: the task script's action
     /// for a task-space residual; otherwise [`AgentConfig::compose`], then, in pure `tcp` mode,
-    /// through `map` to joint velocities.
+    /// through the env's `task_space` action to joint velocities.
     pub fn env_action(
         &self,
         obs: &Observation,
         script: Option<&mut Script>,
         base: Option<&Action>,
         policy: &[f32],
-        map: Option<&ActionMap>,
+        task_space: Option<&TaskSpaceAction>,
     ) -> Action {
         if let Some(action) = script.and_then(|s| s.act_on(obs, policy)) {
             return action;
         }
         let action = self.compose(base, policy);
-        match map {
-            Some(map) => map.to_joint_action(&obs.joints, &action),
+        match task_space {
+            Some(t) => Action(t.to_joint_action(&obs.joints, &action.0)),
             None => action,
         }
     }
@@ -244,7 +255,7 @@ pub type MeanAction = Box<dyn Fn(&[f32]) -> Vec<f32> + Send>;
 pub struct GraspAgent {
     pub agent: AgentConfig,
     script: Option<Script>,
-    action_map: Option<ActionMap>,
+    task_space: Option<TaskSpaceAction>,
     mean_action: MeanAction,
     /// Input entries set to 0 before the policy sees them (an ablation).
     masked: Vec<usize>,
@@ -255,7 +266,7 @@ impl GraspAgent {
     pub fn new(agent: AgentConfig, env: &EnvConfig, mean_action: MeanAction) -> Self {
         Self {
             script: agent.script(env),
-            action_map: agent.action_map(env),
+            task_space: agent.task_space(env),
             agent,
             mean_action,
             masked: Vec::new(),
@@ -293,7 +304,7 @@ impl Policy for GraspAgent {
             self.script.as_mut(),
             base.as_ref(),
             &out,
-            self.action_map.as_ref(),
+            self.task_space.as_ref(),
         )
     }
 

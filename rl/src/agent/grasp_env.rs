@@ -11,17 +11,17 @@
 use fairgrasp_env::vec::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, EnvError, Observation};
 
-use crate::agent::action_map::ActionMap;
 use crate::agent::grasp_agent::{ACT_DIM, AgentConfig};
 use crate::agent::script::Script;
 use crate::ppo::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
+use fairgrasp_env::robot::tcp_action::TaskSpaceAction;
 
 /// Vectorised grasp envs plus one script per env (residual mode).
 pub struct GraspVecEnv {
     inner: VecEnv,
     agent: AgentConfig,
     /// Task-space to joint actions (`agent.action_space = "tcp"`).
-    action_map: Option<ActionMap>,
+    task_space: Option<TaskSpaceAction>,
     scripts: Vec<Option<Script>>,
     /// The joint baselines' actions for the current observations (joint residual mode).
     base_actions: Vec<Option<Action>>,
@@ -63,7 +63,7 @@ impl GraspVecEnv {
             returns: vec![0.0; n],
             lengths: vec![0; n],
             batch: StepBatch::new(n, agent.input_dim()),
-            action_map: agent.action_map(config),
+            task_space: agent.task_space(config),
             agent,
         })
     }
@@ -144,7 +144,7 @@ impl VecEnvironment for GraspVecEnv {
                 script.as_mut(),
                 base.as_ref(),
                 policy,
-                self.action_map.as_ref(),
+                self.task_space.as_ref(),
             );
         }
         let step = self.inner.step(&self.env_actions)?;

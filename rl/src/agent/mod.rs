@@ -4,10 +4,8 @@
 //!
 //! - [`grasp_agent`]: the agent's config and its policy (network + script), `ACT_DIM`.
 //! - [`script`]: the scripted part a residual agent corrects.
-//! - [`action_map`]: the pure agent's task-space action.
 //! - [`grasp_env`]: the grasp env as PPO sees it (a [`crate::ppo::vec_api::VecEnvironment`]).
 
-pub mod action_map;
 pub mod grasp_agent;
 pub mod grasp_env;
 pub mod script;
