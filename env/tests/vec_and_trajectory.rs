@@ -1,6 +1,6 @@
 //! The vectorised env (auto-reset, thread-count independence) and trajectory export.
 
-use fairgrasp_env::episode::trajectory::Trajectory;
+use fairgrasp_env::episode::trajectory::{Recorder, Trajectory};
 use fairgrasp_env::vec::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
 

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-pub use fairgrasp_types::{Comparison, EpisodeResult, MethodResult, Outcome, RecordedEpisode};
+pub use fairgrasp_types::{Comparison, EpisodeRecord, MethodResult, Outcome, RecordedEpisode};
 use fairgrasp_types::{PairedTest, learned_vs_scripts};
 
 use crate::error::{ReportError, read_text};

@@ -29,7 +29,7 @@ pub mod report;
 pub mod runs;
 pub mod trajectory;
 
-pub use compare::{Comparison, EpisodeResult, MethodResult, Outcome, RecordedEpisode};
+pub use compare::{Comparison, EpisodeRecord, MethodResult, Outcome, RecordedEpisode};
 pub use error::ReportError;
 pub use output_folder::{Existing, StagedFolder};
 pub use report::{Input, build_report, load_inputs, write_report};

@@ -9,7 +9,7 @@ use crate::error::{ReportError, write_file};
 use crate::notebook::to_notebook;
 use crate::output_folder::{Existing, StagedFolder};
 use crate::runs::RunFolder;
-use crate::trajectory::EpisodeTrajectory;
+use crate::trajectory::{self, Trajectory};
 
 /// A folder given to the report.
 #[derive(Clone, Debug)]
@@ -19,7 +19,7 @@ pub enum Input {
         dir: PathBuf,
         comparison: Comparison,
         /// The recorded episodes, in the order of `comparison.recorded`.
-        trajectories: Vec<EpisodeTrajectory>,
+        trajectories: Vec<Trajectory>,
     },
     /// A training run folder (holds `metrics.csv`).
     Run(RunFolder),
@@ -39,7 +39,7 @@ impl Input {
             let trajectories = comparison
                 .recorded
                 .iter()
-                .map(|r| EpisodeTrajectory::load(&path.join(&r.trajectory)))
+                .map(|r| trajectory::load(&path.join(&r.trajectory)))
                 .collect::<Result<_, _>>()?;
             return Ok(Self::Comparison {
                 dir: path.to_path_buf(),
@@ -190,7 +190,7 @@ pub fn write_report(
 /// Charts and text for one comparison folder `dir`, named `shown` in the text.
 fn comparison_section(
     doc: &mut Document,
-    (dir, shown, c, trajectories): (&Path, &Path, &Comparison, &[EpisodeTrajectory]),
+    (dir, shown, c, trajectories): (&Path, &Path, &Comparison, &[Trajectory]),
     out: &Path,
     prefix: &str,
     written: &mut Vec<String>,

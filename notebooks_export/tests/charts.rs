@@ -4,7 +4,7 @@ mod common;
 
 use common::{Image, temp_dir, trajectory_json, write_comparison, write_run};
 use fairgrasp_report::charts::{curves, episode, replay, success, workspace};
-use fairgrasp_report::trajectory::EpisodeTrajectory;
+use fairgrasp_report::trajectory;
 use fairgrasp_report::{Comparison, Outcome, RunFolder};
 
 /// The PNG has `size`, real contrast, and dark (text) pixels in its title band `0..title_rows`.
@@ -82,7 +82,7 @@ fn episode_chart_and_replay() {
     let dir = temp_dir("charts-episode");
     let path = dir.join("ep.json");
     std::fs::write(&path, serde_json::to_vec(&trajectory_json(150)).unwrap()).unwrap();
-    let t = EpisodeTrajectory::load(&path).unwrap();
+    let t = trajectory::load(&path).unwrap();
     episode::episode_chart(&t, "test episode", &dir.join("ep.png")).unwrap();
     assert_chart(&dir.join("ep.png"), episode::SIZE, 40);
     replay::replay_still(&t, "test episode", 100, &dir.join("still.png")).unwrap();
@@ -139,6 +139,6 @@ fn a_broken_trajectory_is_refused_with_its_file_and_row() {
     json["rows"][3]["capsules"].as_array_mut().unwrap().pop();
     let path = dir.join("bad.json");
     std::fs::write(&path, serde_json::to_vec(&json).unwrap()).unwrap();
-    let e = EpisodeTrajectory::load(&path).unwrap_err().to_string();
+    let e = trajectory::load(&path).unwrap_err().to_string();
     assert!(e.contains("bad.json") && e.contains("row 3"), "{e}");
 }

@@ -13,7 +13,7 @@ use std::path::Path;
 use common::{Image, temp_dir, trajectory_json, write_comparison};
 use fairgrasp_report::RunFolder;
 use fairgrasp_report::charts::{curves, episode, replay, success, workspace};
-use fairgrasp_report::trajectory::EpisodeTrajectory;
+use fairgrasp_report::trajectory::{self, Trajectory};
 
 /// Values a chart must survive: alone, mixed with ordinary numbers, and non-finite.
 const EXTREMES: [f64; 5] = [1.7e308, -1e308, 1e-308, f64::MAX, -f64::MIN_POSITIVE];
@@ -116,7 +116,7 @@ fn episode_chart_replay_and_still_survive_extreme_positions() {
             }
             let path = dir.join(format!("ep{k}_{j}.json"));
             std::fs::write(&path, serde_json::to_vec(&json).unwrap()).unwrap();
-            let t = EpisodeTrajectory::load(&path).unwrap();
+            let t = trajectory::load(&path).unwrap();
             let what = format!("{field} = {v:e}");
             let png = dir.join(format!("ep{k}_{j}.png"));
             episode::episode_chart(&t, &what, &png).unwrap_or_else(|e| panic!("{what}: {e}"));
@@ -136,7 +136,7 @@ fn episode_chart_replay_and_still_survive_extreme_positions() {
     }
     let path = dir.join("still.json");
     std::fs::write(&path, serde_json::to_vec(&json).unwrap()).unwrap();
-    let t = EpisodeTrajectory::load(&path).unwrap();
+    let t = trajectory::load(&path).unwrap();
     episode::episode_chart(&t, "motionless", &dir.join("still.png")).unwrap();
     replay::replay_gif(&t, "motionless", &dir.join("still.gif")).unwrap();
 }
@@ -171,7 +171,7 @@ fn a_still_past_the_last_step_is_refused_with_the_allowed_range() {
     let dir = temp_dir("extreme-still");
     let path = dir.join("ep.json");
     std::fs::write(&path, serde_json::to_vec(&trajectory_json(30)).unwrap()).unwrap();
-    let t = EpisodeTrajectory::load(&path).unwrap();
+    let t = trajectory::load(&path).unwrap();
     let still = dir.join("still.png");
     let e = replay::replay_still(&t, "ep", 100_000, &still)
         .unwrap_err()
@@ -188,7 +188,7 @@ fn a_still_past_the_last_step_is_refused_with_the_allowed_range() {
 #[test]
 fn an_episode_without_steps_is_refused_instead_of_panicking() {
     let dir = temp_dir("extreme-empty");
-    let t = EpisodeTrajectory {
+    let t = Trajectory {
         scene: Default::default(),
         rows: Vec::new(),
     };

@@ -3,7 +3,7 @@
 //! miscalibration; every push made far from the gripper; reproducible episodes.
 
 use fairgrasp_env::config::presets;
-use fairgrasp_env::episode::{EpisodeResult, EvalReport, Outcome, Policy, run_episode};
+use fairgrasp_env::episode::{EpisodeRecord, EvalReport, Outcome, Policy, run_episode};
 use fairgrasp_env::scenario::nudge::NudgeEvent;
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{EnvConfig, GraspEnv};
@@ -19,7 +19,7 @@ const EPISODES: usize = 60;
 fn run(
     config: &EnvConfig,
     policy: &mut dyn Policy,
-) -> (Vec<EpisodeResult>, Vec<Option<NudgeEvent>>) {
+) -> (Vec<EpisodeRecord>, Vec<Option<NudgeEvent>>) {
     let mut env = GraspEnv::new(config.clone()).unwrap();
     let scenarios = scenario_set(config, 0, EPISODES).unwrap();
     scenarios

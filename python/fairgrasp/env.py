@@ -16,33 +16,16 @@ def _box(space_json, dtype=np.float32):
     return gym.spaces.Box(low=low, high=high, dtype=dtype), space["names"]
 
 
-def outcome_of(info, truncated):
-    """The episode's outcome, as ``fairgrasp baseline`` names it, and the collision pair if any:
-    ``success``, ``collision``, ``object_off_table``, ``protective_stop``, ``timeout`` or
-    ``physics_fault``; ``None`` while the episode runs."""
-    if info.get("success"):
-        return "success", None
-    failure = info.get("failure")
-    if isinstance(failure, dict) and "Collision" in failure:
-        return "collision", tuple(failure["Collision"])
-    if isinstance(failure, dict) and "ProtectiveStop" in failure:
-        stop = failure["ProtectiveStop"]
-        return "protective_stop", (stop["robot_part"], stop["other_part"])
-    if failure == "ObjectOffTable":
-        return "object_off_table", None
-    if info.get("physics_fault"):
-        return "physics_fault", None
-    if truncated:
-        return "timeout", None
-    return None, None
-
-
 def parse_info(info_json, terminated=False, truncated=False):
-    """The Rust step's info as a dict, with ``outcome`` and ``collision_pair`` added."""
+    """The Rust step's info as a dict, with ``outcome`` and ``collision_pair`` added from the
+    episode record the Rust env computes at the terminal step (``info["episode"]``: outcome,
+    success, steps, return, held, lifted, ...): the outcome is Rust's, never re-derived here.
+    Both are ``None`` while the episode runs."""
     info = json.loads(info_json)
-    info["outcome"], info["collision_pair"] = outcome_of(info, truncated)
-    if not (terminated or truncated):
-        info["outcome"] = None
+    record = info.get("episode")
+    info["outcome"] = record["outcome"] if record else None
+    pair = record.get("collision_pair") if record else None
+    info["collision_pair"] = tuple(pair) if pair else None
     return info
 
 

@@ -4,11 +4,10 @@ use std::sync::Mutex;
 
 use fairgrasp_env::env::obs::OBS_DIM;
 use fairgrasp_env::episode::Policy;
-use fairgrasp_env::episode::trajectory::Trajectory;
+use fairgrasp_env::episode::trajectory::{Recorder, Trajectory};
 use fairgrasp_env::{GraspEnv, Observation};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_report::charts::replay::{SIZE, replay_frame_rgb};
-use fairgrasp_report::trajectory::EpisodeTrajectory;
 use numpy::{IntoPyArray, PyArray1, PyArray3, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
@@ -55,10 +54,8 @@ impl Env {
                 "nothing to render: create the env with record = True (render_mode = \"rgb_array\") and reset it",
             ));
         };
-        let json = serde_json::to_string(t).map_err(value_error)?;
-        let episode: EpisodeTrajectory = serde_json::from_str(&json).map_err(value_error)?;
-        let last = episode.rows.len() - 1;
-        let rgb = replay_frame_rgb(&episode, "fairgrasp", last).map_err(value_error)?;
+        let last = t.rows.len() - 1;
+        let rgb = replay_frame_rgb(t, "fairgrasp", last).map_err(value_error)?;
         let (w, h) = SIZE;
         rgb.into_pyarray(py).reshape([h as usize, w as usize, 3])
     }

@@ -174,12 +174,25 @@ fn resume_continues_the_timestep_count_and_the_metrics() {
     train(&tiny(64), &dir, false, &mut |_| {}).unwrap();
     let meta = checkpoint::load_meta(&dir.join("checkpoints/latest")).unwrap();
     assert_eq!((meta.timesteps, meta.updates), (64, 2));
+    // As if written before the outcome columns existed: the leading 16 columns only.
+    let csv = std::fs::read_to_string(dir.join("metrics.csv")).unwrap();
+    let old: String = csv
+        .lines()
+        .map(|l| l.split(',').take(16).collect::<Vec<_>>().join(",") + "\n")
+        .collect();
+    std::fs::write(dir.join("metrics.csv"), old).unwrap();
     let mut seen = Vec::new();
     train(&tiny(128), &dir, true, &mut |p| seen.push(p.timesteps)).unwrap();
     assert_eq!(seen, vec![96, 128], "resumed from 64, not from 0");
     let csv = std::fs::read_to_string(dir.join("metrics.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
     assert_eq!(rows.len(), 1 + 4, "header + 4 updates");
+    let columns = rows[0].split(',').count();
+    assert!(rows[0].ends_with("outcome_physics_fault"), "{}", rows[0]);
+    assert!(
+        rows.iter().all(|r| r.split(',').count() == columns),
+        "the old rows were not padded: {csv}"
+    );
     assert!(rows[4].starts_with("4,128,"), "{}", rows[4]);
     // Wall time keeps counting across the resume.
     let wall = |row: &str| row.split(',').nth(2).unwrap().parse::<f64>().unwrap();

@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use anyhow::bail;
 use clap::Args;
 use fairgrasp_report::charts::{curves, episode, replay};
-use fairgrasp_report::trajectory::EpisodeTrajectory;
+use fairgrasp_report::trajectory::{self, Trajectory};
 use fairgrasp_report::{Existing, RunFolder, build_report};
 
 #[derive(Args, Debug)]
@@ -37,9 +37,9 @@ pub fn run_plot(a: &PlotArgs) -> anyhow::Result<ExitCode> {
         .iter()
         .map(|p| RunFolder::load(p))
         .collect::<Result<_, _>>()?;
-    let trajectories: Vec<EpisodeTrajectory> = episodes
+    let trajectories: Vec<Trajectory> = episodes
         .iter()
-        .map(|p| EpisodeTrajectory::load(p))
+        .map(|p| trajectory::load(p))
         .collect::<Result<_, _>>()?;
     if a.out.is_some() && runs.is_empty() {
         bail!("--out names the learning-curve file, but no run folder was given");

@@ -4,21 +4,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::episode::EpisodeRecord;
 use crate::names::Outcome;
-
-/// One evaluated episode.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct EpisodeResult {
-    /// Scenario seed.
-    pub seed: u64,
-    pub outcome: Outcome,
-    /// Environment steps until the episode ended.
-    pub steps: usize,
-    /// Sum of the rewards.
-    pub episode_return: f64,
-    /// Object start position in `base_link` [m], for workspace maps.
-    pub object_xy: [f64; 2],
-}
 
 /// A 95 % Wilson score interval for `successes` out of `n` (`(0, 1)` when `n` is 0).
 pub fn wilson_interval(successes: usize, n: usize) -> (f64, f64) {
@@ -49,12 +36,12 @@ pub struct EvalReport {
     pub mean_return: f64,
     /// Episodes per outcome (outcomes with no episode may be absent).
     pub outcomes: BTreeMap<Outcome, usize>,
-    pub results: Vec<EpisodeResult>,
+    pub results: Vec<EpisodeRecord>,
 }
 
 impl EvalReport {
     /// Summarises episode results.
-    pub fn from_results(results: Vec<EpisodeResult>) -> Self {
+    pub fn from_results(results: Vec<EpisodeRecord>) -> Self {
         let n = results.len();
         let mut outcomes = BTreeMap::new();
         for r in &results {
@@ -98,14 +85,17 @@ impl EvalReport {
 mod tests {
     use super::*;
 
-    fn episode(seed: u64, outcome: Outcome, steps: usize) -> EpisodeResult {
-        EpisodeResult {
+    fn episode(seed: u64, outcome: Outcome, steps: usize) -> EpisodeRecord {
+        EpisodeRecord {
             seed,
             outcome,
             steps,
             episode_return: seed as f64,
             object_xy: [0.3, 0.0],
+            collision_pair: None,
+            facts: crate::EpisodeFacts::default(),
         }
+        .normalized()
     }
 
     #[test]

@@ -3,20 +3,25 @@
 //! that draws charts from them without any simulator.
 //!
 //! - [`names`]: the typed names written into result files ([`Outcome`], [`ArmSimulation`]).
-//! - [`eval`]: one evaluated episode and an evaluation report ([`EvalReport`], Wilson interval).
+//! - [`episode`]: the one record of a finished episode and how its outcome is decided.
+//! - [`eval`]: an evaluation report over episodes ([`EvalReport`], Wilson interval).
 //! - [`compare`]: a comparison of methods on presets (`compare.json`).
 //! - [`paired`]: McNemar's exact test between two methods on the same scenarios.
+//! - [`trajectory`]: one recorded episode (written by the env, read by the report).
 //! - [`fs`]: [`write_atomic`], the one way fairgrasp writes a result file.
 
 pub mod checksum;
 pub mod compare;
+pub mod episode;
 pub mod eval;
 pub mod fs;
 pub mod names;
 pub mod paired;
+pub mod trajectory;
 
 pub use compare::{Comparison, MethodResult, RecordedEpisode, SchemaError};
-pub use eval::{EpisodeResult, EvalReport, wilson_interval};
+pub use episode::{EpisodeFacts, EpisodeRecord};
+pub use eval::{EvalReport, wilson_interval};
 pub use fs::write_atomic;
 pub use names::{ArmSimulation, Outcome, UnknownName};
 pub use paired::{PairedTest, PairingError, learned_vs_scripts, mcnemar_exact, paired_test};

@@ -8,18 +8,18 @@
 
 use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
-use crate::config::{ActionSpace, ArmSimulation, EnvConfig};
-use crate::env::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
+use crate::config::{ActionSpace, EnvConfig};
+use crate::env::free_space::FreeSpace;
 use crate::env::obs::Observation;
 pub use crate::env::step::{Action, EnvError, Info, Step};
 use crate::robot::Robot;
 use crate::robot::tcp_action::TaskSpaceAction;
 use crate::scenario::Scenario;
 use crate::scenario::nudge::{NudgeEvent, NudgeHook};
-use crate::scenario::perception::{observe_object, wrist_view};
 use crate::sim::Sim;
 use crate::sim::contacts::ContactReport;
-use crate::task::{Failure, TaskState, judge, judge_protective_stop};
+use crate::task::episode::EpisodeTracker;
+use crate::task::{Failure, judge, judge_protective_stop};
 use fairgrasp_kinematics::{ArmModel, Pose};
 use nalgebra::Isometry3;
 use rapier3d::prelude::PhysicsWorld;
@@ -28,6 +28,8 @@ use crate::sim::scene::SceneHandles;
 
 /// Physics substeps run at reset so the object settles on the table.
 const SETTLE_SUBSTEPS: usize = 24;
+
+mod step_parts;
 
 /// The FR3 grasping environment: the robot, the task and the episode's scenario, composed over
 /// the simulator facade.
@@ -45,6 +47,8 @@ pub struct GraspEnv {
     /// What the latest step (or reset) found touching.
     contacts: ContactReport,
     object_rest_z: f64,
+    /// What this episode has shown so far (its record at the terminal step).
+    tracker: EpisodeTracker,
     steps: usize,
     done: bool,
     scenario: Option<Scenario>,
@@ -69,6 +73,7 @@ impl GraspEnv {
             cell,
             sim,
             object_rest_z: 0.0,
+            tracker: EpisodeTracker::default(),
             steps: 0,
             done: true,
             scenario: None,
@@ -172,6 +177,8 @@ impl GraspEnv {
         }
         self.sim_in_sync = true;
         self.object_rest_z = self.sim.object_pose().translation.z;
+        let rest_in_base = self.object_in_base().xyz()[2];
+        self.tracker = EpisodeTracker::start(rest_in_base, self.config.scene.cube_size);
         self.steps = 0;
         self.done = false;
         self.scenario = Some(*scenario);
@@ -243,6 +250,7 @@ impl GraspEnv {
             self.done = true;
             info.physics_fault = Some(fault);
             let obs = self.observe([0.0; 6], &ContactReport::default());
+            self.track(&obs, 0.0, &mut info);
             return Ok(Step {
                 obs,
                 reward: 0.0,
@@ -269,6 +277,7 @@ impl GraspEnv {
         info.failure = judgement.failure;
         let truncated = !judgement.terminated && self.steps >= self.config.task.max_steps;
         self.done = judgement.terminated || truncated;
+        self.track(&obs, judgement.reward, &mut info);
         Ok(Step {
             obs,
             reward: judgement.reward,
@@ -276,85 +285,6 @@ impl GraspEnv {
             truncated,
             info,
         })
-    }
-
-    /// A free-space step ([`FreeSpace`]) if the config allows it, the arm is the servo arm, the
-    /// object rests and the previous step found no collision; `None` when the step must run
-    /// physics (the robot is then unchanged).
-    fn free_step(&mut self, command: &[f64; 6]) -> Option<ContactReport> {
-        let allowed = self.config.physics.free_space
-            && self.robot.kind == ArmSimulation::Servo
-            && self.contacts.collision.is_none()
-            && self.sim.object_at_rest(REST_SPEED, REST_TURN_RATE);
-        if !allowed {
-            return None;
-        }
-        let report = self.free_space.try_step(
-            &mut self.robot,
-            &self.sim.object_pose(),
-            command,
-            self.config.physics.dt,
-            self.config.physics.substeps,
-        )?;
-        self.sim_in_sync = false;
-        Some(report)
-    }
-
-    /// Checks an action and hands it to the robot: returns the joint-velocity command [rad/s]
-    /// (from joint velocities, or from the TCP command through the Jacobian in `tcp` mode).
-    fn apply_action(&mut self, action: &Action) -> Result<[f64; 6], EnvError> {
-        if let Some((index, &value)) = action.0.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(EnvError::NonFiniteAction { index, value });
-        }
-        let clipped = action.0.map(|v| v.clamp(-1.0, 1.0));
-        let arm = &self.config.arm;
-        let (qd, gripper) = match &self.task_space {
-            None => (
-                std::array::from_fn(|i| clipped[i] * arm.action_scale),
-                clipped[6],
-            ),
-            Some(task_space) => task_space.joint_command(&self.robot.q, &clipped),
-        };
-        self.robot.gripper_command = gripper;
-        Ok(qd)
-    }
-
-    /// The facts the task judges, in `world` [m].
-    fn task_state(&self, contacts: &ContactReport) -> TaskState {
-        let object = self.sim.object_pose().translation.vector;
-        let tcp = self.robot.tcp_in_world().xyz();
-        let base_xy = self.cell.mount.base_in_world.xyz();
-        TaskState {
-            object: [object.x, object.y, object.z],
-            object_rest_z: self.object_rest_z,
-            tcp,
-            pad_contact: contacts.pad_contact,
-            gripper_opening: self.robot.gripper_opening(),
-            object_size: self.config.scene.cube_size,
-            table_height: self.config.scene.table_height,
-            object_xy_from_table_centre: [object.x - base_xy[0], object.y - base_xy[1]],
-            table_half_size: self.config.scene.table_size.map(|s| s / 2.0),
-        }
-    }
-
-    /// The observation: the robot's state and the object as the perception model reports it,
-    /// in `base_link`.
-    fn observe(&self, joint_velocities: [f64; 6], contacts: &ContactReport) -> Observation {
-        let tcp = self.robot.tcp_in_base().xyz();
-        let truth = self.object_in_base();
-        let seen = observe_object(&self.cell.mount, &truth, self.scenario.as_ref());
-        let wrist = self.config.randomization.wrist_camera.as_ref();
-        let wrist_camera = wrist_view(wrist, &self.cell.mount, &truth, tcp);
-        Observation {
-            joints: self.robot.q,
-            joint_velocities,
-            object_rel_tcp: [0, 1, 2].map(|i| seen.position[i] - tcp[i]),
-            gripper_opening: self.robot.gripper_opening(),
-            object_yaw: seen.yaw,
-            tcp_position: tcp,
-            pad_contact: contacts.pad_contact,
-            wrist_camera,
-        }
     }
 
     /// The object pose in `base_link` (the truth, not what is observed).

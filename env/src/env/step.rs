@@ -3,6 +3,8 @@
 use serde::Serialize;
 
 use crate::config::validate::ConfigError;
+use fairgrasp_types::EpisodeRecord;
+
 use crate::env::obs::Observation;
 use crate::scenario::{Scenario, UngraspableRegion};
 use crate::task::Failure;
@@ -43,6 +45,8 @@ pub struct Info {
     pub simulated: bool,
     /// The scenario this episode started from.
     pub scenario: Option<Scenario>,
+    /// The episode's record, on its terminal step (terminated or truncated) only.
+    pub episode: Option<EpisodeRecord>,
 }
 
 /// The result of `step`.

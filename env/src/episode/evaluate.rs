@@ -3,13 +3,12 @@
 
 use crate::env::obs::Observation;
 use crate::env::{Action, EnvError, GraspEnv};
-use crate::episode::trajectory::Trajectory;
+use crate::episode::trajectory::{Recorder, Trajectory};
 use crate::scenario::Scenario;
 use crate::scenario::perception::{ObservedObject, true_object};
-use crate::task::Failure;
 
 /// The result types, shared with the report crate through `fairgrasp-types` (one schema).
-pub use fairgrasp_types::{EpisodeResult, EvalReport, Outcome, wilson_interval};
+pub use fairgrasp_types::{EpisodeRecord, EvalReport, Outcome, wilson_interval};
 
 /// A controller: observations in, actions out.
 pub trait Policy {
@@ -33,16 +32,12 @@ pub fn run_episode(
     policy: &mut dyn Policy,
     scenario: &Scenario,
     mut trajectory: Option<&mut Trajectory>,
-) -> Result<EpisodeResult, EnvError> {
+) -> Result<EpisodeRecord, EnvError> {
     let (mut obs, _) = env.reset_to(scenario);
     policy.reset(scenario.seed);
     if let Some(t) = trajectory.as_deref_mut() {
         t.record_reset(env, obs.gripper_opening);
     }
-    let cube = env.config().scene.cube_size;
-    let rest_z = env.object_in_base().xyz()[2];
-    let (mut held, mut lifted_while_held, mut closed_past_cube) = (false, false, false);
-    let mut episode_return = 0.0;
     loop {
         policy.observe_truth(&true_object(env.mount(), &env.object_in_base()));
         let action = policy.act(&obs);
@@ -50,39 +45,9 @@ pub fn run_episode(
         if let Some(t) = trajectory.as_deref_mut() {
             t.record_step(env, &action, &step);
         }
-        episode_return += step.reward;
-        let both = step.obs.pad_contact[0] && step.obs.pad_contact[1];
-        held |= both;
-        lifted_while_held |= both && env.object_in_base().xyz()[2] - rest_z > 0.01;
-        closed_past_cube |= step.obs.gripper_opening < cube - 0.005;
         obs = step.obs;
-        if step.terminated || step.truncated {
-            let outcome = if step.info.success {
-                Outcome::Success
-            } else if step.info.physics_fault.is_some() {
-                Outcome::PhysicsFault
-            } else if let Some(Failure::Collision(..)) = step.info.failure {
-                Outcome::Collision
-            } else if let Some(Failure::ProtectiveStop { .. }) = step.info.failure {
-                Outcome::ProtectiveStop
-            } else if let Some(reason) = policy.gave_up() {
-                reason
-            } else if lifted_while_held {
-                Outcome::SlipOrDrop
-            } else if step.info.failure == Some(Failure::ObjectOffTable) {
-                Outcome::ObjectOffTable
-            } else if closed_past_cube && !held {
-                Outcome::MissedGrasp
-            } else {
-                Outcome::Timeout
-            };
-            return Ok(EpisodeResult {
-                seed: scenario.seed,
-                outcome,
-                steps: step.info.step,
-                episode_return,
-                object_xy: scenario.object_xy,
-            });
+        if let Some(record) = step.info.episode {
+            return Ok(record.with_policy_verdict(policy.gave_up()));
         }
     }
 }
@@ -105,7 +70,7 @@ pub fn evaluate<P: Policy>(
             .chunks(chunk)
             .enumerate()
             .map(|(c, part)| {
-                scope.spawn(move || -> Result<Vec<EpisodeResult>, EnvError> {
+                scope.spawn(move || -> Result<Vec<EpisodeRecord>, EnvError> {
                     let mut env = GraspEnv::new(config.clone())?;
                     let mut policy = make();
                     let mut out = Vec::with_capacity(part.len());

@@ -11,7 +11,7 @@ use super::{
 };
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
-use crate::trajectory::EpisodeTrajectory;
+use crate::trajectory::Trajectory;
 
 /// Pixel size of the episode chart.
 pub const SIZE: (u32, u32) = (1400, 860);
@@ -20,7 +20,7 @@ const TCP_COLOR: RGBColor = RGBColor(78, 121, 167);
 const CUBE_COLOR: RGBColor = RGBColor(225, 87, 89);
 
 /// Draws the episode chart of `t` titled `title`; refuses an episode without steps.
-pub fn episode_chart(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<(), ReportError> {
+pub fn episode_chart(t: &Trajectory, title: &str, path: &Path) -> Result<(), ReportError> {
     if t.rows.is_empty() {
         return Err(ReportError::chart(
             path,

@@ -8,7 +8,7 @@ use plotters::prelude::*;
 use super::{equal_aspect, finite_points, min_max, padded};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, gif_palette, render_gif, render_png};
-use crate::trajectory::{EpisodeTrajectory, StepRecord};
+use crate::trajectory::{Trajectory, TrajectoryRow};
 
 /// Pixel size of a replay frame.
 pub const SIZE: (u32, u32) = (960, 500);
@@ -25,7 +25,7 @@ const CUBE_EDGE: RGBColor = RGBColor(140, 30, 30);
 
 /// Writes the replay GIF of `t` with `title` above both views; refuses an episode without
 /// steps.
-pub fn replay_gif(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<(), ReportError> {
+pub fn replay_gif(t: &Trajectory, title: &str, path: &Path) -> Result<(), ReportError> {
     let n = t.rows.len();
     if n == 0 {
         return Err(ReportError::chart(
@@ -65,7 +65,7 @@ pub fn replay_gif(t: &EpisodeTrajectory, title: &str, path: &Path) -> Result<(),
 /// that cannot show GIFs. A step past the last row is refused with the allowed range, and
 /// nothing is written.
 pub fn replay_still(
-    t: &EpisodeTrajectory,
+    t: &Trajectory,
     title: &str,
     step: usize,
     path: &Path,
@@ -90,11 +90,7 @@ pub fn replay_still(
 /// One frame of the replay (row `step`) as RGB bytes, `SIZE.0 × SIZE.1 × 3`, row-major: what
 /// gymnasium's `render_mode = "rgb_array"` returns from Python. A step past the last row is
 /// refused with the allowed range.
-pub fn replay_frame_rgb(
-    t: &EpisodeTrajectory,
-    title: &str,
-    step: usize,
-) -> Result<Vec<u8>, ReportError> {
+pub fn replay_frame_rgb(t: &Trajectory, title: &str, step: usize) -> Result<Vec<u8>, ReportError> {
     let here = Path::new("<render>");
     let Some(row) = t.rows.get(step) else {
         return Err(ReportError::chart(
@@ -117,7 +113,7 @@ struct ViewBounds {
     z: (f64, f64),
 }
 
-fn view_bounds(t: &EpisodeTrajectory) -> ViewBounds {
+fn view_bounds(t: &Trajectory) -> ViewBounds {
     let points = t.rows.iter().flat_map(|r| {
         r.capsules
             .iter()
@@ -135,8 +131,8 @@ fn view_bounds(t: &EpisodeTrajectory) -> ViewBounds {
 
 /// One frame: the title with the time, the top view and the side view.
 fn draw_frame(
-    t: &EpisodeTrajectory,
-    row: &StepRecord,
+    t: &Trajectory,
+    row: &TrajectoryRow,
     title: &str,
     b: &ViewBounds,
     root: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
@@ -156,8 +152,8 @@ fn draw_frame(
 
 /// One orthographic view onto axes `axes` of `base_link`.
 fn draw_view(
-    t: &EpisodeTrajectory,
-    row: &StepRecord,
+    t: &Trajectory,
+    row: &TrajectoryRow,
     area: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
     axes: [usize; 2],
     (ur, vr): ((f64, f64), (f64, f64)),

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use fairgrasp_report::compare::{
-    Comparison, EpisodeResult, MethodResult, Outcome, RecordedEpisode, to_csv,
+    Comparison, EpisodeRecord, MethodResult, Outcome, RecordedEpisode, to_csv,
 };
 use fairgrasp_types::{ArmSimulation, EvalReport};
 
@@ -42,7 +42,7 @@ pub fn method_result(
     seed: u64,
 ) -> MethodResult {
     let mut rng = Rng::new(seed);
-    let results: Vec<EpisodeResult> = (0..n)
+    let results: Vec<EpisodeRecord> = (0..n)
         .map(|i| {
             let angle = (rng.next_f64() - 0.5) * std::f64::consts::PI;
             let r = 0.25 + 0.1 * rng.next_f64();
@@ -53,13 +53,16 @@ pub fn method_result(
             } else {
                 Outcome::Collision
             };
-            EpisodeResult {
+            EpisodeRecord {
                 seed: i as u64,
                 outcome,
                 steps: 60 + i % 20,
                 episode_return: if i < successes { 10.0 } else { -1.0 },
                 object_xy: [r * angle.cos(), r * angle.sin()],
+                collision_pair: None,
+                facts: Default::default(),
             }
+            .normalized()
         })
         .collect();
     let mut outcomes = BTreeMap::new();

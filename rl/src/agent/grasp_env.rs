@@ -167,8 +167,15 @@ impl VecEnvironment for GraspVecEnv {
                         &mut self.batch.final_obs[row.clone()],
                     );
                 }
+                // The env's record of the episode, with the script's verdict as in evaluation.
+                let verdict = self.scripts[e].as_ref().and_then(|s| s.gave_up());
+                let outcome = step.infos[e]
+                    .episode
+                    .clone()
+                    .map(|r| r.with_policy_verdict(verdict).outcome);
                 self.batch.finished[e] = Some(EpisodeStats {
-                    success: step.infos[e].success,
+                    success: outcome == Some(fairgrasp_types::Outcome::Success),
+                    outcome,
                     episode_return: self.returns[e],
                     length: self.lengths[e],
                     object_xy: step.infos[e].scenario.map(|s| s.object_xy),

@@ -102,6 +102,7 @@ impl VecEnvironment for PointMass {
                 Self::observe(m, &mut b.final_obs[2 * e..2 * e + 2]);
                 b.finished[e] = Some(EpisodeStats {
                     success: false,
+                    outcome: None,
                     episode_return: m.episode_return,
                     length: m.t,
                     object_xy: None,

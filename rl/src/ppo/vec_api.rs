@@ -67,6 +67,9 @@ impl StepBatch {
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct EpisodeStats {
     pub success: bool,
+    /// How the episode ended, for tasks that name it (the grasp env's record: its
+    /// `fairgrasp_types::EpisodeRecord::outcome`).
+    pub outcome: Option<fairgrasp_types::Outcome>,
     /// Sum of the episode's rewards.
     pub episode_return: f32,
     /// Steps [env steps].

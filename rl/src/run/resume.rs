@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use fairgrasp_env::episode::trajectory::write_atomic;
+use fairgrasp_types::write_atomic;
 
 use crate::run::checkpoint::{self, CheckpointMeta};
 use crate::run::config::TrainConfig;
@@ -173,8 +173,9 @@ pub fn best_so_far(run_dir: &Path, latest: &CheckpointMeta) -> f64 {
 /// torn last line, rows past the checkpoint and any out of order, and restores the checkpoint's
 /// own row if it is missing (a kill between the checkpoint and the row). Rows missing further
 /// back (a file from before rows travelled in checkpoints, or a power cut before the append
-/// reached the disk) cannot be restored: they are counted in the result. Returns (rows dropped,
-/// rows restored, updates still without a row).
+/// reached the disk) cannot be restored: they are counted in the result. A file written before
+/// columns were added at the end of the header (the outcome shares) keeps its rows, padded with
+/// empty cells. Returns (rows dropped, rows restored, updates still without a row).
 pub fn repair_metrics(
     run_dir: &Path,
     meta: &CheckpointMeta,
@@ -186,10 +187,14 @@ pub fn repair_metrics(
         Some(end) => &text[..=end],
         None => "",
     };
+    let older_header = |l: &str| l != header && header.starts_with(&format!("{l},"));
     let mut rows: Vec<&str> = Vec::new();
     let mut last = 0u64;
     let mut dropped = usize::from(complete.len() < text.len());
-    for line in complete.lines().filter(|l| !l.is_empty() && *l != header) {
+    for line in complete
+        .lines()
+        .filter(|l| !l.is_empty() && *l != header && !older_header(l))
+    {
         let update = line.split(',').next().and_then(|u| u.parse::<u64>().ok());
         match update {
             Some(u) if u > last && u <= meta.updates => {
@@ -209,8 +214,12 @@ pub fn repair_metrics(
     let missing = meta.updates - rows.len() as u64;
     if dropped > 0 || restored > 0 || !text.starts_with(header) {
         let mut out = format!("{header}\n");
+        let columns = header.split(',').count();
         for row in &rows {
             out.push_str(row);
+            for _ in row.split(',').count()..columns {
+                out.push(',');
+            }
             out.push('\n');
         }
         write_atomic(&path, out.as_bytes()).map_err(io(&path))?;

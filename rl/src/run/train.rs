@@ -12,9 +12,9 @@ use std::time::Instant;
 
 use burn::tensor::Device;
 use fairgrasp_env::episode::EvalReport;
-use fairgrasp_env::episode::trajectory::write_atomic;
 use fairgrasp_env::scenario::curriculum::Curriculum;
 use fairgrasp_env::scenario::scenario_set;
+use fairgrasp_types::write_atomic;
 
 use crate::agent::grasp_agent::ACT_DIM;
 use crate::agent::grasp_env::GraspVecEnv;
@@ -27,42 +27,11 @@ use crate::run::crash;
 pub use crate::run::error::TrainError;
 use crate::run::error::io;
 pub use crate::run::evaluate::{agent_policy, evaluate_model};
+use crate::run::metrics::{metrics_header, metrics_row};
 use crate::run::resume::{self, ResumeOptions};
 
 /// The bit every training episode's scenario seed has set (and no evaluation seed has).
 pub const TRAINING_SEEDS: u64 = 1 << 63;
-
-/// One row of `metrics.csv`.
-pub const METRICS_HEADER: &str = "update,timesteps,wall_time_s,episodes,episode_return,success_rate,episode_length,policy_loss,value_loss,entropy,approx_kl,clip_fraction,explained_variance,learning_rate,stage,eval_success_rate";
-
-fn metrics_row(
-    update: u64,
-    timesteps: u64,
-    wall: f64,
-    s: &UpdateStats,
-    stage: usize,
-    eval: Option<f64>,
-) -> String {
-    let n = s.episodes.len().max(1) as f64;
-    let mean = |f: &dyn Fn(&crate::ppo::vec_api::EpisodeStats) -> f64| {
-        s.episodes.iter().map(f).sum::<f64>() / n
-    };
-    format!(
-        "{update},{timesteps},{wall:.2},{},{:.4},{:.4},{:.2},{:.6},{:.6},{:.5},{:.6},{:.4},{:.4},{:.3e},{stage},{}",
-        s.episodes.len(),
-        mean(&|e| e.episode_return as f64),
-        mean(&|e| e.success as u8 as f64),
-        mean(&|e| e.length as f64),
-        s.policy_loss,
-        s.value_loss,
-        s.entropy,
-        s.approx_kl,
-        s.clip_fraction,
-        s.explained_variance,
-        s.learning_rate,
-        eval.map_or(String::new(), |e| format!("{e:.4}")),
-    )
-}
 
 /// Progress of a run, reported after every update.
 pub struct Progress<'a> {
@@ -198,7 +167,8 @@ fn start_from(
                 meta.input_dim
             )));
         }
-        let (dropped, restored, missing) = resume::repair_metrics(run_dir, &meta, METRICS_HEADER)?;
+        let (dropped, restored, missing) =
+            resume::repair_metrics(run_dir, &meta, &metrics_header())?;
         if dropped + restored > 0 || missing > 0 {
             eprintln!(
                 "note: metrics.csv repaired to match checkpoints/latest (update {}): {dropped} torn or extra rows dropped, {restored} restored from the checkpoint, {missing} earlier updates without a row",
@@ -212,7 +182,7 @@ fn start_from(
     write_atomic(&run_dir.join("config.toml"), toml.as_bytes()).map_err(io(run_dir))?;
     write_atomic(
         &run_dir.join("metrics.csv"),
-        format!("{METRICS_HEADER}\n").as_bytes(),
+        format!("{}\n", metrics_header()).as_bytes(),
     )
     .map_err(io(run_dir))?;
     let meta = CheckpointMeta {

@@ -1,0 +1,121 @@
+//! The parts a [`GraspEnv::step`] is made of: applying the action, the free-space shortcut, the
+//! task's view of the state, the observation, and the episode's record.
+
+use crate::config::ArmSimulation;
+use crate::env::free_space::{REST_SPEED, REST_TURN_RATE};
+use crate::env::grasp_env::GraspEnv;
+use crate::env::obs::Observation;
+use crate::env::step::{Action, EnvError, Info};
+use crate::scenario::perception::{observe_object, wrist_view};
+use crate::sim::contacts::ContactReport;
+use crate::task::episode::{Ending, StepFacts};
+use crate::task::state::TaskState;
+
+impl GraspEnv {
+    /// Takes the step into the episode's tracker; on the terminal step (`self.done`), puts the
+    /// episode's record into `info`.
+    pub(super) fn track(&mut self, obs: &Observation, reward: f64, info: &mut Info) {
+        self.tracker.observe(StepFacts {
+            pad_contact: obs.pad_contact,
+            object_z: self.object_in_base().xyz()[2],
+            gripper_opening: obs.gripper_opening,
+            reward,
+        });
+        if self.done {
+            let (seed, object_xy) = self
+                .scenario
+                .map_or((0, [0.0; 2]), |s| (s.seed, s.object_xy));
+            info.episode = Some(self.tracker.finish(Ending {
+                seed,
+                object_xy,
+                steps: self.steps,
+                success: info.success,
+                failure: info.failure.as_ref(),
+                physics_fault: info.physics_fault.is_some(),
+            }));
+        }
+    }
+
+    /// A free-space step ([`FreeSpace`]) if the config allows it, the arm is the servo arm, the
+    /// object rests and the previous step found no collision; `None` when the step must run
+    /// physics (the robot is then unchanged).
+    pub(super) fn free_step(&mut self, command: &[f64; 6]) -> Option<ContactReport> {
+        let allowed = self.config.physics.free_space
+            && self.robot.kind == ArmSimulation::Servo
+            && self.contacts.collision.is_none()
+            && self.sim.object_at_rest(REST_SPEED, REST_TURN_RATE);
+        if !allowed {
+            return None;
+        }
+        let report = self.free_space.try_step(
+            &mut self.robot,
+            &self.sim.object_pose(),
+            command,
+            self.config.physics.dt,
+            self.config.physics.substeps,
+        )?;
+        self.sim_in_sync = false;
+        Some(report)
+    }
+
+    /// Checks an action and hands it to the robot: returns the joint-velocity command [rad/s]
+    /// (from joint velocities, or from the TCP command through the Jacobian in `tcp` mode).
+    pub(super) fn apply_action(&mut self, action: &Action) -> Result<[f64; 6], EnvError> {
+        if let Some((index, &value)) = action.0.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(EnvError::NonFiniteAction { index, value });
+        }
+        let clipped = action.0.map(|v| v.clamp(-1.0, 1.0));
+        let arm = &self.config.arm;
+        let (qd, gripper) = match &self.task_space {
+            None => (
+                std::array::from_fn(|i| clipped[i] * arm.action_scale),
+                clipped[6],
+            ),
+            Some(task_space) => task_space.joint_command(&self.robot.q, &clipped),
+        };
+        self.robot.gripper_command = gripper;
+        Ok(qd)
+    }
+
+    /// The facts the task judges, in `world` [m].
+    pub(super) fn task_state(&self, contacts: &ContactReport) -> TaskState {
+        let object = self.sim.object_pose().translation.vector;
+        let tcp = self.robot.tcp_in_world().xyz();
+        let base_xy = self.cell.mount.base_in_world.xyz();
+        TaskState {
+            object: [object.x, object.y, object.z],
+            object_rest_z: self.object_rest_z,
+            tcp,
+            pad_contact: contacts.pad_contact,
+            gripper_opening: self.robot.gripper_opening(),
+            object_size: self.config.scene.cube_size,
+            table_height: self.config.scene.table_height,
+            object_xy_from_table_centre: [object.x - base_xy[0], object.y - base_xy[1]],
+            table_half_size: self.config.scene.table_size.map(|s| s / 2.0),
+        }
+    }
+
+    /// The observation: the robot's state and the object as the perception model reports it,
+    /// in `base_link`.
+    pub(super) fn observe(
+        &self,
+        joint_velocities: [f64; 6],
+        contacts: &ContactReport,
+    ) -> Observation {
+        let tcp = self.robot.tcp_in_base().xyz();
+        let truth = self.object_in_base();
+        let seen = observe_object(&self.cell.mount, &truth, self.scenario.as_ref());
+        let wrist = self.config.randomization.wrist_camera.as_ref();
+        let wrist_camera = wrist_view(wrist, &self.cell.mount, &truth, tcp);
+        Observation {
+            joints: self.robot.q,
+            joint_velocities,
+            object_rel_tcp: [0, 1, 2].map(|i| seen.position[i] - tcp[i]),
+            gripper_opening: self.robot.gripper_opening(),
+            object_yaw: seen.yaw,
+            tcp_position: tcp,
+            pad_contact: contacts.pad_contact,
+            wrist_camera,
+        }
+    }
+}
