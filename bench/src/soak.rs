@@ -46,6 +46,17 @@ pub struct SoakReport {
     pub rss_end_kib: u64,
 }
 
+impl SoakReport {
+    /// Nothing that must never happen happened: no non-finite observation or reward, no physics
+    /// fault, no env error (`fairgrasp bench soak` exits 1 otherwise).
+    pub fn is_clean(&self) -> bool {
+        self.non_finite_observations == 0
+            && self.non_finite_rewards == 0
+            && self.physics_faults == 0
+            && self.env_errors == 0
+    }
+}
+
 /// The process's resident set size [KiB] from `/proc/self/statm` (Linux), 0 elsewhere.
 pub fn resident_kib() -> u64 {
     let Ok(text) = std::fs::read_to_string("/proc/self/statm") else {

@@ -159,6 +159,18 @@ impl CompareSpec {
     }
 }
 
+/// The presets `fairgrasp compare` compares on by default: the seed recipe's (`seed`), the
+/// full randomisation, the hard one, and the four scenario families.
+pub const DEFAULT_PRESETS: [&str; 7] = [
+    "seed",
+    "full",
+    "hard",
+    "miscalibrated",
+    "miscalibrated_b",
+    "nudged",
+    "wrist_camera",
+];
+
 /// Progress of a running comparison, for progress bars.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CompareEvent<'a> {

@@ -66,17 +66,9 @@ pub struct CompareArgs {
 
 pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     let names = if a.presets.is_empty() {
-        [
-            "seed",
-            "full",
-            "hard",
-            "miscalibrated",
-            "miscalibrated_b",
-            "nudged",
-            "wrist_camera",
-        ]
-        .map(String::from)
-        .to_vec()
+        fairgrasp_rl::compare::DEFAULT_PRESETS
+            .map(String::from)
+            .to_vec()
     } else {
         a.presets.clone()
     };

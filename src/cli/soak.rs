@@ -113,10 +113,7 @@ pub fn run(a: &SoakArgs) -> anyhow::Result<ExitCode> {
     let mut clean = true;
     for (name, r) in names.iter().zip(results) {
         let (r, secs) = r.context("a soak thread stopped early")??;
-        clean &= r.non_finite_observations == 0
-            && r.non_finite_rewards == 0
-            && r.physics_faults == 0
-            && r.env_errors == 0;
+        clean &= r.is_clean();
         rows.push((name.clone(), r, secs));
     }
     if a.json {

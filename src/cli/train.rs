@@ -59,12 +59,8 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
             .map_or("run".into(), |s| s.to_string_lossy().into_owned());
         Path::new("runs").join(stem)
     });
-    // A resume keeps the seed the run was started with when --seed is not given again.
     if a.resume && a.seed.is_none() {
-        let saved = run_dir.join("config.toml");
-        if saved.exists() {
-            config.seed = TrainConfig::from_toml_file(&saved)?.seed;
-        }
+        config.seed = fairgrasp_rl::run::resume::run_seed(&run_dir, config.seed)?;
     }
     if a.resume
         && !fairgrasp_rl::run::resume::has_checkpoint(&run_dir)

@@ -6,12 +6,13 @@ use crate::config::validate::ConfigError;
 use fairgrasp_types::EpisodeRecord;
 
 use crate::env::obs::Observation;
+use crate::env::spaces::ACT_DIM;
 use crate::scenario::{Scenario, UngraspableRegion};
 use crate::task::Failure;
 
 /// One action: joint-velocity commands j1 … j6 and the gripper command, each in [-1, 1].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Action(pub [f64; 7]);
+pub struct Action(pub [f64; ACT_DIM]);
 
 impl Action {
     /// Hold the joints, gripper open.
@@ -21,7 +22,7 @@ impl Action {
 
     /// From any slice of 7 numbers (e.g. a policy's `f32` output).
     pub fn from_slice(values: &[f32]) -> Result<Self, EnvError> {
-        let array: [f32; 7] = values
+        let array: [f32; ACT_DIM] = values
             .try_into()
             .map_err(|_| EnvError::ActionLength(values.len()))?;
         Ok(Action(array.map(f64::from)))

@@ -13,6 +13,7 @@ use crate::config::{ArmSimulation, EnvConfig};
 use crate::sim::collision_filter::set_collision_groups;
 pub use crate::sim::convert::from_rapier;
 use crate::sim::convert::{to_rapier, vec3};
+use crate::sim::finger_drive::{FINGER_DAMPING, FINGER_STIFFNESS};
 
 pub use crate::sim::part::{Part, ROBOT_PARTS};
 
@@ -273,7 +274,7 @@ pub fn build(
             .local_anchor2(Vector::ZERO)
             .limits([0.0, g.finger_travel as f32])
             .motor_model(MotorModel::ForceBased)
-            .motor_position(0.0, 1.0e4, 1.0e2)
+            .motor_position(0.0, FINGER_STIFFNESS as f32, FINGER_DAMPING as f32)
             .motor_max_force(config.gripper.force as f32)
             .contacts_enabled(false);
         finger_joints.push(world.impulse_joints.insert(palm, body, joint, true));

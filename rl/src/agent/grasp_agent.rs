@@ -92,8 +92,8 @@ impl Default for AgentConfig {
 
 /// Env observation size.
 pub const OBS_DIM: usize = fairgrasp_env::env::obs::OBS_DIM;
-/// Env action size.
-pub const ACT_DIM: usize = 7;
+/// Env action size (the env's).
+pub use fairgrasp_env::env::spaces::ACT_DIM;
 
 impl AgentConfig {
     /// The policy's input size.

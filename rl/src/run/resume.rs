@@ -34,6 +34,17 @@ pub struct ResumeOptions {
     pub accept_config_changes: bool,
 }
 
+/// The seed a resume trains with when none is given again: the one the run in `run_dir` was
+/// started with (its `config.toml`), else `given` (a folder with no run yet).
+pub fn run_seed(run_dir: &Path, given: u64) -> Result<u64, TrainError> {
+    let saved = run_dir.join("config.toml");
+    if saved.exists() {
+        Ok(TrainConfig::from_toml_file(&saved)?.seed)
+    } else {
+        Ok(given)
+    }
+}
+
 /// Whether the folder holds a checkpoint (a run with something to lose).
 pub fn has_checkpoint(run_dir: &Path) -> bool {
     let latest = run_dir.join("checkpoints/latest");
