@@ -1,0 +1,8 @@
+//! fairgrasp-eval: trained policies as they are used after training — read and run without
+//! burn, so evaluating, comparing and exporting need none of the training stack.
+//!
+//! - [`burnpack`]: the weights of a checkpoint's `model.bpk`.
+//! - [`actor`]: the policy network's actor as plain arrays (its mean action).
+
+pub mod actor;
+pub mod burnpack;
