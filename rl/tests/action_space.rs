@@ -59,10 +59,19 @@ fn the_shipped_pure_policy_acts_the_same_through_an_env_configured_for_its_task_
         (Mode::Pure, ActionSpace::Tcp)
     );
     let joint_config = presets::load("seed").unwrap();
-    let mut tcp_config = joint_config.clone();
-    tcp_config.arm.action_space = ActionSpace::Tcp;
-    tcp_config.arm.tcp_saturation = TcpSaturation::ActionScale;
-    tcp_config.arm.gripper_command = GripperCommand::Binary;
+    let tcp_config = meta.agent.env_for(&joint_config);
+    assert_eq!(
+        (
+            tcp_config.arm.action_space,
+            tcp_config.arm.tcp_saturation,
+            tcp_config.arm.gripper_command
+        ),
+        (
+            ActionSpace::Tcp,
+            TcpSaturation::ActionScale,
+            GripperCommand::Binary
+        )
+    );
     let mut raw_meta = meta.clone();
     raw_meta.agent.action_space = ActionSpace::Joint; // pure + joint: the output, clipped
     let mut through_agent = agent_policy(&meta, &model, &joint_config);

@@ -1,14 +1,11 @@
-//! The grasping agents: what a network's output means on the FR3 grasp env. Residual agents
-//! correct the scripted baseline; pure agents act alone. Builds on [`crate::ppo`] (the vector-env
-//! interface) and on env and planner; the runs ([`crate::run`]) build on it.
+//! The grasping agents as PPO trains them. The agents themselves (config, policy input and
+//! action, the residual's script) are burn-free and live in `fairgrasp-eval`
+//! (`eval/src/agent/`), re-exported here; this room adds the grasp env as PPO sees it.
 //!
-//! - [`grasp_agent`]: the agent's config and its policy (network + script), `ACT_DIM`.
-//! - [`script`]: the scripted part a residual agent corrects.
-//! - [`grasp_env`]: the grasp env as PPO sees it (a [`crate::ppo::vec_api::VecEnvironment`]).
+//! - [`grasp_env`]: the grasp env as a [`crate::ppo::vec_api::VecEnvironment`].
 
-pub mod grasp_agent;
+pub use fairgrasp_eval::agent::{grasp_agent, script};
 pub mod grasp_env;
-pub mod script;
 
-pub use grasp_agent::{ACT_DIM, AgentConfig, GraspAgent, GripperMode, Mode};
+pub use fairgrasp_eval::agent::{ACT_DIM, AgentConfig, GraspAgent, GripperMode, Mode};
 pub use grasp_env::GraspVecEnv;

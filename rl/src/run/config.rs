@@ -2,7 +2,6 @@
 
 use std::path::Path;
 
-use fairgrasp_env::config::presets;
 use fairgrasp_env::scenario::curriculum::CurriculumConfig;
 use fairgrasp_env::{ArmSimulation, EnvConfig};
 use serde::{Deserialize, Serialize};
@@ -11,6 +10,7 @@ use crate::agent::grasp_agent::AgentConfig;
 use crate::ppo::PpoConfig;
 use crate::ppo::model::ModelConfig;
 use crate::run::error::{TrainError, io};
+use fairgrasp_eval::recipe;
 
 /// The most parallel environments a run may step (each holds a physics world, ~1 MB).
 pub const MAX_ENVS: usize = 4096;
@@ -56,18 +56,6 @@ pub struct TrainConfig {
     /// config file (e.g. `[env.task] reward = "staged"`, `terminate_on_collision = false`).
     /// Evaluations use the preset as it is: the success criterion never changes.
     pub env: Option<toml::Table>,
-}
-
-/// Lays `top` over `base`: tables merge key by key, any other value replaces.
-fn overlay(base: &mut toml::Table, top: &toml::Table) {
-    for (key, value) in top {
-        match (base.get_mut(key), value) {
-            (Some(toml::Value::Table(b)), toml::Value::Table(t)) => overlay(b, t),
-            _ => {
-                base.insert(key.clone(), value.clone());
-            }
-        }
-    }
 }
 
 impl Default for TrainConfig {
@@ -175,25 +163,12 @@ impl TrainConfig {
 
     /// The environment configuration of the preset and arm (what evaluations use).
     pub fn env_config(&self) -> Result<EnvConfig, fairgrasp_env::ConfigError> {
-        let mut env = presets::load(&self.preset)?;
-        env.arm.model = self.arm;
-        Ok(env)
+        recipe::env_config(&self.preset, self.arm)
     }
 
     /// The environment configuration training steps: [`TrainConfig::env_config`] with the
     /// `[env]` overrides laid over it, validated.
     pub fn training_env_config(&self) -> Result<EnvConfig, fairgrasp_env::ConfigError> {
-        let env = self.env_config()?;
-        let Some(overrides) = &self.env else {
-            return Ok(env);
-        };
-        let invalid = |message: String| fairgrasp_env::ConfigError::File {
-            path: "[env] of the training config".into(),
-            message,
-        };
-        let mut table = toml::Table::try_from(&env).map_err(|e| invalid(e.to_string()))?;
-        overlay(&mut table, overrides);
-        let text = toml::to_string(&table).map_err(|e| invalid(e.to_string()))?;
-        EnvConfig::from_toml_str(&text).map_err(|e| invalid(e.to_string()))
+        recipe::training_env_config(&self.preset, self.arm, self.env.as_ref())
     }
 }

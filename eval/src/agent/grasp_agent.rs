@@ -13,7 +13,7 @@
 //! ([`fairgrasp_env::robot::tcp_action::TaskSpaceAction`]).
 
 use fairgrasp_env::cell::Cell;
-use fairgrasp_env::config::{ActionSpace, ArmConfig, GripperCommand, TcpSaturation};
+use fairgrasp_env::config::{ActionSpace, GripperCommand, TcpSaturation};
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::robot::tcp_action::TaskSpaceAction;
 use fairgrasp_env::{Action, EnvConfig, Observation};
@@ -202,18 +202,31 @@ impl AgentConfig {
         }))
     }
 
-    /// The env's task-space action that turns the policy's output into joint actions (pure
-    /// `tcp` mode only): `env`'s speeds, saturated at `arm.action_scale`, a binary gripper.
-    /// An env configured with `action_space = "tcp"`, `tcp_saturation = "action_scale"` and
-    /// `gripper_command = "binary"` applies the same action itself.
+    /// Whether the policy commands the TCP directly (pure mode, `tcp` action space).
+    fn pure_task_space(&self) -> bool {
+        self.mode == Mode::Pure && self.action_space == ActionSpace::Tcp
+    }
+
+    /// The env a policy of this agent acts on directly, its output handed over as it is: for
+    /// a pure `tcp` agent, `env` with the env's task-space action saturated at
+    /// `arm.action_scale` and a binary gripper (`arm.action_space = "tcp"`,
+    /// `tcp_saturation = "action_scale"`, `gripper_command = "binary"`); otherwise `env`.
+    pub fn env_for(&self, env: &EnvConfig) -> EnvConfig {
+        let mut env = env.clone();
+        if self.pure_task_space() {
+            env.arm.action_space = ActionSpace::Tcp;
+            env.arm.tcp_saturation = TcpSaturation::ActionScale;
+            env.arm.gripper_command = GripperCommand::Binary;
+        }
+        env
+    }
+
+    /// The env's task-space action of [`AgentConfig::env_for`] (pure `tcp` mode only), for
+    /// acting on a `joint`-mode env: it turns the policy's output into joint actions.
     pub fn task_space(&self, env: &EnvConfig) -> Option<TaskSpaceAction> {
-        (self.mode == Mode::Pure && self.action_space == ActionSpace::Tcp).then(|| {
-            let arm = ArmConfig {
-                tcp_saturation: TcpSaturation::ActionScale,
-                gripper_command: GripperCommand::Binary,
-                ..env.arm.clone()
-            };
-            TaskSpaceAction::new(&Cell::from_config(env), &arm)
+        self.pure_task_space().then(|| {
+            let direct = self.env_for(env);
+            TaskSpaceAction::new(&Cell::from_config(&direct), &direct.arm)
         })
     }
 

@@ -1,0 +1,101 @@
+//! A training recipe (`assets/experiments/*.toml`, a run's `config.toml`) as the env sees it:
+//! which preset and arm, the `[env]` settings laid over the preset for training only, the
+//! agent and the curriculum. The trainer (`fairgrasp-rl`) and Python read the env a recipe
+//! trains on from here, so both meet the same env.
+
+use std::path::Path;
+
+use fairgrasp_env::config::presets;
+use fairgrasp_env::scenario::curriculum::CurriculumConfig;
+use fairgrasp_env::{ArmSimulation, ConfigError, EnvConfig};
+use serde::Deserialize;
+
+use crate::agent::AgentConfig;
+
+/// The env-facing part of a training config (its other keys — network, PPO, run length — are
+/// the trainer's and are ignored here).
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(default)]
+pub struct Recipe {
+    /// Environment preset name or a .toml file.
+    pub preset: String,
+    pub arm: ArmSimulation,
+    pub agent: AgentConfig,
+    pub curriculum: Option<CurriculumConfig>,
+    /// Settings laid over the preset's env configuration for training only.
+    pub env: Option<toml::Table>,
+}
+
+impl Default for Recipe {
+    fn default() -> Self {
+        Self {
+            preset: "hard".into(),
+            arm: ArmSimulation::Servo,
+            agent: AgentConfig::default(),
+            curriculum: None,
+            env: None,
+        }
+    }
+}
+
+/// Lays `top` over `base`: tables merge key by key, any other value replaces.
+fn overlay(base: &mut toml::Table, top: &toml::Table) {
+    for (key, value) in top {
+        match (base.get_mut(key), value) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(t)) => overlay(b, t),
+            _ => {
+                base.insert(key.clone(), value.clone());
+            }
+        }
+    }
+}
+
+impl Recipe {
+    /// Reads the env-facing part of a training config file.
+    pub fn from_toml_file(path: &Path) -> Result<Self, ConfigError> {
+        let file = |message: String| ConfigError::File {
+            path: path.display().to_string(),
+            message,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| file(e.to_string()))?;
+        toml::from_str(&text).map_err(|e| file(e.to_string()))
+    }
+
+    /// The env configuration evaluations use: the preset as it is, with the recipe's arm.
+    pub fn env_config(&self) -> Result<EnvConfig, ConfigError> {
+        env_config(&self.preset, self.arm)
+    }
+
+    /// The env configuration training steps: [`Recipe::env_config`] with the `[env]`
+    /// overrides laid over it, validated.
+    pub fn training_env_config(&self) -> Result<EnvConfig, ConfigError> {
+        training_env_config(&self.preset, self.arm, self.env.as_ref())
+    }
+}
+
+/// The preset `preset` with arm simulation `arm`.
+pub fn env_config(preset: &str, arm: ArmSimulation) -> Result<EnvConfig, ConfigError> {
+    let mut env = presets::load(preset)?;
+    env.arm.model = arm;
+    Ok(env)
+}
+
+/// [`env_config`] with `overrides` (a training config's `[env]` table) laid over it, validated.
+pub fn training_env_config(
+    preset: &str,
+    arm: ArmSimulation,
+    overrides: Option<&toml::Table>,
+) -> Result<EnvConfig, ConfigError> {
+    let env = env_config(preset, arm)?;
+    let Some(overrides) = overrides else {
+        return Ok(env);
+    };
+    let invalid = |message: String| ConfigError::File {
+        path: "[env] of the training config".into(),
+        message,
+    };
+    let mut table = toml::Table::try_from(&env).map_err(|e| invalid(e.to_string()))?;
+    overlay(&mut table, overrides);
+    let text = toml::to_string(&table).map_err(|e| invalid(e.to_string()))?;
+    EnvConfig::from_toml_str(&text).map_err(|e| invalid(e.to_string()))
+}
