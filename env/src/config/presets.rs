@@ -1,12 +1,13 @@
 //! Named configurations: `fixed`, `seed`, `wide`, `full`, `hard` and the scenario families
-//! `miscalibrated`, `miscalibrated_b`, `nudged` ([`crate::scenario::families`]), shipped as TOML files in
+//! `miscalibrated`, `miscalibrated_b`, `wrist_camera`, `nudged` ([`crate::scenario::families`])
+//! and the contact family `heavy_slippery`, shipped as TOML files in
 //! `assets/configs/` and built into the binary, so `--preset NAME` works from any folder.
 
 use crate::config::EnvConfig;
 use crate::config::validate::ConfigError;
 
 /// Every preset: name, TOML text, one-line description.
-pub const PRESETS: [(&str, &str, &str); 9] = [
+pub const PRESETS: [(&str, &str, &str); 10] = [
     (
         "fixed",
         include_str!("../../../assets/configs/fixed.toml"),
@@ -51,6 +52,11 @@ pub const PRESETS: [(&str, &str, &str); 9] = [
         "nudged",
         include_str!("../../../assets/configs/nudged.toml"),
         "full + the cube pushed 1.5–3 cm once during the approach",
+    ),
+    (
+        "heavy_slippery",
+        include_str!("../../../assets/configs/heavy_slippery.toml"),
+        "full with cubes of 0.3–1.0 kg and friction 0.05–0.3: heavier and more slippery than the script's 5 N grip holds",
     ),
 ];
 
