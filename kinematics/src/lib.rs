@@ -45,8 +45,6 @@ pub mod model;
 pub mod pose;
 pub mod qp_ik;
 pub mod urdf;
-mod urdf_check;
-mod urdf_error;
 mod wrist_singular;
 
 pub use analytic_ik::{AnalyticIkOptions, IkError, IkSolution, nearest_solution};
