@@ -35,12 +35,12 @@
 //! ```
 
 pub mod analytic_ik;
+pub mod angles;
 pub mod collision;
 pub mod diff_ik;
 pub mod fairino;
 pub mod fk;
 pub mod geometry;
-mod ik_tasks;
 pub mod model;
 pub mod pose;
 pub mod qp_ik;
