@@ -25,6 +25,7 @@ use std::f64::consts::{PI, TAU};
 use nalgebra::{Isometry3, Vector3};
 use serde::Serialize;
 
+pub use crate::angles::wrap_pi;
 use crate::fk::{EndFrame, dh_transform};
 use crate::model::ArmModel;
 use crate::pose::Pose;
@@ -87,15 +88,6 @@ impl Default for AnalyticIkOptions {
             limit_tolerance: 1e-9,
         }
     }
-}
-
-/// Wraps an angle into (−π, π].
-pub fn wrap_pi(angle: f64) -> f64 {
-    if angle > -PI && angle <= PI {
-        return angle; // the common case: atan2 and acos results
-    }
-    let a = angle.rem_euclid(TAU);
-    if a > PI { a - TAU } else { a }
 }
 
 /// The representative of `angle` (mod 2π) within `[lower, upper]`, if any; else `angle` wrapped

@@ -194,6 +194,16 @@ const IGNORED_PAIRS: [(&str, &str); 3] = [
     ("wrist1_link", "wrist3_link"),
 ];
 
+impl ArmKind {
+    /// The model with FAIRINO's numbers.
+    pub fn model(self) -> ArmModel {
+        match self {
+            ArmKind::Fr3 => fr3(),
+            ArmKind::Fr5 => fr5(),
+        }
+    }
+}
+
 /// The FAIRINO FR3 with the parallel-jaw gripper.
 pub fn fr3() -> ArmModel {
     let gripper = parallel_gripper();

@@ -35,18 +35,16 @@
 //! ```
 
 pub mod analytic_ik;
+pub mod angles;
 pub mod collision;
 pub mod diff_ik;
 pub mod fairino;
 pub mod fk;
 pub mod geometry;
-mod ik_tasks;
 pub mod model;
 pub mod pose;
 pub mod qp_ik;
 pub mod urdf;
-mod urdf_check;
-mod urdf_error;
 mod wrist_singular;
 
 pub use analytic_ik::{AnalyticIkOptions, IkError, IkSolution, nearest_solution};

@@ -1,6 +1,7 @@
 //! The arm model type: DH table, joint limits, masses, collision capsules, flange and TCP.
 //!
-//! The numbers themselves live in [`crate::fairino`]; this module only says what they mean.
+//! The numbers themselves live in [`crate::fairino`] (with [`ArmKind::model`], which picks an
+//! arm's numbers); this module only says what they mean.
 
 use crate::pose::Pose;
 
@@ -30,14 +31,6 @@ impl ArmKind {
         ArmKind::ALL
             .into_iter()
             .find(|k| k.name().eq_ignore_ascii_case(name))
-    }
-
-    /// The model with FAIRINO's numbers.
-    pub fn model(self) -> ArmModel {
-        match self {
-            ArmKind::Fr3 => crate::fairino::fr3(),
-            ArmKind::Fr5 => crate::fairino::fr5(),
-        }
     }
 }
 

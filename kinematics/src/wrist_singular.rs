@@ -10,7 +10,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use crate::analytic_ik::wrap_pi;
+use crate::angles::wrap_pi;
 
 /// How far inside the reaching arc a θ6 moved onto it is placed [rad], so that the elbow is
 /// not exactly straight or folded (where rounding could push it just out of reach).

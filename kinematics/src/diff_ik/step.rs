@@ -1,14 +1,4 @@
-//! Differential IK as one QP, mink/pink style: tasks give an error and a Jacobian, limits give
-//! inequality rows, and [`solve_step`] stacks them and calls clarabel.
-//!
-//! The unknown is the joint displacement `Δq` [rad] of one step. A task with rows `(j_k, e_k, w_k)`
-//! wants `j_k · Δq = e_k`; a limit row `(g, h)` demands `g · Δq ≤ h`. The QP is
-//!
-//! ```text
-//! minimise   ½ Σ_k w_k (j_k·Δq − e_k)² + ½ λ ‖Δq‖²     subject to   G Δq ≤ h
-//! ```
-//!
-//! with λ > 0 the damping that keeps it strictly convex at singularities.
+//! One differential-IK step: stacks the tasks' and limits' rows into a QP and solves it.
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -17,41 +7,8 @@ use clarabel::solver::{
 
 use nalgebra::{Matrix6, Vector6};
 
+use crate::diff_ik::rows::{Limit, LimitRow, Task, TaskRow};
 use crate::model::ArmModel;
-
-/// One weighted row of a task: wants `jacobian · Δq = error`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TaskRow {
-    /// Row of the task Jacobian (per radian of each joint).
-    pub jacobian: [f64; 6],
-    /// Desired change of the task quantity this step (m or rad).
-    pub error: f64,
-    /// Weight (cost per unit² of residual).
-    pub weight: f64,
-}
-
-/// One inequality row: `g · Δq ≤ h`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LimitRow {
-    /// Row of G.
-    pub g: [f64; 6],
-    /// Right-hand side [rad].
-    pub h: f64,
-}
-
-/// Something the solver should achieve, as rows of error and Jacobian.
-pub trait Task {
-    /// Appends this task's rows at configuration `q` [rad].
-    fn rows(&self, model: &ArmModel, q: &[f64; 6], out: &mut Vec<TaskRow>);
-}
-
-/// Something the step must respect, as inequality rows.
-pub trait Limit {
-    /// Appends this limit's rows at configuration `q` [rad].
-    fn rows(&self, model: &ArmModel, q: &[f64; 6], out: &mut Vec<LimitRow>);
-}
-
-pub use crate::ik_tasks::{FrameTask, JointPositionLimit, PostureTask, VelocityLimit};
 
 /// Why one QP step failed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

@@ -2,7 +2,7 @@
 
 use nalgebra::Vector3;
 
-use crate::diff_ik::{Limit, LimitRow, Task, TaskRow};
+use crate::diff_ik::rows::{Limit, LimitRow, Task, TaskRow};
 use crate::fk::EndFrame;
 use crate::model::ArmModel;
 use crate::pose::Pose;

@@ -14,7 +14,7 @@ use std::collections::HashMap;
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 
-use crate::urdf::UrdfError;
+use crate::urdf::error::UrdfError;
 
 /// The joint types URDF defines (`urdf-rs` reads all of them).
 pub const URDF_JOINT_TYPES: [&str; 7] = [

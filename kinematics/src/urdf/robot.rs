@@ -1,77 +1,21 @@
-//! Loading any URDF: the joint table, and a serial chain from the root to a tip link with FK.
+//! Reading a URDF into its joint table ([`UrdfRobot`]) and picking a serial chain from it.
 //!
 //! Errors name the file, the element and the value at fault. Reading and checking take time
 //! linear in the file's length (every look-up by name goes through a hash map), and files larger
-//! than [`MAX_URDF_BYTES`] or nested deeper than [`MAX_NESTING_DEPTH`] are refused.
+//! than [`MAX_URDF_BYTES`] or nested deeper than
+//! [`MAX_NESTING_DEPTH`](crate::urdf::MAX_NESTING_DEPTH) are refused.
 
 use std::collections::{HashMap, HashSet};
 use std::io::Read;
 use std::path::Path;
 
-use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
-use serde::Serialize;
+use nalgebra::Vector3;
 
 use crate::pose::Pose;
-use crate::urdf_check::check_urdf_text;
-
-pub use crate::urdf_check::{MAX_NESTING_DEPTH, MAX_URDF_BYTES};
-pub use crate::urdf_error::UrdfError;
-
-/// A URDF joint type.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum JointKind {
-    Revolute,
-    Continuous,
-    Prismatic,
-    Fixed,
-    Floating,
-    Planar,
-    Spherical,
-}
-
-impl JointKind {
-    /// The URDF spelling.
-    pub fn name(self) -> &'static str {
-        match self {
-            JointKind::Revolute => "revolute",
-            JointKind::Continuous => "continuous",
-            JointKind::Prismatic => "prismatic",
-            JointKind::Fixed => "fixed",
-            JointKind::Floating => "floating",
-            JointKind::Planar => "planar",
-            JointKind::Spherical => "spherical",
-        }
-    }
-
-    /// Does this joint add one degree of freedom along an axis?
-    pub fn is_single_axis(self) -> bool {
-        matches!(
-            self,
-            JointKind::Revolute | JointKind::Continuous | JointKind::Prismatic
-        )
-    }
-}
-
-/// One joint as the URDF states it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct UrdfJoint {
-    pub name: String,
-    pub kind: JointKind,
-    pub parent: String,
-    pub child: String,
-    /// `T_parent_joint` at zero joint value [m, rad].
-    #[serde(skip)]
-    pub origin: Pose,
-    /// Unit axis in the joint frame.
-    pub axis: [f64; 3],
-    /// Position limits [rad or m]; `None` for continuous and fixed joints.
-    pub limits: Option<[f64; 2]>,
-    /// Velocity limit [rad/s or m/s] (0 where the URDF gives none).
-    pub max_velocity: f64,
-    /// Effort limit [N·m or N] (0 where the URDF gives none).
-    pub max_effort: f64,
-}
+use crate::urdf::chain::SerialChain;
+use crate::urdf::check::{MAX_URDF_BYTES, check_urdf_text};
+use crate::urdf::error::UrdfError;
+use crate::urdf::joint::{JointKind, UrdfJoint};
 
 /// A parsed robot: its joints in depth-first order from the root link.
 #[derive(Clone, Debug, PartialEq)]
@@ -86,15 +30,6 @@ pub struct UrdfRobot {
     pub links: Vec<String>,
     /// Every joint, depth-first from the root.
     pub joints: Vec<UrdfJoint>,
-}
-
-/// The joints from the root link to a tip link, with forward kinematics.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SerialChain {
-    /// Joints root → tip, fixed ones included.
-    pub joints: Vec<UrdfJoint>,
-    /// The tip link.
-    pub tip: String,
 }
 
 impl UrdfRobot {
@@ -335,50 +270,4 @@ fn convert_joint(file: &str, j: &urdf_rs::Joint) -> Result<UrdfJoint, UrdfError>
         max_velocity: j.limit.velocity,
         max_effort: j.limit.effort,
     })
-}
-
-impl SerialChain {
-    /// Number of movable joints (the length FK expects).
-    pub fn dof(&self) -> usize {
-        self.joints
-            .iter()
-            .filter(|j| j.kind.is_single_axis())
-            .count()
-    }
-
-    /// Names of the movable joints, in order.
-    pub fn joint_names(&self) -> Vec<&str> {
-        self.joints
-            .iter()
-            .filter(|j| j.kind.is_single_axis())
-            .map(|j| j.name.as_str())
-            .collect()
-    }
-
-    /// `T_root_tip` for movable-joint values `q` [rad or m]. Panics if `q.len() != dof()`.
-    pub fn fk(&self, q: &[f64]) -> Pose {
-        assert_eq!(
-            q.len(),
-            self.dof(),
-            "SerialChain::fk: wrong number of joint values"
-        );
-        let mut t = Isometry3::identity();
-        let mut values = q.iter();
-        for joint in &self.joints {
-            t *= joint.origin.iso;
-            let axis = Unit::new_unchecked(Vector3::from(joint.axis));
-            match joint.kind {
-                JointKind::Revolute | JointKind::Continuous => {
-                    let angle = *values.next().expect("counted by dof");
-                    t *= UnitQuaternion::from_axis_angle(&axis, angle);
-                }
-                JointKind::Prismatic => {
-                    let offset = *values.next().expect("counted by dof");
-                    t *= Translation3::from(axis.into_inner() * offset);
-                }
-                _ => {}
-            }
-        }
-        Pose { iso: t }
-    }
 }

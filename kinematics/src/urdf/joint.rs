@@ -1,0 +1,61 @@
+//! One URDF joint as fairgrasp keeps it: its kind, links, origin, axis and limits.
+
+use serde::Serialize;
+
+use crate::pose::Pose;
+
+/// A URDF joint type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum JointKind {
+    Revolute,
+    Continuous,
+    Prismatic,
+    Fixed,
+    Floating,
+    Planar,
+    Spherical,
+}
+
+impl JointKind {
+    /// The URDF spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "revolute",
+            JointKind::Continuous => "continuous",
+            JointKind::Prismatic => "prismatic",
+            JointKind::Fixed => "fixed",
+            JointKind::Floating => "floating",
+            JointKind::Planar => "planar",
+            JointKind::Spherical => "spherical",
+        }
+    }
+
+    /// Does this joint add one degree of freedom along an axis?
+    pub fn is_single_axis(self) -> bool {
+        matches!(
+            self,
+            JointKind::Revolute | JointKind::Continuous | JointKind::Prismatic
+        )
+    }
+}
+
+/// One joint as the URDF states it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct UrdfJoint {
+    pub name: String,
+    pub kind: JointKind,
+    pub parent: String,
+    pub child: String,
+    /// `T_parent_joint` at zero joint value [m, rad].
+    #[serde(skip)]
+    pub origin: Pose,
+    /// Unit axis in the joint frame.
+    pub axis: [f64; 3],
+    /// Position limits [rad or m]; `None` for continuous and fixed joints.
+    pub limits: Option<[f64; 2]>,
+    /// Velocity limit [rad/s or m/s] (0 where the URDF gives none).
+    pub max_velocity: f64,
+    /// Effort limit [N·m or N] (0 where the URDF gives none).
+    pub max_effort: f64,
+}
