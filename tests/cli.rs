@@ -2,6 +2,7 @@
 
 use std::process::{Command, Output};
 
+use fairgrasp_kinematics::fairino::FR3_ZERO_FLANGE_XYZ;
 use serde_json::Value;
 
 fn fairgrasp(args: &[&str]) -> Output {
@@ -33,7 +34,7 @@ fn fk_json_gives_fairinos_zero_pose_flange() {
     ]);
     assert_eq!(code, 0);
     let xyz = floats(&v["flange"]["xyz"]);
-    for (a, b) in xyz.iter().zip([-0.520, -0.202, 0.038]) {
+    for (a, b) in xyz.iter().zip(FR3_ZERO_FLANGE_XYZ) {
         assert!((a - b).abs() < 1e-12, "{xyz:?}");
     }
     assert_eq!(floats(&v["tcp"]["quat_xyzw"]).len(), 4);

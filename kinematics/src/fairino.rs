@@ -20,6 +20,15 @@ pub const LINK_NAMES: [&str; 7] = [
     "wrist3_link",
 ];
 
+/// FAIRINO's published check of the FR3 at zero joints (docs/FR3.md, "Checks"): the flange
+/// (`tool0`) position in `base_link` [m]. The DH table below must reproduce it
+/// (`kinematics/tests/fk.rs`), and `fairgrasp frames` prints the difference.
+pub const FR3_ZERO_FLANGE_XYZ: [f64; 3] = [-0.520, -0.202, 0.038];
+
+/// The same check's flange orientation: the rows of `R_base_tool0` at zero joints.
+pub const FR3_ZERO_FLANGE_ROTATION: [[f64; 3]; 3] =
+    [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]];
+
 const DEG: f64 = std::f64::consts::PI / 180.0;
 
 /// Manual soft limits and velocity limits (docs/FR3.md, "Joint limits").

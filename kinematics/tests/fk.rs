@@ -2,6 +2,7 @@
 
 mod common;
 
+use fairgrasp_kinematics::fairino::{FR3_ZERO_FLANGE_ROTATION, FR3_ZERO_FLANGE_XYZ};
 use fairgrasp_kinematics::fk::EndFrame;
 use fairgrasp_kinematics::{
     ArmKind, FR3_URDF, FR5_URDF, UrdfRobot, manipulability, min_singular_value,
@@ -12,27 +13,24 @@ fn fr3_zero_pose_flange_matches_fairinos_check_values() {
     let model = ArmKind::Fr3.model();
     let flange = model.fk_flange(&[0.0; 6]);
     let xyz = flange.xyz();
-    let expected = [-0.520, -0.202, 0.038];
     for i in 0..3 {
-        assert!((xyz[i] - expected[i]).abs() < 1e-12, "{xyz:?}");
+        assert!((xyz[i] - FR3_ZERO_FLANGE_XYZ[i]).abs() < 1e-12, "{xyz:?}");
     }
     let rotation = flange.rotation_rows();
-    let expected = [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]];
     for r in 0..3 {
         for c in 0..3 {
             assert!(
-                (rotation[r][c] - expected[r][c]).abs() < 1e-12,
+                (rotation[r][c] - FR3_ZERO_FLANGE_ROTATION[r][c]).abs() < 1e-12,
                 "{rotation:?}"
             );
         }
     }
-    // The TCP is 0.14 m along the flange z axis, which points along base -y at zero.
+    // The TCP is 0.14 m along the flange z axis (the published rotation's third column: base -y).
     let tcp = model.fk_tcp(&[0.0; 6]).xyz();
-    assert!(
-        (tcp[0] + 0.520).abs() < 1e-12
-            && (tcp[1] + 0.342).abs() < 1e-12
-            && (tcp[2] - 0.038).abs() < 1e-12
-    );
+    for i in 0..3 {
+        let expected = FR3_ZERO_FLANGE_XYZ[i] + 0.14 * FR3_ZERO_FLANGE_ROTATION[i][2];
+        assert!((tcp[i] - expected).abs() < 1e-12, "{tcp:?}");
+    }
 }
 
 #[test]

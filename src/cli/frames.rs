@@ -3,14 +3,12 @@
 use std::process::ExitCode;
 
 use clap::Args;
+use fairgrasp_kinematics::fairino::FR3_ZERO_FLANGE_XYZ;
 use fairgrasp_kinematics::pose::naive_world_to_base;
 use fairgrasp_kinematics::{ArmKind, world_to_base};
 use serde_json::json;
 
 use super::args::{ModelArg, OutputArgs, fmt3, pose_from, print_json};
-
-/// FAIRINO's published flange position at zero joints (FR3) [m].
-const FR3_ZERO_FLANGE: [f64; 3] = [-0.520, -0.202, 0.038];
 
 #[derive(Args, Debug)]
 pub struct FramesArgs {
@@ -47,7 +45,7 @@ pub fn run(a: &FramesArgs) -> anyhow::Result<ExitCode> {
         .sqrt();
     let check = (model.kind == ArmKind::Fr3).then(|| {
         (0..3)
-            .map(|i| (flange.xyz()[i] - FR3_ZERO_FLANGE[i]).abs())
+            .map(|i| (flange.xyz()[i] - FR3_ZERO_FLANGE_XYZ[i]).abs())
             .fold(0.0, f64::max)
     });
 
@@ -55,7 +53,7 @@ pub fn run(a: &FramesArgs) -> anyhow::Result<ExitCode> {
         print_json(&json!({
             "model": model.kind.name(),
             "zero_pose": {"flange": flange.record(), "tcp": tcp.record(),
-                          "flange_published_xyz": check.map(|_| FR3_ZERO_FLANGE),
+                          "flange_published_xyz": check.map(|_| FR3_ZERO_FLANGE_XYZ),
                           "flange_error_m": check},
             "base_in_world": base.record(),
             "point_world": point,
@@ -83,7 +81,7 @@ pub fn run(a: &FramesArgs) -> anyhow::Result<ExitCode> {
         };
         println!(
             "        {verdict} FAIRINO's published {} (error {err:.1e} m)",
-            fmt3(FR3_ZERO_FLANGE)
+            fmt3(FR3_ZERO_FLANGE_XYZ)
         );
     }
     println!(
