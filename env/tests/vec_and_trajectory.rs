@@ -3,6 +3,7 @@
 use fairgrasp_env::episode::trajectory::{Recorder, Trajectory};
 use fairgrasp_env::vec::VecEnv;
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
+use fairgrasp_types::body::compose;
 
 fn cfg() -> EnvConfig {
     let mut c = EnvConfig::default();
@@ -109,7 +110,7 @@ fn an_episode_exports_to_csv_and_json_with_one_row_per_step() {
     let action = Action([0.5, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]);
     for _ in 0..10 {
         let step = env.step(&action).unwrap();
-        t.record_step(&env, &action, &step);
+        t.record_step(&env, &action, &step, None);
     }
     assert_eq!(t.rows.len(), 11);
     assert!(t.rows[10].joints[0] > t.rows[0].joints[0]);
@@ -150,6 +151,32 @@ fn an_episode_exports_to_csv_and_json_with_one_row_per_step() {
     let cfg = env.config();
     let table_z = cfg.scene.table_height - cfg.arm.base_xyz[2];
     assert!((t.scene.table_top_z - table_z).abs() < 1e-12);
+    // Body poses for 3D replays: the palm's frame is tool0 and the TCP sits 0.14 m along its
+    // z; the pads sit the opening apart (inner faces); every shape is on a listed body; the
+    // base stands where the config puts it.
+    let body = |n: &str| row.bodies[t.scene.bodies.iter().position(|b| b == n).unwrap()];
+    let tcp_from_palm = compose(&body("palm"), &[0.0, 0.0, 0.14, 0.0, 0.0, 0.0, 1.0]);
+    for k in 0..3 {
+        assert!(
+            (tcp_from_palm[k] - row.tcp_xyz[k]).abs() < 1e-9,
+            "{tcp_from_palm:?}"
+        );
+    }
+    let (fl, fr) = (body("finger_left"), body("finger_right"));
+    let finger_gap =
+        ((fl[0] - fr[0]).powi(2) + (fl[1] - fr[1]).powi(2) + (fl[2] - fr[2]).powi(2)).sqrt();
+    assert!(
+        (finger_gap - row.gripper_opening_m - pad).abs() < 1e-9,
+        "{finger_gap}"
+    );
+    assert_eq!(t.scene.shapes.len(), 12);
+    assert!(t.scene.shapes.iter().all(|s| s.body < t.scene.bodies.len()));
+    assert_eq!(t.scene.base_in_world[..3], cfg.arm.base_xyz);
+    let table = t.scene.table_in_world.unwrap();
+    assert!((table.centre[2] + table.half_extents[2] - cfg.scene.table_height).abs() < 1e-12);
+    let back = Trajectory::from_json(&std::fs::read_to_string(dir.join("episode_0.json")).unwrap())
+        .unwrap();
+    assert_eq!(back, t);
     assert!(
         !std::fs::read_dir(&dir).unwrap().any(|e| e
             .unwrap()

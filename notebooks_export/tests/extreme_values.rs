@@ -188,10 +188,7 @@ fn a_still_past_the_last_step_is_refused_with_the_allowed_range() {
 #[test]
 fn an_episode_without_steps_is_refused_instead_of_panicking() {
     let dir = temp_dir("extreme-empty");
-    let t = Trajectory {
-        scene: Default::default(),
-        rows: Vec::new(),
-    };
+    let t = Trajectory::default();
     for (name, result) in [
         (
             "chart",

@@ -88,6 +88,7 @@ fn inconsistent_comparisons_are_refused() {
         preset_configs: Default::default(),
         run_folders: vec![],
         recorded: vec![],
+        replay: vec![],
         results: vec![r.clone()],
     };
     assert_eq!(c.check(), Ok(()));

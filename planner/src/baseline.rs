@@ -77,6 +77,22 @@ pub enum Phase {
     Failed,
 }
 
+impl Phase {
+    /// The phase's name as recorded in trajectories (`plan`, `approach`, `descend`, `close`,
+    /// `lift`, `hold`, `failed`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Phase::Plan => "plan",
+            Phase::Approach => "approach",
+            Phase::Descend => "descend",
+            Phase::Close => "close",
+            Phase::Lift => "lift",
+            Phase::Hold => "hold",
+            Phase::Failed => "failed",
+        }
+    }
+}
+
 /// Distances [m] across the table, nearest first, at which [`ScriptedGrasp`] looks for a
 /// graspable pose when the observed cube admits none (8 directions each).
 pub const NEAREST_GRASP_SEARCH: [f64; 5] = [0.005, 0.01, 0.015, 0.02, 0.03];
@@ -395,5 +411,9 @@ impl Policy for ScriptedGrasp {
     fn gave_up(&self) -> Option<Outcome> {
         // A timed-out phase is reported by the episode's own end (timeout); only IK is ours.
         self.gave_up.filter(|o| *o == Outcome::IkFailure)
+    }
+
+    fn phase(&self) -> Option<&'static str> {
+        Some(self.phase.name())
     }
 }

@@ -197,4 +197,13 @@ impl Policy for ClosedLoopGrasp {
     fn gave_up(&self) -> Option<Outcome> {
         self.script.gave_up()
     }
+
+    /// The script's phase, or `reopen` while the gripper opens for a retry.
+    fn phase(&self) -> Option<&'static str> {
+        Some(if self.opening > 0 {
+            "reopen"
+        } else {
+            self.script.phase().name()
+        })
+    }
 }

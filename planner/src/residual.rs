@@ -245,4 +245,8 @@ impl Policy for OracleResidual {
     fn gave_up(&self) -> Option<Outcome> {
         self.residual.script().gave_up()
     }
+
+    fn phase(&self) -> Option<&'static str> {
+        Some(self.residual.script().phase().name())
+    }
 }

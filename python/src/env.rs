@@ -88,7 +88,7 @@ impl Env {
         let env: &mut GraspEnv = &mut guard;
         let step = py.detach(|| env.step(&action)).map_err(value_error)?;
         if let Some(t) = self.trajectory.lock().map_err(value_error)?.as_mut() {
-            t.record_step(env, &action, &step);
+            t.record_step(env, &action, &step, None);
         }
         let info = serde_json::to_string(&step.info).map_err(value_error)?;
         Ok((

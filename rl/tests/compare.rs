@@ -26,6 +26,7 @@ fn spec(names: &[&str], episodes: usize) -> CompareSpec {
         seed: 11,
         threads: 2,
         episode: None,
+        replay_episodes: 2,
         command: "fairgrasp compare (test)".into(),
     }
 }
@@ -49,6 +50,7 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
         CompareEvent::Method { preset, method } => {
             started.lock().unwrap().push(format!("{preset}/{method}"));
         }
+        CompareEvent::MethodDone { .. } | CompareEvent::Recording { .. } => {}
     })
     .unwrap();
     let c = &out.comparison;
@@ -96,7 +98,14 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
         .find(|&i| base[i].outcome != agent[i].outcome)
         .unwrap_or(0);
     assert_eq!(c.recorded.len(), 4);
-    for (i, (rec, traj)) in c.recorded.iter().zip(&out.episodes).enumerate() {
+    let trajectory_of = |rec: &fairgrasp_types::RecordedEpisode| {
+        out.episodes
+            .iter()
+            .find(|t| rec.trajectory == format!("episodes/{}.json", t.stem))
+            .unwrap_or_else(|| panic!("no trajectory for {}", rec.trajectory))
+    };
+    for (i, rec) in c.recorded.iter().enumerate() {
+        let traj = trajectory_of(rec);
         let evaluated = &c.get(&c.methods[i], "seed").unwrap().report.results[k];
         assert_eq!((rec.preset.as_str(), rec.episode), ("seed", k));
         assert_eq!(rec.outcome, evaluated.outcome, "{}", rec.method);
@@ -106,8 +115,20 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
             "{}",
             rec.method
         );
-        assert_eq!(rec.trajectory, format!("episodes/{}.json", traj.stem));
+        assert_eq!(traj.trajectory.outcome, Some(evaluated.outcome));
     }
+    // The replay: every method on scenarios 0 and 1 (and k), each replaying its evaluation.
+    let picked = if k < 2 { 2 } else { 3 };
+    assert_eq!(c.replay.len(), 4 * picked);
+    assert_eq!(out.episodes.len(), c.replay.len());
+    for rec in &c.replay {
+        let evaluated = &c.get(&rec.method, "seed").unwrap().report.results[rec.episode];
+        let traj = &trajectory_of(rec).trajectory;
+        assert_eq!(rec.outcome, evaluated.outcome, "{}", rec.trajectory);
+        assert_eq!(traj.rows.len(), evaluated.steps + 1, "{}", rec.trajectory);
+        assert_eq!(traj.scene.bodies.len(), traj.rows[0].bodies.len());
+    }
+    assert!(c.recorded.iter().all(|r| c.replay.contains(r)));
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rl-compare-episodes");
     std::fs::remove_dir_all(&dir).ok();
     out.save_episodes(&dir).unwrap();

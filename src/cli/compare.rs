@@ -59,6 +59,10 @@ pub struct CompareArgs {
     /// Default: the first one where the first two methods end differently, else 0.
     #[arg(long, value_name = "K")]
     episode: Option<usize>,
+    /// Scenarios of the last preset recorded for every method for the 3D replay
+    /// (replay.html: the first N of the set, and the --episode one). 0: no replay.
+    #[arg(long, value_name = "N", default_value_t = 20)]
+    replay_episodes: usize,
     /// Print compare.json on stdout instead of the table.
     #[arg(long)]
     json: bool,
@@ -95,6 +99,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
             .threads
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
         episode: a.episode,
+        replay_episodes: a.replay_episodes,
         command: std::iter::once("fairgrasp".to_string())
             .chain(std::env::args().skip(1))
             .collect::<Vec<_>>()
@@ -113,6 +118,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     let output = run_comparison(&spec, &learned, &|event| match event {
         CompareEvent::Method { preset, method } => bar.set_message(format!("{preset}: {method}")),
         CompareEvent::Episode => bar.inc(1),
+        CompareEvent::MethodDone { .. } | CompareEvent::Recording { .. } => {}
     })?;
     bar.finish_and_clear();
 

@@ -55,6 +55,11 @@ pub struct Comparison {
     pub run_folders: Vec<String>,
     #[serde(default)]
     pub recorded: Vec<RecordedEpisode>,
+    /// Episodes recorded for the 3D replay (`replay.html`): every method on the first
+    /// scenarios of the last preset, and on the `recorded` one (empty in older files: the
+    /// replay then shows the `recorded` episodes).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub replay: Vec<RecordedEpisode>,
     pub results: Vec<MethodResult>,
 }
 
@@ -122,7 +127,12 @@ impl Comparison {
                 r.method, r.preset
             )));
         }
-        if let Some(r) = self.recorded.iter().find(|r| !listed(&r.method, &r.preset)) {
+        if let Some(r) = self
+            .recorded
+            .iter()
+            .chain(&self.replay)
+            .find(|r| !listed(&r.method, &r.preset))
+        {
             return Err(SchemaError(format!(
                 "recorded episode of `{}` on `{}`: method or preset not listed",
                 r.method, r.preset

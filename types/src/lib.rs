@@ -7,9 +7,11 @@
 //! - [`eval`]: an evaluation report over episodes ([`EvalReport`], Wilson interval).
 //! - [`compare`]: a comparison of methods on presets (`compare.json`).
 //! - [`paired`]: McNemar's exact test between two methods on the same scenarios.
-//! - [`trajectory`]: one recorded episode (written by the env, read by the report).
+//! - [`trajectory`]: one recorded episode (written by the env, read by the report); [`body`]:
+//!   the robot's bodies and shapes in it, for 3D replays.
 //! - [`fs`]: [`write_atomic`], the one way fairgrasp writes a result file.
 
+pub mod body;
 pub mod checksum;
 pub mod compare;
 pub mod episode;

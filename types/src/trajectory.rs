@@ -1,12 +1,16 @@
 //! One recorded episode, written by the env and read by the report (one type, one schema):
-//! per step the joints, gripper, TCP and object poses, action, reward and the arm's capsules,
-//! all in `base_link` [m], quaternions `[x, y, z, w]`; saved as CSV and JSON.
+//! per step the joints, gripper, TCP and object poses, action, reward, the arm's capsules, the
+//! robot's body poses, the pad contacts and the policy's phase, all in `base_link` [m],
+//! quaternions `[x, y, z, w]`; the scene says where `base_link` stands in the world. Saved as
+//! CSV and JSON. Fields added after the first version have serde defaults: older files load.
 
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::body::{BodyShape, IDENTITY_POSE, Pose7, WorldBox, rotate};
 use crate::fs::write_atomic;
+use crate::names::Outcome;
 
 fn identity_quat() -> [f64; 4] {
     [0.0, 0.0, 0.0, 1.0]
@@ -38,6 +42,21 @@ pub struct TrajectoryRow {
     /// (JSON only; for replays).
     #[serde(default)]
     pub capsules: Vec<[f64; 7]>,
+    /// Pose of every body of [`TrajectoryScene::bodies`] in `base_link` (empty in files
+    /// recorded before bodies were).
+    #[serde(default)]
+    pub bodies: Vec<Pose7>,
+    /// Left and right pad touching the cube after this step.
+    #[serde(default)]
+    pub pad_contact: [bool; 2],
+    /// What happened in this step besides motion: a collision (with the two parts), a
+    /// protective stop, the cube pushed or off the table.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub events: Vec<String>,
+    /// The policy's phase when it chose this step's action (the script's `approach`,
+    /// `descend`, `close`, …; `None` for a policy without phases and for step 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub phase: Option<String>,
 }
 
 /// What a replay needs besides the rows: the table and cube in `base_link` [m].
@@ -51,6 +70,22 @@ pub struct TrajectoryScene {
     pub cube_size: f64,
     /// Names of the capsules in each row (links, then palm and fingers).
     pub capsule_names: Vec<String>,
+    /// `base_link` in the world (the mount: pedestal height, yaw, tilt).
+    #[serde(default = "identity_pose")]
+    pub base_in_world: Pose7,
+    /// The table slab in the world (`None` in older files: draw it from the corners).
+    #[serde(default)]
+    pub table_in_world: Option<WorldBox>,
+    /// Names of the rigid bodies whose poses each row records ([`TrajectoryRow::bodies`]).
+    #[serde(default)]
+    pub bodies: Vec<String>,
+    /// The collision shapes fixed to those bodies: the simulation's own geometry.
+    #[serde(default)]
+    pub shapes: Vec<BodyShape>,
+}
+
+fn identity_pose() -> Pose7 {
+    IDENTITY_POSE
 }
 
 /// A recorded episode.
@@ -59,26 +94,14 @@ pub struct Trajectory {
     #[serde(default)]
     pub scene: TrajectoryScene,
     pub rows: Vec<TrajectoryRow>,
+    /// How the episode ended (`None` in older files, or if recording stopped before its end).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outcome: Option<Outcome>,
 }
 
 impl TrajectoryRow {
     /// The cube's 8 corners in `base_link` for edge length `size` [m].
     pub fn cube_corners(&self, size: f64) -> [[f64; 3]; 8] {
-        let [x, y, z, w] = self.object_quat_xyzw;
-        let rotate = |v: [f64; 3]| {
-            // v + 2w(q×v) + 2q×(q×v), q = (x, y, z)
-            let q = [x, y, z];
-            let cross = |a: [f64; 3], b: [f64; 3]| {
-                [
-                    a[1] * b[2] - a[2] * b[1],
-                    a[2] * b[0] - a[0] * b[2],
-                    a[0] * b[1] - a[1] * b[0],
-                ]
-            };
-            let t = cross(q, v).map(|c| 2.0 * c);
-            let u = cross(q, t);
-            [0, 1, 2].map(|i| v[i] + w * t[i] + u[i])
-        };
         let h = 0.5 * size;
         let mut out = [[0.0; 3]; 8];
         for (i, corner) in out.iter_mut().enumerate() {
@@ -87,7 +110,7 @@ impl TrajectoryRow {
                 if i & 2 == 0 { -h } else { h },
                 if i & 4 == 0 { -h } else { h },
             ];
-            let r = rotate(local);
+            let r = rotate(self.object_quat_xyzw, local);
             *corner = [0, 1, 2].map(|k| self.object_xyz[k] + r[k]);
         }
         out
@@ -95,8 +118,8 @@ impl TrajectoryRow {
 }
 
 impl Trajectory {
-    /// Parses a trajectory's JSON text and checks it: at least one row, and every row with the
-    /// scene's number of capsules.
+    /// Parses a trajectory's JSON text and checks it: at least one row, every row with the
+    /// scene's number of capsules and of bodies, every shape on a listed body.
     pub fn from_json(text: &str) -> Result<Self, String> {
         let t: Self = serde_json::from_str(text)
             .map_err(|e| format!("not a fairgrasp trajectory JSON: {e}"))?;
@@ -108,6 +131,19 @@ impl Trajectory {
             return Err(format!(
                 "row {i}: {} capsules, scene names {n}",
                 t.rows[i].capsules.len()
+            ));
+        }
+        let bodies = t.scene.bodies.len();
+        if let Some(i) = t.rows.iter().position(|r| r.bodies.len() != bodies) {
+            return Err(format!(
+                "row {i}: {} body poses, scene names {bodies} bodies",
+                t.rows[i].bodies.len()
+            ));
+        }
+        if let Some(s) = t.scene.shapes.iter().find(|s| s.body >= bodies) {
+            return Err(format!(
+                "shape `{}` is on body {}, but the scene has {bodies} bodies",
+                s.name, s.body
             ));
         }
         Ok(t)
@@ -139,6 +175,7 @@ impl Trajectory {
         cols.extend((1..=6).map(|i| format!("action_j{i}")));
         cols.push("action_gripper".into());
         cols.push("reward".into());
+        cols.extend(["pad_contact_left", "pad_contact_right", "phase"].map(String::from));
         cols.join(",")
     }
 
@@ -154,18 +191,21 @@ impl Trajectory {
             values.extend(r.object_xyz.iter().chain(&r.object_quat_xyzw));
             values.extend(r.action);
             values.push(r.reward);
-            let line: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+            values.extend(r.pad_contact.map(|c| f64::from(u8::from(c))));
+            let mut line: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+            line.push(r.phase.clone().unwrap_or_default());
             out.push_str(&line.join(","));
             out.push('\n');
         }
         out
     }
 
-    /// Writes `<stem>.csv` and `<stem>.json` into `dir` (created if missing), atomically.
+    /// Writes `<stem>.csv` and `<stem>.json` (compact) into `dir` (created if missing),
+    /// atomically.
     pub fn save(&self, dir: &Path, stem: &str) -> std::io::Result<()> {
         std::fs::create_dir_all(dir)?;
         write_atomic(&dir.join(format!("{stem}.csv")), self.to_csv().as_bytes())?;
-        let json = serde_json::to_vec_pretty(self).map_err(std::io::Error::other)?;
+        let json = serde_json::to_vec(self).map_err(std::io::Error::other)?;
         write_atomic(&dir.join(format!("{stem}.json")), &json)
     }
 }

@@ -24,6 +24,12 @@ pub trait Policy {
     fn gave_up(&self) -> Option<Outcome> {
         None
     }
+    /// The phase the policy is in after its latest `act` (a script's `approach`, `descend`,
+    /// `close`, …), recorded with each step of a trajectory for replays; `None` (the default)
+    /// for a policy without phases.
+    fn phase(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// Runs one episode of `policy` from `scenario`; records it into `trajectory` if given.
@@ -43,7 +49,7 @@ pub fn run_episode(
         let action = policy.act(&obs);
         let step = env.step(&action)?;
         if let Some(t) = trajectory.as_deref_mut() {
-            t.record_step(env, &action, &step);
+            t.record_step(env, &action, &step, policy.phase());
         }
         obs = step.obs;
         if let Some(record) = step.info.episode {

@@ -324,4 +324,8 @@ impl Policy for GraspAgent {
     fn gave_up(&self) -> Option<fairgrasp_env::episode::Outcome> {
         self.script.as_ref().and_then(|s| s.gave_up())
     }
+
+    fn phase(&self) -> Option<&'static str> {
+        self.script.as_ref().map(Script::phase)
+    }
 }

@@ -81,6 +81,14 @@ impl Script {
         }
     }
 
+    /// The script's phase (for recorded trajectories).
+    pub fn phase(&self) -> &'static str {
+        match self {
+            Script::Joint(b) => b.phase().name(),
+            Script::Task(r) => r.script().phase().name(),
+        }
+    }
+
     /// Set when the script has given up (no IK solution).
     pub fn gave_up(&self) -> Option<Outcome> {
         match self {

@@ -194,6 +194,7 @@ pub fn write_comparison(dir: &Path, run_folders: Vec<String>) -> Comparison {
             outcome: Outcome::Success,
             trajectory: "episodes/baseline_hard_ep0.json".into(),
         }],
+        replay: vec![],
         results,
     };
     std::fs::write(dir.join("compare.json"), c.to_json()).unwrap();

@@ -6,14 +6,20 @@
 //!
 //! The CLI (`fairgrasp compare`) parses arguments, calls [`run_comparison`], writes the files and
 //! prints; tests call [`run_comparison`] directly.
+//!
+//! - [`record`]: recording every method on chosen scenarios (the charts' episode, the replay's).
+//! - [`methods`]: a method named on the command line (`fairgrasp replay --policy`).
+
+pub mod methods;
+pub mod record;
 
 use std::path::{Path, PathBuf};
 
 use burn::tensor::Device;
 use fairgrasp_env::episode::trajectory::Trajectory;
-use fairgrasp_env::episode::{EvalReport, Policy, evaluate, run_episode};
+use fairgrasp_env::episode::{EvalReport, Policy, evaluate};
 use fairgrasp_env::scenario::{Scenario, scenario_set};
-use fairgrasp_env::{EnvConfig, EnvError, GraspEnv};
+use fairgrasp_env::{EnvConfig, EnvError};
 use fairgrasp_planner::{BaselineConfig, ClosedLoopGrasp, ScriptedGrasp};
 use fairgrasp_types::fs::slug;
 use fairgrasp_types::{Comparison, MethodResult, RecordedEpisode};
@@ -126,6 +132,9 @@ pub struct CompareSpec {
     /// Scenario index recorded on the last preset. `None`: the first where the first two methods
     /// end differently, else 0.
     pub episode: Option<usize>,
+    /// Scenarios of the last preset recorded for every method for the 3D replay (the first
+    /// ones of the set, at most `episodes`; the recorded `episode` is always among them).
+    pub replay_episodes: usize,
     /// The command line kept in the result.
     pub command: String,
 }
@@ -172,15 +181,25 @@ pub const DEFAULT_PRESETS: [&str; 7] = [
 ];
 
 /// Progress of a running comparison, for progress bars.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CompareEvent<'a> {
     /// A method starts on a preset's scenario set.
     Method { preset: &'a str, method: &'a str },
     /// One more episode is done.
     Episode,
+    /// A method has finished a preset's scenario set with this success rate.
+    MethodDone {
+        preset: &'a str,
+        method: &'a str,
+        success_rate: f64,
+    },
+    /// The evaluations are done; this many episodes are being recorded for the charts and
+    /// the replay.
+    Recording { episodes: usize },
 }
 
-/// A recorded episode's trajectory and the file stem it is saved under in `episodes/`.
+/// A recorded episode's trajectory and the file stem it is saved under in `episodes/`
+/// (`<method>_<preset>_ep<k>`).
 #[derive(Clone, Debug)]
 pub struct RecordedTrajectory {
     pub stem: String,
@@ -191,8 +210,9 @@ pub struct RecordedTrajectory {
 #[derive(Clone, Debug)]
 pub struct CompareOutput {
     pub comparison: Comparison,
-    /// One per method, in method order; `comparison.recorded[i].trajectory` is
-    /// `episodes/<stem>.json` of `episodes[i]`.
+    /// Every recorded episode (those of `comparison.replay`, in its order, or of
+    /// `comparison.recorded` when no replay was asked for); a recorded episode's `trajectory`
+    /// is `episodes/<stem>.json` of one of them.
     pub episodes: Vec<RecordedTrajectory>,
 }
 
@@ -213,7 +233,11 @@ impl CompareOutput {
 }
 
 /// A fresh policy of method `i` (the [`SCRIPTS`], then `learned` in order) for `config`.
-fn make_policy(i: usize, learned: &[LearnedPolicy], config: &EnvConfig) -> Box<dyn Policy> {
+pub(crate) fn make_policy(
+    i: usize,
+    learned: &[LearnedPolicy],
+    config: &EnvConfig,
+) -> Box<dyn Policy> {
     match i {
         0 => Box::new(ScriptedGrasp::new(config, BaselineConfig::default())),
         1 => Box::new(ClosedLoopGrasp::observed(config)),
@@ -240,6 +264,9 @@ impl Policy for Boxed {
     }
     fn gave_up(&self) -> Option<fairgrasp_env::episode::Outcome> {
         self.0.gave_up()
+    }
+    fn phase(&self) -> Option<&'static str> {
+        self.0.phase()
     }
 }
 
@@ -283,6 +310,11 @@ pub fn run_comparison(
                 &make,
                 &|| progress(CompareEvent::Episode),
             )?;
+            progress(CompareEvent::MethodDone {
+                preset: &preset.name,
+                method,
+                success_rate: report.success_rate,
+            });
             results.push(MethodResult {
                 method: method.clone(),
                 preset: preset.name.clone(),
@@ -303,27 +335,47 @@ pub fn run_comparison(
     let k = spec
         .episode
         .unwrap_or_else(|| first_disagreement(&on_last).unwrap_or(0));
-    let mut env = GraspEnv::new(last.config.clone())?;
+    let mut picked: Vec<usize> = (0..spec.replay_episodes.min(spec.episodes)).collect();
+    if !picked.contains(&k) {
+        picked.push(k);
+    }
+    let all: Vec<usize> = (0..methods.len()).collect();
+    progress(CompareEvent::Recording {
+        episodes: all.len() * picked.len(),
+    });
+    let recordings = record::record_episodes(
+        &last.config,
+        &last_scenarios,
+        &picked,
+        &all,
+        learned,
+        spec.threads,
+    )?;
     let mut recorded = Vec::new();
+    let mut replay = Vec::new();
     let mut episodes = Vec::new();
-    for (i, method) in methods.iter().enumerate() {
-        let mut trajectory = Trajectory::default();
-        let mut policy = make_policy(i, learned, &last.config);
-        let result = run_episode(
-            &mut env,
-            policy.as_mut(),
-            &last_scenarios[k],
-            Some(&mut trajectory),
-        )?;
-        let stem = format!("{}_{}_ep{k}", slug(method), slug(&last.name));
-        recorded.push(RecordedEpisode {
+    for r in recordings {
+        let method = &methods[r.method];
+        let stem = format!("{}_{}_ep{}", slug(method), slug(&last.name), r.scenario);
+        let entry = RecordedEpisode {
             method: method.clone(),
             preset: last.name.clone(),
-            episode: k,
-            outcome: result.outcome,
+            episode: r.scenario,
+            outcome: r.outcome,
             trajectory: format!("episodes/{stem}.json"),
-        });
-        episodes.push(RecordedTrajectory { stem, trajectory });
+        };
+        if r.scenario == k {
+            recorded.push(entry.clone());
+        }
+        if spec.replay_episodes > 0 {
+            replay.push(entry);
+        }
+        if spec.replay_episodes > 0 || r.scenario == k {
+            episodes.push(RecordedTrajectory {
+                stem,
+                trajectory: r.trajectory,
+            });
+        }
     }
 
     let comparison = Comparison {
@@ -341,6 +393,7 @@ pub fn run_comparison(
             .map(|p| p.display().to_string())
             .collect(),
         recorded,
+        replay,
         results,
     };
     comparison

@@ -1,0 +1,74 @@
+//! Recording episodes for the report's episode charts and its 3D replay: every method on a list
+//! of scenarios of one preset, spread over threads (each with its own env and fresh policies),
+//! in (method, scenario) order. The recordings replay the evaluation exactly: the same
+//! scenarios, the same seeds, deterministic policies.
+
+use fairgrasp_env::episode::run_episode;
+use fairgrasp_env::episode::trajectory::Trajectory;
+use fairgrasp_env::scenario::Scenario;
+use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_types::Outcome;
+
+use crate::compare::{CompareError, LearnedPolicy, make_policy};
+
+/// One recorded episode: method index, scenario index, outcome and trajectory.
+pub struct Recording {
+    /// Index of the method ([`crate::compare::SCRIPTS`], then the learned policies).
+    pub method: usize,
+    /// Index of the scenario in the preset's set.
+    pub scenario: usize,
+    pub outcome: Outcome,
+    pub trajectory: Trajectory,
+}
+
+/// Runs and records every method of `methods` (indices, see [`make_policy`]) on every scenario
+/// of `picked` (indices into `scenarios`) of `config`, on `threads` threads. Returns the
+/// recordings ordered by method, then by the order of `picked`.
+pub fn record_episodes(
+    config: &EnvConfig,
+    scenarios: &[Scenario],
+    picked: &[usize],
+    methods: &[usize],
+    learned: &[LearnedPolicy],
+    threads: usize,
+) -> Result<Vec<Recording>, CompareError> {
+    let jobs: Vec<(usize, usize)> = methods
+        .iter()
+        .flat_map(|&m| picked.iter().map(move |&k| (m, k)))
+        .collect();
+    let chunk = jobs.len().div_ceil(threads.max(1)).max(1);
+    let mut out = Vec::with_capacity(jobs.len());
+    std::thread::scope(|scope| -> Result<(), CompareError> {
+        let handles: Vec<_> = jobs
+            .chunks(chunk)
+            .map(|part| {
+                scope.spawn(move || -> Result<Vec<Recording>, CompareError> {
+                    let mut env = GraspEnv::new(config.clone())?;
+                    let mut done = Vec::with_capacity(part.len());
+                    for &(method, scenario) in part {
+                        let mut policy = make_policy(method, learned, config);
+                        let mut trajectory = Trajectory::default();
+                        let record = run_episode(
+                            &mut env,
+                            policy.as_mut(),
+                            &scenarios[scenario],
+                            Some(&mut trajectory),
+                        )?;
+                        done.push(Recording {
+                            method,
+                            scenario,
+                            outcome: record.outcome,
+                            trajectory,
+                        });
+                    }
+                    Ok(done)
+                })
+            })
+            .collect();
+        for h in handles {
+            out.extend(h.join().expect("a recording thread panicked")?);
+        }
+        Ok(())
+    })?;
+    Ok(out)
+}
