@@ -240,6 +240,7 @@ fn every_docs_page_with_commands_is_run() {
         "docs/python.md",
         "docs/real_cell.md",
         "docs/reliability.md",
+        "docs/replay-and-tensorboard.md",
         "docs/report.md",
         "docs/rl.md",
     ];
@@ -284,6 +285,18 @@ fn guide_commands_run_as_written() {
             "my_report/report.md",
             "pitfall4.png",
             "runs/hard20/episode_0003.png",
+        ],
+    );
+}
+
+#[test]
+fn replay_and_tensorboard_commands_run_as_written() {
+    run_page("docs/replay-and-tensorboard.md").has(
+        "docs/replay-and-tensorboard.md",
+        &[
+            "replay.html",
+            "residual_vs_script.html",
+            "runs/pure_full/metrics.csv",
         ],
     );
 }

@@ -9,6 +9,7 @@
 //! - [`runs`]: a training run folder and its `metrics.csv`.
 //! - [`trajectory`]: a recorded episode (`episode_NNNN.json`).
 //! - [`charts`]: success bars, learning curves, workspace maps, episode charts, GIF replays.
+//! - [`replay3d`]: the interactive 3D replay, one self-contained `replay.html`.
 //! - [`document`], [`notebook`]: the report as Markdown and as nbformat 4.5.
 //! - [`report`]: all of it from a list of folders.
 //! - [`output_folder`], [`folder_marker`]: the output folder, written whole or not at all, and
@@ -25,6 +26,7 @@ pub mod folder_marker;
 pub mod notebook;
 pub mod output_folder;
 pub mod raster;
+pub mod replay3d;
 pub mod report;
 pub mod runs;
 pub mod trajectory;

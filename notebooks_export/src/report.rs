@@ -265,6 +265,7 @@ fn comparison_section(
         doc.image(&png, &title);
         doc.image(&gif, &format!("replay: {title}"));
     }
+    crate::replay3d::section::replay_section(doc, (dir, c, trajectories), out, prefix, written)?;
     doc.markdown(format!(
         "### The numbers as data\n\n`compare.csv` holds one row per method and preset (rates \
          as fractions); `compare.json` adds every episode's seed, outcome, steps, return and \

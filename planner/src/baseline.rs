@@ -21,6 +21,7 @@ use crate::correction::{TaskCorrection, corrected, joint_offset};
 pub use crate::grasp::PlannedObject;
 use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
 use crate::motion::{JointTrajectory, MotionLimits};
+pub use crate::phase::Phase;
 
 /// Settings of the scripted grasp.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -59,36 +60,6 @@ impl Default for BaselineConfig {
             close_steps: 8,
             phase_slack_steps: 24,
             max_close_delay_steps: 12,
-        }
-    }
-}
-
-/// Where the script is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Phase {
-    Plan,
-    Approach,
-    Descend,
-    Close,
-    Lift,
-    Hold,
-    /// Gave up: no IK solution, or a phase timed out.
-    Failed,
-}
-
-impl Phase {
-    /// The phase's name as recorded in trajectories (`plan`, `approach`, `descend`, `close`,
-    /// `lift`, `hold`, `failed`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Phase::Plan => "plan",
-            Phase::Approach => "approach",
-            Phase::Descend => "descend",
-            Phase::Close => "close",
-            Phase::Lift => "lift",
-            Phase::Hold => "hold",
-            Phase::Failed => "failed",
         }
     }
 }

@@ -5,6 +5,7 @@
 //! - [`motion`]: jerk-limited, time-synchronised joint trajectories (Ruckig).
 //! - [`baseline`]: [`ScriptedGrasp`], a [`fairgrasp_env::episode::Policy`]: approach → descend →
 //!   close → lift → hold, each phase with a timeout.
+//! - [`phase`]: [`Phase`], where the script is (plan, approach, descend, close, lift, hold).
 //! - [`closed_loop`]: [`ClosedLoopGrasp`], the closed-loop script (re-plans, retries once) and
 //!   the oracle (the same on the true cube pose).
 //! - [`correction`]: a task-space correction of the grasp and its map to joints (Jacobian).
@@ -16,6 +17,7 @@ pub mod closed_loop;
 pub mod correction;
 pub mod grasp;
 pub mod motion;
+pub mod phase;
 pub mod residual;
 
 pub use baseline::{BaselineConfig, CloseTiming, Phase, PlannedObject, ScriptedGrasp};

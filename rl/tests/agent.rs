@@ -188,7 +188,11 @@ fn resume_continues_the_timestep_count_and_the_metrics() {
     let rows: Vec<&str> = csv.lines().collect();
     assert_eq!(rows.len(), 1 + 4, "header + 4 updates");
     let columns = rows[0].split(',').count();
-    assert!(rows[0].ends_with("outcome_physics_fault"), "{}", rows[0]);
+    assert!(
+        rows[0].ends_with("outcome_physics_fault,steps_per_second"),
+        "{}",
+        rows[0]
+    );
     assert!(
         rows.iter().all(|r| r.split(',').count() == columns),
         "the old rows were not padded: {csv}"

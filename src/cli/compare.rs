@@ -8,13 +8,11 @@ use anyhow::Context;
 use clap::Args;
 use fairgrasp_report::compare;
 use fairgrasp_report::{Input, StagedFolder, write_report};
-use fairgrasp_rl::compare::{
-    CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, run_comparison,
-};
+use fairgrasp_rl::compare::{ComparePreset, CompareSpec, LearnedPolicy, run_comparison};
 use fairgrasp_rl::run::shipped;
 use fairgrasp_types::{ArmSimulation, write_atomic};
 
-use super::baseline::{preset_config, progress_bar};
+use super::baseline::preset_config;
 use super::report::existing_rule;
 
 #[derive(Args, Debug)]
@@ -112,15 +110,15 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     // The output folder is checked and its staging folder created before the episodes run.
     let staged = StagedFolder::create(&a.out, existing_rule(a.force), "fairgrasp compare")?;
     let dir = staged.path();
-    let methods = fairgrasp_rl::compare::SCRIPTS.len() + learned.len();
-    let total = (spec.presets.len() * methods) as u64 * u64::from(a.episodes);
-    let bar = progress_bar(total, a.json, "compare");
-    let output = run_comparison(&spec, &learned, &|event| match event {
-        CompareEvent::Method { preset, method } => bar.set_message(format!("{preset}: {method}")),
-        CompareEvent::Episode => bar.inc(1),
-        CompareEvent::MethodDone { .. } | CompareEvent::Recording { .. } => {}
+    let bars = std::sync::Mutex::new(super::progress::CompareBars::new(
+        u64::from(a.episodes),
+        a.json,
+    ));
+    let output = run_comparison(&spec, &learned, &|event| {
+        if let Ok(mut b) = bars.lock() {
+            b.event(event);
+        }
     })?;
-    bar.finish_and_clear();
 
     output.save_episodes(dir)?;
     let comparison = &output.comparison;
@@ -132,6 +130,12 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     )
     .with_context(|| format!("writing {}", dir.join("compare.csv").display()))?;
     let written = write_report(&[Input::load(dir)?], dir, &a.out)?;
+    if fairgrasp_report::replay3d::three_version().is_none() {
+        eprintln!(
+            "note: replay.html was not written: this fairgrasp was built without three.js \
+             (run scripts/install-browser.sh, then build again)"
+        );
+    }
     staged.commit()?;
     if a.json {
         println!("{}", comparison.to_json());

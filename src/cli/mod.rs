@@ -9,6 +9,8 @@ mod fk;
 mod frames;
 mod ik;
 mod joints;
+mod progress;
+mod replay;
 mod report;
 mod scene;
 mod soak;
@@ -54,6 +56,9 @@ enum Command {
     Plot(report::PlotArgs),
     /// report.md and a Jupyter notebook (report.ipynb) from comparison and run folders.
     Report(report::ReportArgs),
+    /// An interactive 3D replay (one HTML file, no network) of a scenario run by one or more
+    /// policies or scripts.
+    Replay(replay::ReplayArgs),
     /// Benchmarks: `bench env` measures environment steps per second and reset times.
     Bench(bench::BenchArgs),
 }
@@ -73,5 +78,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Scene(a) => scene::run(&a),
         Command::Plot(a) => report::run_plot(&a),
         Command::Report(a) => report::run_report(&a),
+        Command::Replay(a) => replay::run(&a),
     }
 }

@@ -71,38 +71,16 @@ pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
             run_dir.display()
         );
     }
-    let bar = indicatif::ProgressBar::new(config.total_timesteps);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{bar:30} {pos}/{len} steps {per_sec} eta {eta} {msg}",
-        )?
-        .progress_chars("=> "),
-    );
     let options = fairgrasp_rl::run::resume::ResumeOptions {
         resume: a.resume,
         accept_config_changes: a.accept_config_changes,
     };
+    let mut lines = super::progress::TrainLines::new();
     let report = train_with(&config, &run_dir, options, &mut |p| {
-        let n = p.stats.episodes.len().max(1) as f64;
-        let success = p.stats.episodes.iter().filter(|e| e.success).count() as f64 / n;
-        let ret = p
-            .stats
-            .episodes
-            .iter()
-            .map(|e| e.episode_return as f64)
-            .sum::<f64>()
-            / n;
-        bar.set_position(p.timesteps);
-        let eval = p
-            .eval
-            .map_or(String::new(), |e| format!(" eval {:.0}%", 100.0 * e));
-        bar.set_message(format!(
-            "success {:.0}% return {ret:.2} stage {}{eval}",
-            100.0 * success,
-            p.stage
-        ));
+        if let Some(line) = lines.line(&p) {
+            eprintln!("{line}");
+        }
     })?;
-    bar.finish_and_clear();
     println!("run folder {}", run_dir.display());
     print_report(
         "trained agent",

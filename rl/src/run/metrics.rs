@@ -1,6 +1,7 @@
 //! `metrics.csv`: one row per PPO update — progress, the episodes that finished in the update
 //! (return, success, length, and the share of each outcome), the update's diagnostics, the
-//! curriculum stage and the evaluation's success rate when one ran.
+//! curriculum stage, the evaluation's success rate when one ran, and the update's speed. The
+//! TensorBoard events ([`crate::run::tensorboard`]) carry the same cells.
 
 use fairgrasp_types::Outcome;
 
@@ -11,23 +12,25 @@ use crate::ppo::vec_api::EpisodeStats;
 const LEADING_COLUMNS: &str = "update,timesteps,wall_time_s,episodes,episode_return,success_rate,episode_length,policy_loss,value_loss,entropy,approx_kl,clip_fraction,explained_variance,learning_rate,stage,eval_success_rate";
 
 /// The header line: [`LEADING_COLUMNS`], then `outcome_<name>` for every [`Outcome`] (the share
-/// of the update's finished episodes that ended so). Files written before the outcome columns
-/// existed have the leading columns only (a resume pads their rows).
+/// of the update's finished episodes that ended so), then `steps_per_second` (environment steps
+/// per second of the update's rollout and learning). Files written before the later columns
+/// existed have a prefix of them (a resume pads their rows).
 pub fn metrics_header() -> String {
     let mut header = LEADING_COLUMNS.to_string();
     for o in Outcome::ALL {
         header.push_str(",outcome_");
         header.push_str(o.as_str());
     }
+    header.push_str(",steps_per_second");
     header
 }
 
-/// The row of update `update` at `timesteps`, `wall` seconds of training [s], curriculum
-/// `stage` and evaluation success rate `eval`.
+/// The row of update `update` at `timesteps`, `wall` seconds of training [s], `speed`
+/// environment steps per second, curriculum `stage` and evaluation success rate `eval`.
 pub fn metrics_row(
     update: u64,
     timesteps: u64,
-    wall: f64,
+    (wall, speed): (f64, f64),
     s: &UpdateStats,
     stage: usize,
     eval: Option<f64>,
@@ -53,6 +56,7 @@ pub fn metrics_row(
         let share = mean(&|e| f64::from(u8::from(e.outcome == Some(o))));
         row.push_str(&format!(",{share:.4}"));
     }
+    row.push_str(&format!(",{speed:.1}"));
     row
 }
 
@@ -82,7 +86,7 @@ mod tests {
             ..UpdateStats::default()
         };
         let header = metrics_header();
-        let row = metrics_row(3, 96, 1.5, &stats, 0, None);
+        let row = metrics_row(3, 96, (1.5, 64.25), &stats, 0, None);
         let columns: Vec<&str> = header.split(',').collect();
         let cells: Vec<&str> = row.split(',').collect();
         assert_eq!(columns.len(), cells.len());
@@ -92,6 +96,7 @@ mod tests {
         assert_eq!(cell("outcome_collision"), "0.2500");
         assert_eq!(cell("outcome_timeout"), "0.2500");
         assert_eq!(cell("outcome_missed_grasp"), "0.0000");
+        assert_eq!(cell("steps_per_second"), "64.2");
         assert!(header.starts_with(LEADING_COLUMNS));
     }
 }

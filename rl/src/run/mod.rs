@@ -3,7 +3,8 @@
 //! the shipped policies. Builds on [`crate::ppo`] and [`crate::agent`].
 //!
 //! - [`config`] and [`error`]: what a run needs, and why it could not start or go on.
-//! - [`train`]: the training loop over a run folder; [`metrics`]: its `metrics.csv` rows.
+//! - [`train`]: the training loop over a run folder; [`metrics`]: its `metrics.csv` rows;
+//!   [`tensorboard`]: the same values as TensorBoard event files.
 //! - [`checkpoint`]: saving and loading a network with its metadata, atomically and checked.
 //! - [`resume`]: continuing a run folder safely; [`crash`]: the kill tests' fault injection.
 //! - [`evaluate`]: a checkpoint as a policy, evaluated on a preset.
@@ -17,6 +18,7 @@ pub mod evaluate;
 pub mod metrics;
 pub mod resume;
 pub mod shipped;
+pub mod tensorboard;
 pub mod train;
 
 pub use config::TrainConfig;

@@ -1,5 +1,6 @@
-//! A training run: config in, run folder out (`config.toml`, `metrics.csv`,
-//! `checkpoints/latest`, `checkpoints/best`, `eval.json`); resumable after Ctrl-C or a kill.
+//! A training run: config in, run folder out (`config.toml`, `metrics.csv`, TensorBoard's
+//! `events.out.tfevents.*`, `checkpoints/latest`, `checkpoints/best`, `eval.json`); resumable
+//! after Ctrl-C or a kill.
 //!
 //! A fresh run saves its untrained network as `checkpoints/latest` (update 0) before the first
 //! update, and `latest` is only ever replaced by a network whose parameters are finite: a run
@@ -29,6 +30,7 @@ use crate::run::error::io;
 pub use crate::run::evaluate::{agent_policy, evaluate_model};
 use crate::run::metrics::{metrics_header, metrics_row};
 use crate::run::resume::{self, ResumeOptions};
+use crate::run::tensorboard::TensorBoardLog;
 
 /// The bit every training episode's scenario seed has set (and no evaluation seed has).
 pub const TRAINING_SEEDS: u64 = 1 << 63;
@@ -40,6 +42,8 @@ pub struct Progress<'a> {
     pub stats: &'a UpdateStats,
     pub stage: usize,
     pub eval: Option<f64>,
+    /// Environment steps per second of this update's rollout and learning.
+    pub steps_per_second: f64,
 }
 
 /// A run in progress: its files, network, env and bookkeeping.
@@ -57,6 +61,8 @@ struct Run<'a> {
     wall_before: f64,
     /// The update `checkpoints/latest` holds.
     saved_updates: u64,
+    /// The run's TensorBoard event file (the same values as `metrics.csv`).
+    tensorboard: TensorBoardLog,
 }
 
 impl Run<'_> {
@@ -84,7 +90,10 @@ impl Run<'_> {
         let frozen_actor = self.meta.updates < config.critic_warmup_updates;
         let actor_before = frozen_actor.then(|| self.ppo.model.clone());
         let progress = self.meta.timesteps as f64 / config.total_timesteps as f64;
+        let iterate_start = Instant::now();
         let stats = self.ppo.iterate(&mut self.env, progress)?;
+        let speed = (config.ppo.n_steps * config.n_envs) as f64
+            / iterate_start.elapsed().as_secs_f64().max(1e-9);
         if let Some(before) = actor_before {
             self.ppo.model = before.with_critic_of(self.ppo.model.clone());
         }
@@ -122,7 +131,14 @@ impl Run<'_> {
         // the two loses nothing (a resume restores the row from the checkpoint).
         let stage = self.curriculum.as_ref().map_or(0, Curriculum::stage);
         let m = &self.meta;
-        let row = metrics_row(m.updates, m.timesteps, m.wall_time_s, &stats, stage, eval);
+        let row = metrics_row(
+            m.updates,
+            m.timesteps,
+            (m.wall_time_s, speed),
+            &stats,
+            stage,
+            eval,
+        );
         self.meta.metrics_row = Some(row.clone());
         self.meta.curriculum_stage = self.curriculum.as_ref().map(Curriculum::stage);
         let update = self.meta.updates;
@@ -138,12 +154,14 @@ impl Run<'_> {
         writeln!(f, "{row}").map_err(io(&metrics_path))?;
         f.sync_data().map_err(io(&metrics_path))?;
         crash::point("after_row", update);
+        self.tensorboard.write_row(&row)?;
         report(Progress {
             timesteps: self.meta.timesteps,
             total: config.total_timesteps,
             stats: &stats,
             stage,
             eval,
+            steps_per_second: speed,
         });
         Ok(())
     }
@@ -243,6 +261,9 @@ pub fn train_with(
         .training_env_config()
         .map_err(|e| TrainError::Config(e.to_string()))?;
     let (meta, model, optimizer_from) = start_from(config, run_dir, resume, &device)?;
+    let config_text = toml::to_string_pretty(config)
+        .map_err(|e| TrainError::Config(format!("config.toml: {e}")))?;
+    let tensorboard = TensorBoardLog::open(run_dir, &config_text, meta.timesteps)?;
     // Fail here, with the reason, rather than inside the rollout if no scenario can be drawn.
     env_config
         .validate()
@@ -294,6 +315,7 @@ pub fn train_with(
         start: Instant::now(),
         wall_before: meta.wall_time_s,
         saved_updates: meta.updates,
+        tensorboard,
         meta,
         ppo,
         env,

@@ -1,0 +1,75 @@
+//! What a comparison runs: the presets, the scenario count and seed, the recorded episodes, and
+//! the presets `fairgrasp compare` uses by default.
+
+use fairgrasp_env::EnvConfig;
+
+use super::CompareError;
+
+/// One preset of a comparison: its name (as given) and its environment config.
+#[derive(Clone, Debug)]
+pub struct ComparePreset {
+    pub name: String,
+    pub config: EnvConfig,
+}
+
+/// What to compare and how.
+#[derive(Clone, Debug)]
+pub struct CompareSpec {
+    /// Presets in run order; the recorded episode is taken on the last one.
+    pub presets: Vec<ComparePreset>,
+    /// Scenarios per preset; every method meets the same ones.
+    pub episodes: usize,
+    /// Seed of the scenario sets.
+    pub seed: u64,
+    /// Worker threads of each evaluation.
+    pub threads: usize,
+    /// Scenario index recorded on the last preset. `None`: the first where the first two methods
+    /// end differently, else 0.
+    pub episode: Option<usize>,
+    /// Scenarios of the last preset recorded for every method for the 3D replay (the first
+    /// ones of the set, at most `episodes`; the recorded `episode` is always among them).
+    pub replay_episodes: usize,
+    /// The command line kept in the result.
+    pub command: String,
+}
+
+impl CompareSpec {
+    /// Refuses an empty or repeated preset list, zero episodes and an out-of-range episode.
+    pub fn check(&self) -> Result<(), CompareError> {
+        let request = |m: String| Err(CompareError::Request(m));
+        if self.presets.is_empty() {
+            return request("no preset to compare on".into());
+        }
+        if let Some(dup) = self.presets.iter().enumerate().find_map(|(i, p)| {
+            self.presets[..i]
+                .iter()
+                .any(|q| q.name == p.name)
+                .then_some(p)
+        }) {
+            return request(format!("--preset {} is given twice", dup.name));
+        }
+        if self.episodes == 0 {
+            return request("at least one episode per preset is needed".into());
+        }
+        if let Some(k) = self.episode.filter(|&k| k >= self.episodes) {
+            return request(format!(
+                "--episode {k}: the scenario sets have {} episodes (0–{})",
+                self.episodes,
+                self.episodes - 1
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The presets `fairgrasp compare` compares on by default: the seed recipe's (`seed`), the
+/// full randomisation, the hard one, and the four scenario families.
+pub const DEFAULT_PRESETS: [&str; 7] = [
+    "seed",
+    "full",
+    "hard",
+    "miscalibrated",
+    "miscalibrated_b",
+    "nudged",
+    "wrist_camera",
+];
