@@ -1,11 +1,14 @@
-"""Python-side env steps per second of fairgrasp (one env, and the native vector env on 2
-threads) beside the PyBullet seed-recipe env (../shared/peers/pybullet_seed_env), measured in one
-run, alternating, 3 times each; random actions, the `seed` preset (position and yaw randomised).
+"""The Python layer's cost, measured side by side in one run (a benchmark, never a test): one
+`FairGraspEnv` stepped from Python against the same steps of the Rust `GraspEnv` in a Rust loop
+(same process, same build, same actions and seeds), and the native vector env's throughput
+against one env's. Random actions on `seed` from the home pose, so almost every step is a
+free-space step (the share that ran physics is printed). Each measurement runs ROUNDS times,
+alternating, and the ratios are taken within a round (the machine may be shared).
 
-    target/python-package-venv/bin/python scripts/python-bench.py [STEPS]
+    target/python-package-venv/bin/python scripts/python-bench.py [STEPS] [ROUNDS]
 
-The peer runs in its own venv (created by ../shared/peers/env_ratio.sh, or here on first use).
-Prints one line per measurement and the medians; a benchmark, never a test.
+With FAIRGRASP_BENCH_PEER=1 it also times the PyBullet seed env (../shared/peers/pybullet_seed_env,
+in its own venv, created on first use) per CPU-second.
 """
 
 import os
@@ -17,55 +20,85 @@ import time
 import numpy as np
 
 import fairgrasp
+from fairgrasp import _native
 
-steps = int(sys.argv[1]) if len(sys.argv) > 1 else 5000
-root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-peer_dir = os.path.join(root, "..", "shared", "peers", "pybullet_seed_env")
-peer_venv = os.environ.get("FAIRGRASP_PEER_VENV", os.path.expanduser("~/.cache/fairgrasp-peer-venv"))
-peer_python = os.path.join(peer_venv, "bin", "python")
-if not os.path.exists(peer_python):
-    subprocess.run([sys.executable, "-m", "venv", peer_venv], check=True)
-    subprocess.run([peer_python, "-m", "pip", "install", "-q", "pybullet==3.2.7", "gymnasium==1.4.0", "numpy"], check=True)
+steps = int(sys.argv[1]) if len(sys.argv) > 1 else 20000
+rounds = int(sys.argv[2]) if len(sys.argv) > 2 else 5
+actions = np.random.default_rng(0).uniform(-1, 1, (steps, 7))
 
 
-def single():
+def rust_single():
+    wall, simulated = _native.bench_rust_env("seed", actions, 0)
+    return steps / wall, simulated
+
+
+def python_single():
     env = fairgrasp.FairGraspEnv(preset="seed")
-    env.reset(seed=0)
-    actions = np.random.default_rng(0).uniform(-1, 1, (steps, 7))
-    w0, c0 = time.perf_counter(), time.process_time()
+    seed = 0
+    env.reset(seed=seed)
+    w0 = time.perf_counter()
     for a in actions:
         _, _, te, tr, _ = env.step(a)
         if te or tr:
-            env.reset()
-    return steps / (time.perf_counter() - w0), steps / (time.process_time() - c0)
+            seed += 1
+            env.reset(seed=seed)
+    return steps / (time.perf_counter() - w0)
 
 
-def vector(n=8):
-    env = fairgrasp.VectorEnv(num_envs=n, preset="seed", threads=2, seed=0)
+def python_vector(n, threads):
+    env = fairgrasp.VectorEnv(num_envs=n, preset="seed", threads=threads, seed=0)
     env.reset()
-    batches = steps // n
-    actions = np.random.default_rng(0).uniform(-1, 1, (batches, n, 7))
-    w0, c0 = time.perf_counter(), time.process_time()
-    for a in actions:
+    batch = actions[: (steps // n) * n].reshape(-1, n, 7)
+    w0 = time.perf_counter()
+    for a in batch:
         env.step(a)
-    return batches * n / (time.perf_counter() - w0), batches * n / (time.process_time() - c0)
+    return batch.shape[0] * n / (time.perf_counter() - w0)
+
+
+def rust_vector(n, threads):
+    batch = actions[: (steps // n) * n].reshape(-1, n, 7)
+    return batch.shape[0] * n / _native.bench_rust_vec("seed", threads, batch, 0)
 
 
 def peer():
-    out = subprocess.run([peer_python, "rate.py", str(min(steps, 2000))], cwd=peer_dir, capture_output=True, text=True, check=True)
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    peer_dir = os.path.join(root, "..", "shared", "peers", "pybullet_seed_env")
+    venv = os.environ.get("FAIRGRASP_PEER_VENV", os.path.expanduser("~/.cache/fairgrasp-peer-venv"))
+    python = os.path.join(venv, "bin", "python")
+    if not os.path.exists(python):
+        subprocess.run([sys.executable, "-m", "venv", venv], check=True)
+        subprocess.run([python, "-m", "pip", "install", "-q", "pybullet==3.2.7", "gymnasium==1.4.0", "numpy"], check=True)
+    out = subprocess.run([python, "rate.py", str(min(steps, 2000))], cwd=peer_dir, capture_output=True, text=True, check=True)
     return float(out.stdout.split("PEER_RATE=")[1])
 
 
-rows = {"fairgrasp, 1 env (wall)": [], "fairgrasp, 1 env (CPU)": [], "fairgrasp vector, 8 envs / 2 threads (wall)": [], "fairgrasp vector (CPU, both threads)": [], "PyBullet seed env (CPU)": []}
-for _ in range(3):
-    w, c = single()
-    rows["fairgrasp, 1 env (wall)"].append(w)
-    rows["fairgrasp, 1 env (CPU)"].append(c)
-    w, c = vector()
-    rows["fairgrasp vector, 8 envs / 2 threads (wall)"].append(w)
-    rows["fairgrasp vector (CPU, both threads)"].append(c)
-    rows["PyBullet seed env (CPU)"].append(peer())
+rows = {}
+
+
+def add(name, value):
+    rows.setdefault(name, []).append(value)
+
+
+for r in range(rounds):
+    rust, simulated = rust_single()
+    py = python_single()
+    add("Rust GraspEnv, Rust loop", rust)
+    add("FairGraspEnv from Python", py)
+    add("  ratio: Python per-step cost / Rust's", rust / py)
+    add("  share of steps that ran physics [%]", 100 * simulated)
+    v8 = python_vector(8, 2)
+    add("VectorEnv, 8 envs / 2 threads, from Python", v8)
+    add("  ratio: 8 envs on 2 threads / one env", v8 / py)
+    add("VectorEnv, 8 envs / 1 thread, from Python", python_vector(8, 1))
+    add("  ratio: 2 threads / 1 thread (8 envs)", v8 / rows["VectorEnv, 8 envs / 1 thread, from Python"][-1])
+    add("Rust VecEnv, 8 envs / 2 threads, Rust loop", rust_vector(8, 2))
+    if os.environ.get("FAIRGRASP_BENCH_PEER"):
+        add("PyBullet seed env (per CPU-second)", peer())
+    print(f"round {r + 1}/{rounds} done", file=sys.stderr)
+
+print(f"{steps} steps per measurement, {rounds} rounds, os.cpu_count() = {os.cpu_count()}, "
+      f"load average before the last round {os.getloadavg()[0]:.1f}")
 for name, values in rows.items():
-    print(f"{name:45s} " + " ".join(f"{v:9.0f}" for v in values) + f"   median {statistics.median(values):9.0f} steps/s")
-ratio = statistics.median(rows["fairgrasp, 1 env (CPU)"]) / statistics.median(rows["PyBullet seed env (CPU)"])
-print(f"one env from Python per CPU-second vs the PyBullet seed env: {ratio:.2f}x")
+    fmt = (lambda v: f"{v:9.2f}") if "ratio" in name or "share" in name else (lambda v: f"{v:9.0f}")
+    unit = "" if "ratio" in name or "share" in name else " steps/s"
+    print(f"{name:48s} " + " ".join(fmt(v) for v in values) + f"   median {fmt(statistics.median(values)).strip()}{unit}")

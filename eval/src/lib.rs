@@ -3,6 +3,7 @@
 //!
 //! - [`agent`]: the grasping agents (config, policy input and action, the residual's script).
 //! - [`recipe`]: the env a training recipe trains on.
+//! - [`recipes`]: the training recipes shipped in `assets/experiments/`.
 //! - [`burnpack`]: the weights of a checkpoint's `model.bpk`.
 //! - [`actor`]: the policy network's actor as plain arrays (its mean action).
 
@@ -10,3 +11,4 @@ pub mod actor;
 pub mod agent;
 pub mod burnpack;
 pub mod recipe;
+pub mod recipes;

@@ -39,7 +39,7 @@ impl Default for Recipe {
 }
 
 /// Lays `top` over `base`: tables merge key by key, any other value replaces.
-fn overlay(base: &mut toml::Table, top: &toml::Table) {
+pub fn overlay(base: &mut toml::Table, top: &toml::Table) {
     for (key, value) in top {
         match (base.get_mut(key), value) {
             (Some(toml::Value::Table(b)), toml::Value::Table(t)) => overlay(b, t),
@@ -51,6 +51,50 @@ fn overlay(base: &mut toml::Table, top: &toml::Table) {
 }
 
 impl Recipe {
+    /// The keys a recipe's env-facing part has (what [`Recipe::with_overrides`] accepts).
+    pub const KEYS: [&'static str; 5] = ["preset", "arm", "agent", "curriculum", "env"];
+
+    /// The recipe of a training config's text (`what` names it in errors) with `overrides`
+    /// laid over its env-facing part: each override's key must be one of [`Recipe::KEYS`];
+    /// a table merges into the recipe's table key by key (`env = {task = {max_steps = 50}}`
+    /// changes that one setting), any other value replaces, and a key in `remove` is dropped
+    /// (`curriculum`: no curriculum; `env`: no training-only settings, the env evaluations
+    /// use). A misspelt key is refused with the list of valid ones.
+    pub fn with_overrides(
+        text: &str,
+        what: &str,
+        overrides: &toml::Table,
+        remove: &[String],
+    ) -> Result<Self, ConfigError> {
+        let file = |message: String| ConfigError::File {
+            path: what.to_string(),
+            message,
+        };
+        if let Some(bad) = overrides
+            .keys()
+            .chain(remove)
+            .find(|k| !Self::KEYS.contains(&k.as_str()))
+        {
+            return Err(file(format!(
+                "unknown override `{bad}`: the valid keys are {}",
+                Self::KEYS.join(", ")
+            )));
+        }
+        let mut table: toml::Table = toml::from_str(text).map_err(|e| file(e.to_string()))?;
+        table.retain(|k, _| Self::KEYS.contains(&AsRef::<str>::as_ref(k)));
+        for key in remove {
+            table.remove(key);
+        }
+        overlay(&mut table, overrides);
+        let recipe: Recipe = toml::Value::Table(table)
+            .try_into()
+            .map_err(|e: toml::de::Error| file(e.to_string()))?;
+        if let Some(c) = &recipe.curriculum {
+            c.validate().map_err(file)?;
+        }
+        Ok(recipe)
+    }
+
     /// Reads the env-facing part of a training config file.
     pub fn from_toml_file(path: &Path) -> Result<Self, ConfigError> {
         let file = |message: String| ConfigError::File {
@@ -71,6 +115,19 @@ impl Recipe {
     pub fn training_env_config(&self) -> Result<EnvConfig, ConfigError> {
         training_env_config(&self.preset, self.arm, self.env.as_ref())
     }
+}
+
+/// Checks a recipe's training env against its agent: the env's own action must stay
+/// `joint` (the agent chooses its action with `[agent] action_space`, and evaluations, which
+/// use the preset as it is, would not see an `[env.arm]` override).
+pub fn check_agent_env(training: &EnvConfig) -> Result<(), String> {
+    if training.arm.action_space != fairgrasp_env::config::ActionSpace::Joint {
+        return Err(
+            "[env.arm] action_space must stay \"joint\" for an agent: choose the agent's action with [agent] action_space (evaluations would not see an env override)"
+                .into(),
+        );
+    }
+    Ok(())
 }
 
 /// The preset `preset` with arm simulation `arm`.

@@ -1,22 +1,28 @@
 """fairgrasp from Python: the Rust grasping env for the FAIRINO FR3 as a gymnasium env.
 
     import gymnasium as gym
-    import fairgrasp  # registers FairGrasp-v0 and one id per preset
+    import fairgrasp  # registers FairGrasp-v0, one id per preset and one per training recipe
     env = gym.make("FairGrasp-v0", preset="full", arm="servo")
+    env = fairgrasp.make("pure_full")  # the env a recipe trains on = gym.make("FairGrasp-Recipe-PureFull-v0")
 
 Also: ``fairgrasp.VectorEnv`` (N envs on Rust threads), ``fairgrasp.sb3.FairGraspVecEnv``
 (Stable-Baselines3's own VecEnv interface), ``fairgrasp.kinematics`` (FK, closed-form and QP IK,
-world_to_base), ``fairgrasp.Baseline`` (the scripted grasp as a policy) and
-``fairgrasp.ResidualWrapper`` (the baseline's action in the observation, the policy's action
-added to it).
+world_to_base), ``fairgrasp.Baseline`` (the scripted grasp as a policy), and
+``fairgrasp.make`` / ``make_vec`` / ``recipe_names`` (the envs of ``assets/experiments/``: for
+``residual_*`` recipes the task-space residual env, whose observation is the residual policy's
+input and whose action is the correction, computed by the Rust agent code). The first,
+joint-space residual (the documented negative result) is
+``fairgrasp.make("residual_miscalibrated", agent={"action_space": "joint"})``.
+``fairgrasp.train`` runs the Rust PPO trainer (``fairgrasp train``) in this process.
 """
 
 from . import _native, kinematics
 from ._native import ACT_DIM, OBS_DIM, preset_names
 from .baseline import Baseline
 from .env import FairGraspEnv
+from .recipes import make, make_vec, recipe_keys, recipe_names
 from .registration import register_all
-from .residual import ResidualWrapper
+from .train import train
 from .vector import VectorEnv
 
 __all__ = [
@@ -24,11 +30,15 @@ __all__ = [
     "OBS_DIM",
     "Baseline",
     "FairGraspEnv",
-    "ResidualWrapper",
     "VectorEnv",
     "kinematics",
+    "make",
+    "make_vec",
     "preset_names",
+    "recipe_keys",
+    "recipe_names",
     "register_all",
+    "train",
 ]
 
 register_all()

@@ -1,4 +1,5 @@
-"""``FairGraspEnv``: one Rust grasping env behind gymnasium's ``Env`` interface."""
+"""``FairGraspEnv``: one Rust grasping env behind gymnasium's ``Env`` interface — a preset's env,
+or the env a training recipe trains on (``recipe=``)."""
 
 import json
 
@@ -16,40 +17,76 @@ def _box(space_json, dtype=np.float32):
     return gym.spaces.Box(low=low, high=high, dtype=dtype), space["names"]
 
 
-def parse_info(info_json, terminated=False, truncated=False):
-    """The Rust step's info as a dict, with ``outcome`` and ``collision_pair`` added from the
-    episode record the Rust env computes at the terminal step (``info["episode"]``: outcome,
-    success, steps, return, held, lifted, ...): the outcome is Rust's, never re-derived here.
-    Both are ``None`` while the episode runs."""
-    info = json.loads(info_json)
-    record = info.get("episode")
-    info["outcome"] = record["outcome"] if record else None
-    pair = record.get("collision_pair") if record else None
-    info["collision_pair"] = tuple(pair) if pair else None
-    return info
+def native_args(preset, arm, config_toml, recipe, evaluation, overrides):
+    """The native constructor's arguments: ``(preset, arm, config_toml, recipe, overrides_json)``.
+
+    Without a recipe: ``preset`` (default ``"full"``) and ``arm`` (default ``"servo"``), and no
+    other keyword. With one: ``preset`` and ``arm`` are overrides like the others (default: the
+    recipe's), ``config_toml`` is refused, and ``evaluation=True`` drops the recipe's
+    training-only ``[env]`` settings and its curriculum (the env its evaluations use)."""
+    if recipe is None:
+        if overrides or evaluation:
+            names = ", ".join(sorted(overrides)) or "evaluation"
+            raise ValueError(
+                f"unknown keyword(s) {names}: without a recipe the env takes preset, arm, "
+                "config_toml, render_mode; with recipe=... it takes the overrides "
+                + ", ".join(_native.recipe_keys())
+            )
+        return preset or "full", arm or "servo", config_toml, None, None
+    if config_toml is not None:
+        raise ValueError("config_toml and recipe exclude each other: override the recipe's env with env={...}")
+    overrides = dict(overrides)
+    if preset is not None:
+        overrides["preset"] = preset
+    if arm is not None:
+        overrides["arm"] = arm
+    if evaluation:
+        for key in ("env", "curriculum"):
+            if overrides.get(key) is not None:
+                raise ValueError(f"evaluation=True drops the recipe's {key}: do not give {key}= as well")
+            overrides[key] = None
+    return "full", "servo", None, str(recipe), json.dumps(overrides)
 
 
 class FairGraspEnv(gym.Env, EzPickle):
-    """The FR3 grasping env (Rust, rapier3d). ``preset``: a shipped preset name (see
-    ``fairgrasp.preset_names()``) or a .toml path; ``arm``: ``"servo"`` or ``"multibody"``;
-    ``config_toml``: a whole env config as TOML text (instead of a preset).
+    """The FR3 grasping env (Rust, rapier3d).
 
-    Observation: 23 float32 values with finite bounds (names in ``obs_names``); action: 7 values
-    in [-1, 1] (joint velocities and gripper, or TCP velocity, yaw rate and gripper when the
-    config's ``arm.action_space = "tcp"``). ``terminated`` and ``truncated`` are the Rust env's;
-    ``info`` has ``success``, ``outcome``, ``collision_pair`` and the scenario. The physics runs
-    with the GIL released. Pickles by its constructor arguments (subprocess vector envs, Ray).
+    A preset's env: ``preset`` a shipped preset name (see ``fairgrasp.preset_names()``) or a
+    .toml path, ``arm`` ``"servo"`` or ``"multibody"``, ``config_toml`` a whole env config as
+    TOML text (instead of a preset). Observation: 23 float32 values with finite bounds (names in
+    ``obs_names``); action: 7 values in [-1, 1] (joint velocities and gripper, or TCP velocity,
+    yaw rate and gripper when the config's ``arm.action_space = "tcp"``).
+
+    A recipe's env: ``recipe`` a shipped recipe name (``fairgrasp.recipe_names()``) or a
+    training config's path; keyword overrides ``preset``, ``arm``, ``agent``, ``curriculum``,
+    ``env`` are laid over the recipe (tables merge: ``env={"task": {"max_steps": 50}}``;
+    ``curriculum=None`` drops one; a misspelt key is refused with the valid ones). The env is the
+    one ``fairgrasp train`` steps for that recipe: the agent's action space and gripper mode,
+    the recipe's ``[env]`` reward and episode length, and its curriculum (the Rust one, advancing
+    on the episodes this env plays; stage in ``info["curriculum_stage"]``). For a residual recipe
+    the observation is the residual policy's input (observation and the script's features) and
+    the action is the correction, both computed by the Rust agent code.
+
+    ``terminated`` and ``truncated`` are the Rust env's; ``info`` has ``success``, ``step``,
+    ``scenario_seed``, and at an episode's end ``outcome``, ``collision_pair`` and the env's
+    ``episode_record`` (``info["episode"]`` is left to gymnasium's and SB3's episode
+    statistics). The physics runs with the GIL released. Pickles by its constructor arguments.
     """
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 10}
 
-    def __init__(self, preset="full", arm="servo", config_toml=None, render_mode=None):
-        EzPickle.__init__(self, preset=preset, arm=arm, config_toml=config_toml, render_mode=render_mode)
+    def __init__(self, preset=None, arm=None, config_toml=None, render_mode=None, recipe=None, evaluation=False, **overrides):
+        EzPickle.__init__(
+            self, preset=preset, arm=arm, config_toml=config_toml, render_mode=render_mode,
+            recipe=recipe, evaluation=evaluation, **overrides,
+        )
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode = {render_mode!r}: choose None or 'rgb_array'")
+        args = native_args(preset, arm, config_toml, recipe, evaluation, overrides)
         self.render_mode = render_mode
-        self.preset = preset
-        self._native = _native.Env(preset, arm, config_toml, render_mode == "rgb_array")
+        self.recipe = recipe
+        self.preset = args[0] if recipe is None else overrides.get("preset", preset)
+        self._native = _native.Env(*args[:3], render_mode == "rgb_array", *args[3:])
         self.observation_space, self.obs_names = _box(self._native.observation_space_json())
         self.action_space, self.action_names = _box(self._native.action_space_json())
         self._episode_seed = None
@@ -57,6 +94,15 @@ class FairGraspEnv(gym.Env, EzPickle):
     @property
     def max_steps(self):
         return self._native.max_steps
+
+    @property
+    def curriculum_stage(self):
+        """``(index, name)`` of the curriculum's stage, or None without a curriculum."""
+        return self._native.curriculum_stage()
+
+    def set_curriculum_stage(self, stage):
+        """Moves the curriculum to ``stage`` (clamped to the last) from the next reset on."""
+        self._native.set_curriculum_stage(int(stage))
 
     def reset(self, *, seed=None, options=None):
         """Starts an episode. ``reset(seed=s)`` plays scenario ``s`` (the Rust
@@ -70,15 +116,14 @@ class FairGraspEnv(gym.Env, EzPickle):
         if options and "scenario_seed" in options:
             scenario_seed = int(options["scenario_seed"])
         self._episode_seed = scenario_seed
-        obs, info = self._native.reset(scenario_seed)
-        return obs, parse_info(info)
+        return self._native.reset(scenario_seed)
 
     def step(self, action):
-        action = np.asarray(action, dtype=np.float64)
-        if action.shape != (self.action_space.shape[0],):
-            raise ValueError(f"action has shape {action.shape}, expected ({self.action_space.shape[0]},)")
-        obs, reward, terminated, truncated, info = self._native.step(np.ascontiguousarray(action))
-        return obs, float(reward), bool(terminated), bool(truncated), parse_info(info, terminated, truncated)
+        if type(action) is not np.ndarray or action.dtype != np.float64:
+            action = np.asarray(action, dtype=np.float64)
+        if action.shape != (7,):
+            raise ValueError(f"action has shape {action.shape}, expected (7,)")
+        return self._native.step(action)
 
     def render(self):
         if self.render_mode != "rgb_array":

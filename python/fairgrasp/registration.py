@@ -1,20 +1,32 @@
-"""Registers ``FairGrasp-v0`` (any preset through ``preset=``) and one id per shipped preset,
-``FairGrasp-<Preset>-v0`` (e.g. ``FairGrasp-Full-v0``), each with a native vector entry point."""
+"""Registers ``FairGrasp-v0`` (any preset through ``preset=``), one id per shipped preset,
+``FairGrasp-<Preset>-v0`` (e.g. ``FairGrasp-Full-v0``), and one id per shipped training recipe,
+``FairGrasp-Recipe-<Recipe>-v0`` (e.g. ``FairGrasp-Recipe-PureFull-v0``: the env
+``assets/experiments/pure_full.toml`` trains on), each with a native vector entry point."""
 
 import gymnasium as gym
 
-from ._native import preset_names
+from ._native import preset_names, recipe_names
+
+
+def _camel(name):
+    return "".join(p.capitalize() for p in name.split("_"))
 
 
 def env_id(preset):
     """The registered id of a preset: ``miscalibrated_b`` → ``FairGrasp-MiscalibratedB-v0``."""
-    return "FairGrasp-" + "".join(p.capitalize() for p in preset.split("_")) + "-v0"
+    return "FairGrasp-" + _camel(preset) + "-v0"
+
+
+def recipe_id(recipe):
+    """The registered id of a recipe: ``pure_full`` → ``FairGrasp-Recipe-PureFull-v0``."""
+    return "FairGrasp-Recipe-" + _camel(recipe) + "-v0"
 
 
 def register_all():
     """Registers every id once (importing fairgrasp twice is harmless)."""
     registered = gym.envs.registry
     ids = [("FairGrasp-v0", {})] + [(env_id(p), {"preset": p}) for p in preset_names()]
+    ids += [(recipe_id(r), {"recipe": r}) for r in recipe_names()]
     for name, kwargs in ids:
         if name in registered:
             continue

@@ -1,21 +1,23 @@
 """``VectorEnv``: N FairGrasp envs stepped on Rust threads in one call (gymnasium ≥ 1.1 vector
-API, registered as every FairGrasp id's ``vector_entry_point``).
+API, registered as every FairGrasp id's ``vector_entry_point``) — a preset's envs, or the envs a
+training recipe trains on with one curriculum shared by all (``recipe=``, as ``FairGraspEnv``).
 
 Autoreset: **same step** (``gymnasium.vector.AutoresetMode.SAME_STEP``): when a sub-env's episode
 ends, the observation returned for it is already the next episode's first one, and the ended
 episode's last observation and info are in ``info["final_obs"]`` and ``info["final_info"]``
-(masked by ``info["_final_obs"]``), as gymnasium documents that mode and as its wrappers
-(``RecordEpisodeStatistics``) read it. Episode k of sub-env i plays the scenario seed derived
-from (``seed``, i, k), reported in ``info["scenario_seed"]``.
-"""
+(masked by ``info["_final_obs"]``; ``final_info`` batched as gymnasium batches infos), as
+gymnasium documents that mode. Episode k of sub-env i plays the scenario seed
+``seed + i · 1 000 000 + k``, reported in ``info["scenario_seed"]``.
 
-import json
+The per-env infos are arrays built in Rust (``success``, ``step``, ``simulated``,
+``scenario_seed``, ``curriculum_stage``); nothing is parsed per step.
+"""
 
 import gymnasium as gym
 import numpy as np
 
 from . import _native
-from .env import FairGraspEnv, parse_info
+from .env import _box, native_args
 
 
 def _autoreset_metadata():
@@ -26,13 +28,15 @@ def _autoreset_metadata():
 
 
 class VectorEnv(gym.vector.VectorEnv):
-    """``num_envs`` envs of ``preset`` on ``threads`` Rust threads (the physics runs with the
-    GIL released). ``gym.make_vec("FairGrasp-Full-v0", num_envs=8,
+    """``num_envs`` envs of ``preset`` (or of ``recipe`` with keyword overrides, as
+    ``FairGraspEnv``) on ``threads`` Rust threads (the physics and the agents' scripts run with
+    the GIL released). ``gym.make_vec("FairGrasp-Recipe-PureFull-v0", num_envs=8,
     vectorization_mode="vector_entry_point")`` builds one."""
 
     metadata = {"render_modes": [], **_autoreset_metadata()}
 
-    def __init__(self, num_envs=8, preset="full", arm="servo", threads=2, seed=0, config_toml=None, render_mode=None):
+    def __init__(self, num_envs=8, preset=None, arm=None, threads=2, seed=0, config_toml=None, render_mode=None,
+                 recipe=None, evaluation=False, **overrides):
         if not hasattr(gym.vector, "AutoresetMode"):
             raise RuntimeError(
                 f"fairgrasp.VectorEnv needs gymnasium >= 1.1 (found {gym.__version__}); with older "
@@ -40,16 +44,26 @@ class VectorEnv(gym.vector.VectorEnv):
             )
         if render_mode is not None:
             raise ValueError("the vector env does not render: use FairGraspEnv(render_mode='rgb_array')")
-        self._args = dict(preset=preset, arm=arm, threads=threads, config_toml=config_toml)
+        self._args = dict(preset=preset, arm=arm, threads=threads, config_toml=config_toml, recipe=recipe,
+                          evaluation=evaluation, **overrides)
+        self._native_args = native_args(preset, arm, config_toml, recipe, evaluation, overrides)
+        self._threads = int(threads)
         self.num_envs = int(num_envs)
-        self._native = _native.VecEnv(self.num_envs, preset, arm, threads, seed, config_toml)
-        single = FairGraspEnv(preset=preset, arm=arm, config_toml=config_toml)
-        self.single_observation_space = single.observation_space
-        self.single_action_space = single.action_space
-        self.observation_space = gym.vector.utils.batch_space(single.observation_space, self.num_envs)
-        self.action_space = gym.vector.utils.batch_space(single.action_space, self.num_envs)
+        self._native = self._make(int(seed))
+        single_obs, self.obs_names = _box(self._native.observation_space_json())
+        single_act, self.action_names = _box(self._native.action_space_json())
+        self.single_observation_space = single_obs
+        self.single_action_space = single_act
+        self.observation_space = gym.vector.utils.batch_space(single_obs, self.num_envs)
+        self.action_space = gym.vector.utils.batch_space(single_act, self.num_envs)
         self.render_mode = None
         self.spec = None
+        self._all = np.ones(self.num_envs, dtype=bool)
+        self._all.flags.writeable = False
+
+    def _make(self, seed):
+        preset, arm, config_toml, recipe, overrides_json = self._native_args
+        return _native.VecEnv(self.num_envs, preset, arm, self._threads, seed, config_toml, recipe, overrides_json)
 
     def __getstate__(self):
         return {"num_envs": self.num_envs, **self._args}
@@ -57,43 +71,46 @@ class VectorEnv(gym.vector.VectorEnv):
     def __setstate__(self, state):
         self.__init__(**state)
 
+    @property
+    def curriculum_stage(self):
+        """``(index, name)`` of the shared curriculum's stage, or None without a curriculum."""
+        return self._native.curriculum_stage()
+
+    def set_curriculum_stage(self, stage):
+        """Moves the shared curriculum to ``stage`` (clamped to the last) from each env's next reset."""
+        self._native.set_curriculum_stage(int(stage))
+
     def reset(self, *, seed=None, options=None):
-        """Starts every sub-env's next episode; with ``seed``, rebuilds the envs so that the
-        episode seeds derive from it (the same seed gives the same episodes)."""
+        """Starts every sub-env's next episode; with ``seed``, rebuilds the envs (and the
+        curriculum) so that the episode seeds derive from it (the same seed gives the same
+        episodes)."""
         if seed is not None:
-            base = int(seed[0] if isinstance(seed, (list, tuple)) else seed)
-            a = self._args
-            self._native = _native.VecEnv(self.num_envs, a["preset"], a["arm"], a["threads"], base, a["config_toml"])
-        obs, infos = self._native.reset()
-        parsed = [parse_info(i) for i in infos]
-        return obs, self._batch_infos(parsed)
+            self._native = self._make(int(seed[0] if isinstance(seed, (list, tuple)) else seed))
+        obs, info = self._native.reset()
+        return obs, self._masked(info)
 
     def step(self, actions):
-        actions = np.ascontiguousarray(actions, dtype=np.float64)
-        if actions.shape != (self.num_envs, self.single_action_space.shape[0]):
-            raise ValueError(f"actions have shape {actions.shape}, expected ({self.num_envs}, {self.single_action_space.shape[0]})")
-        obs, rewards, terminated, truncated, final_obs, infos = self._native.step(actions)
-        parsed = [parse_info(i, te, tr) for i, te, tr in zip(infos, terminated, truncated)]
-        info = self._batch_infos(parsed)
-        ended = terminated | truncated
-        if ended.any():
-            info["final_obs"] = np.array([final_obs[i] if e else None for i, e in enumerate(ended)], dtype=object)
-            info["_final_obs"] = ended.copy()
-            info["final_info"] = np.array([parsed[i] if e else None for i, e in enumerate(ended)], dtype=object)
-            info["_final_info"] = ended.copy()
+        if type(actions) is not np.ndarray or actions.dtype != np.float64 or not actions.flags.c_contiguous:
+            actions = np.ascontiguousarray(actions, dtype=np.float64)
+        if actions.shape != (self.num_envs, 7):
+            raise ValueError(f"actions have shape {actions.shape}, expected ({self.num_envs}, 7)")
+        obs, rewards, terminated, truncated, info, ended = self._native.step(actions)
+        info = self._masked(info)
+        if ended:
+            final_obs = np.full(self.num_envs, None, dtype=object)
+            final_info = {}
+            for i, last, last_info in ended:
+                final_obs[i] = last
+                final_info = self._add_info(final_info, last_info, i)
+            mask = terminated | truncated
+            info["final_obs"], info["_final_obs"] = final_obs, mask
+            info["final_info"], info["_final_info"] = final_info, mask.copy()
         return obs, rewards, terminated, truncated, info
 
-    def _batch_infos(self, parsed):
-        n = len(parsed)
-        seeds = [p.get("scenario", {}) or {} for p in parsed]
-        return {
-            "success": np.array([bool(p.get("success")) for p in parsed]),
-            "_success": np.ones(n, dtype=bool),
-            "scenario_seed": np.array([s.get("seed", 0) for s in seeds], dtype=np.uint64),
-            "_scenario_seed": np.ones(n, dtype=bool),
-            "outcome": np.array([p.get("outcome") for p in parsed], dtype=object),
-            "_outcome": np.array([p.get("outcome") is not None for p in parsed]),
-        }
+    def _masked(self, info):
+        for key in list(info):
+            info["_" + key] = self._all
+        return info
 
     def close_extras(self, **kwargs):
         self._native = None

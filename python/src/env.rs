@@ -1,4 +1,5 @@
-//! `Env` (one grasping env) and `Baseline` (the scripted grasp as a policy object).
+//! `Env` (one grasping env, or the env a training recipe trains on) and `Baseline` (the
+//! scripted grasp as a policy object).
 
 use std::sync::Mutex;
 
@@ -8,39 +9,66 @@ use fairgrasp_env::episode::trajectory::{Recorder, Trajectory};
 use fairgrasp_env::{GraspEnv, Observation};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_report::charts::replay::{SIZE, replay_frame_rgb};
-use numpy::{IntoPyArray, PyArray1, PyArray3, PyArrayMethods, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
+use crate::agent_env::AgentEnv;
+use crate::info::info_dict;
+use crate::setup::Setup;
 use crate::{checked_action, env_config, value_error};
 
-/// The observation as f32, gymnasium's dtype for it.
-pub(crate) fn obs_array(obs: &Observation) -> Vec<f32> {
-    obs.to_array().to_vec()
-}
+/// One step's result: observation, reward, terminated, truncated, info.
+type StepTuple<'py> = (
+    Bound<'py, PyArray1<f32>>,
+    f64,
+    bool,
+    bool,
+    Bound<'py, PyDict>,
+);
 
-/// One step's result: observation, reward, terminated, truncated, info as JSON.
-type StepTuple<'py> = (Bound<'py, PyArray1<f32>>, f64, bool, bool, String);
+/// A played episode: the flat observations [steps + 1, obs], the rewards, the last info.
+type PlayedEpisode<'py> = (Bound<'py, PyArray2<f32>>, Vec<f64>, Bound<'py, PyDict>);
 
-/// One grasping env (the Rust `GraspEnv`): `reset(seed)`, `step(action)`; infos as JSON text.
+/// One grasping env (the Rust `GraspEnv`), or with a recipe the env that recipe trains on (its
+/// agent's input and output, its curriculum): `reset(seed)`, `step(action)`; infos as dicts
+/// (see `info.rs`).
 #[pyclass(module = "fairgrasp._native")]
 pub struct Env {
-    env: Mutex<GraspEnv>,
+    env: Mutex<AgentEnv>,
+    setup: Setup,
     /// The episode so far, recorded only when rendering (`record = True`).
     trajectory: Mutex<Option<Trajectory>>,
+}
+
+/// Seven finite action values from an array of any length, or a `ValueError` naming the
+/// problem.
+pub(crate) fn action7(values: &[f64], what: &str) -> PyResult<[f64; 7]> {
+    Ok(checked_action(values, what)?.0)
 }
 
 #[pymethods]
 impl Env {
     /// `preset`: a shipped preset name or a .toml path; `config_toml`: a whole env config as
-    /// TOML text (overrides `preset`); `arm`: "servo" or "multibody".
+    /// TOML text (overrides `preset`); `arm`: "servo" or "multibody". `recipe`: a shipped
+    /// training recipe's name or a training config's path, with `overrides_json` (keyword
+    /// overrides as JSON) laid over it: the env that recipe trains on.
     /// `record`: keep the episode's trajectory for `render_rgb`.
     #[new]
-    #[pyo3(signature = (preset = "full", arm = "servo", config_toml = None, record = false))]
-    fn new(preset: &str, arm: &str, config_toml: Option<&str>, record: bool) -> PyResult<Self> {
-        let config = env_config(preset, arm, config_toml)?;
-        let env = GraspEnv::new(config).map_err(value_error)?;
+    #[pyo3(signature = (preset = "full", arm = "servo", config_toml = None, record = false, recipe = None, overrides_json = None))]
+    fn new(
+        preset: &str,
+        arm: &str,
+        config_toml: Option<&str>,
+        record: bool,
+        recipe: Option<&str>,
+        overrides_json: Option<&str>,
+    ) -> PyResult<Self> {
+        let setup = Setup::new(preset, arm, config_toml, recipe, overrides_json)?;
+        let env = AgentEnv::new(&setup).map_err(value_error)?;
         Ok(Self {
             env: Mutex::new(env),
+            setup,
             trajectory: Mutex::new(record.then(Trajectory::default)),
         })
     }
@@ -60,39 +88,43 @@ impl Env {
         rgb.into_pyarray(py).reshape([h as usize, w as usize, 3])
     }
 
-    /// Starts the episode of scenario `seed`: (observation, info JSON).
+    /// Starts the episode of scenario `seed`: (observation, info).
     fn reset<'py>(
         &self,
         py: Python<'py>,
         seed: u64,
-    ) -> PyResult<(Bound<'py, PyArray1<f32>>, String)> {
+    ) -> PyResult<(Bound<'py, PyArray1<f32>>, Bound<'py, PyDict>)> {
         let mut guard = self.env.lock().map_err(value_error)?;
-        let env: &mut GraspEnv = &mut guard;
-        let (obs, info) = py.detach(|| env.reset(seed)).map_err(value_error)?;
+        let env: &mut AgentEnv = &mut guard;
+        let info = py.detach(|| env.reset(seed)).map_err(value_error)?;
         if let Some(t) = self.trajectory.lock().map_err(value_error)?.as_mut() {
-            t.record_reset(env, obs.gripper_opening);
+            let opening = env.last().map_or(0.0, |o| o.gripper_opening);
+            t.record_reset(env.env(), opening);
         }
-        let info = serde_json::to_string(&info).map_err(value_error)?;
-        Ok((obs_array(&obs).into_pyarray(py), info))
+        let info = info_dict(py, &info, env.stage().as_ref(), true)?;
+        Ok((PyArray1::from_slice(py, env.input()), info))
     }
 
     /// One control step (physics with the GIL released): (obs, reward, terminated, truncated,
-    /// info JSON). A wrong length or a non-finite value raises `ValueError` naming the index.
+    /// info). `action`: 7 values (the policy's output for a recipe's env); a wrong length or a
+    /// non-finite value raises `ValueError` naming the index.
     fn step<'py>(
         &self,
         py: Python<'py>,
         action: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<StepTuple<'py>> {
-        let action = checked_action(action.as_slice()?, "action")?;
+        let values: Vec<f64> = action.as_array().iter().copied().collect();
+        let action = action7(&values, "action")?;
         let mut guard = self.env.lock().map_err(value_error)?;
-        let env: &mut GraspEnv = &mut guard;
-        let step = py.detach(|| env.step(&action)).map_err(value_error)?;
+        let env: &mut AgentEnv = &mut guard;
+        let (env_action, step) = py.detach(|| env.step(&action)).map_err(value_error)?;
         if let Some(t) = self.trajectory.lock().map_err(value_error)?.as_mut() {
-            t.record_step(env, &action, &step, None);
+            t.record_step(env.env(), &env_action, &step, None);
         }
-        let info = serde_json::to_string(&step.info).map_err(value_error)?;
+        let ended = step.terminated || step.truncated;
+        let info = info_dict(py, &step.info, env.stage().as_ref(), ended)?;
         Ok((
-            obs_array(&step.obs).into_pyarray(py),
+            PyArray1::from_slice(py, env.input()),
             step.reward,
             step.terminated,
             step.truncated,
@@ -100,36 +132,53 @@ impl Env {
         ))
     }
 
-    /// The observation space as JSON: names, units, low and high per entry (all finite).
+    /// The observation space as JSON: names, low and high per entry (all finite); for a
+    /// recipe's env, the agent's policy input.
     fn observation_space_json(&self) -> PyResult<String> {
-        let env = self.env.lock().map_err(value_error)?;
-        let space = fairgrasp_env::env::spaces::observation_space(env.config(), env.model());
-        serde_json::to_string(&space).map_err(value_error)
+        self.setup.space_json(self.setup.observation_space())
     }
 
-    /// The action space as JSON (joint velocities and gripper, or TCP velocity, yaw rate and
-    /// gripper, per the config's `arm.action_space`), each in [−1, 1].
+    /// The action space as JSON (joint velocities and gripper, TCP velocity, yaw rate and
+    /// gripper, or a residual's correction), each in [−1, 1].
     fn action_space_json(&self) -> PyResult<String> {
-        let env = self.env.lock().map_err(value_error)?;
-        let space = fairgrasp_env::env::spaces::action_space_of(env.config().arm.action_space);
-        serde_json::to_string(&space).map_err(value_error)
+        self.setup.space_json(self.setup.action_space())
     }
 
-    /// The env config as TOML (what `config_toml` takes back).
-    fn config_toml(&self) -> PyResult<String> {
-        Ok(self.env.lock().map_err(value_error)?.config().to_toml())
+    /// The env config as TOML (what `config_toml` takes back): for a recipe, the env it trains
+    /// on.
+    fn config_toml(&self) -> String {
+        self.setup.config.to_toml()
+    }
+
+    /// The recipe's agent config as TOML (None without a recipe).
+    fn agent_toml(&self) -> PyResult<Option<String>> {
+        self.setup
+            .agent
+            .as_ref()
+            .map(|a| toml::to_string(a).map_err(value_error))
+            .transpose()
     }
 
     /// Steps per episode before truncation.
     #[getter]
-    fn max_steps(&self) -> PyResult<usize> {
-        Ok(self
-            .env
-            .lock()
-            .map_err(value_error)?
-            .config()
-            .task
-            .max_steps)
+    fn max_steps(&self) -> usize {
+        self.setup.config.task.max_steps
+    }
+
+    /// The curriculum's stage (index, name); None without a curriculum.
+    fn curriculum_stage(&self) -> PyResult<Option<(usize, String)>> {
+        Ok(self.env.lock().map_err(value_error)?.stage())
+    }
+
+    /// The number of curriculum stages (0 without a curriculum).
+    fn curriculum_stage_count(&self) -> usize {
+        self.setup.curriculum().map_or(0, |c| c.stage_count())
+    }
+
+    /// Moves the curriculum to `stage` (clamped to the last), from the next reset on.
+    fn set_curriculum_stage(&self, stage: usize) -> PyResult<()> {
+        let mut env = self.env.lock().map_err(value_error)?;
+        env.set_stage(stage).map_err(value_error)
     }
 
     /// Joint angles q1 … q6 now [rad].
@@ -138,6 +187,7 @@ impl Env {
             .env
             .lock()
             .map_err(value_error)?
+            .env()
             .joints()
             .to_vec()
             .into_pyarray(py))
@@ -146,7 +196,7 @@ impl Env {
     /// The cube's position in base_link [m] (the truth, not the observation).
     fn object_xyz<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let env = self.env.lock().map_err(value_error)?;
-        Ok(env.object_in_base().xyz().to_vec().into_pyarray(py))
+        Ok(env.env().object_in_base().xyz().to_vec().into_pyarray(py))
     }
 }
 
@@ -155,6 +205,7 @@ impl Env {
 #[pyclass(module = "fairgrasp._native")]
 pub struct Baseline {
     script: Mutex<ScriptedGrasp>,
+    config: fairgrasp_env::EnvConfig,
 }
 
 #[pymethods]
@@ -165,6 +216,7 @@ impl Baseline {
         let config = env_config(preset, arm, config_toml)?;
         Ok(Self {
             script: Mutex::new(ScriptedGrasp::new(&config, BaselineConfig::default())),
+            config,
         })
     }
 
@@ -172,6 +224,40 @@ impl Baseline {
     fn reset(&self, seed: u64) -> PyResult<()> {
         self.script.lock().map_err(value_error)?.reset(seed);
         Ok(())
+    }
+
+    /// Plays scenario `seed` to its end with the script on an env of its own config, acting on
+    /// the env's own observations (f64, with the wrist view), as `fairgrasp baseline` does
+    /// (GIL released): (the flat observations [steps + 1, 23], the rewards, the last info with
+    /// the script's verdict in its record). The reference a zero residual must reproduce.
+    fn play<'py>(&self, py: Python<'py>, seed: u64) -> PyResult<PlayedEpisode<'py>> {
+        let mut guard = self.script.lock().map_err(value_error)?;
+        let script: &mut ScriptedGrasp = &mut guard;
+        let config = self.config.clone();
+        let (flat, rewards, info) = py
+            .detach(|| -> Result<_, fairgrasp_env::EnvError> {
+                let mut env = GraspEnv::new(config)?;
+                let (mut obs, _) = env.reset(seed)?;
+                script.reset(seed);
+                let (mut flat, mut rewards) = (obs.to_array().to_vec(), Vec::new());
+                loop {
+                    let mut step = env.step(&script.act(&obs))?;
+                    flat.extend(step.obs.to_array());
+                    rewards.push(step.reward);
+                    obs = step.obs;
+                    if step.terminated || step.truncated {
+                        step.info.episode = step
+                            .info
+                            .episode
+                            .map(|r| r.with_policy_verdict(script.gave_up()));
+                        return Ok((flat, rewards, step.info));
+                    }
+                }
+            })
+            .map_err(value_error)?;
+        let rows = flat.len() / OBS_DIM;
+        let obs = PyArray1::from_vec(py, flat).reshape([rows, OBS_DIM])?;
+        Ok((obs, rewards, info_dict(py, &info, None, true)?))
     }
 
     /// The script's action for a (flat, float32) observation.

@@ -1,7 +1,8 @@
 //! `fairgrasp._native`: the Rust env, vector env, kinematics and scripted baseline for Python.
 //! The gymnasium classes live in the pure-Python package around it (`python/fairgrasp/`);
-//! everything here takes and returns NumPy arrays, plain numbers and JSON strings (infos), and
-//! runs the physics with the GIL released.
+//! everything here takes and returns NumPy arrays, plain numbers and dicts (infos), and runs the
+//! physics with the GIL released. A training recipe's env (`recipe=`) is built here from the
+//! recipe's agent and curriculum (fairgrasp-eval), as `fairgrasp train` builds it.
 //!
 //! ```
 //! // The module's action size is the env's.
@@ -11,8 +12,15 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+mod agent_env;
+mod agent_vec;
+mod bench;
 mod env;
+mod info;
 mod kinematics;
+mod setup;
+#[cfg(feature = "train")]
+mod train;
 mod vector;
 
 /// A Rust error as Python's `ValueError` (bad input: config, action, pose).
@@ -74,6 +82,13 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<env::Baseline>()?;
     m.add_class::<vector::VecEnv>()?;
     m.add_function(wrap_pyfunction!(preset_names, m)?)?;
+    m.add_function(wrap_pyfunction!(setup::recipe_names, m)?)?;
+    m.add_function(wrap_pyfunction!(setup::recipe_keys, m)?)?;
+    #[cfg(feature = "train")]
+    m.add_function(wrap_pyfunction!(train::train, m)?)?;
+    m.add("HAS_TRAIN", cfg!(feature = "train"))?;
+    m.add_function(wrap_pyfunction!(bench::bench_rust_env, m)?)?;
+    m.add_function(wrap_pyfunction!(bench::bench_rust_vec, m)?)?;
     kinematics::register(m)?;
     m.add("OBS_DIM", fairgrasp_env::env::obs::OBS_DIM)?;
     m.add("ACT_DIM", ACT_DIM)?;

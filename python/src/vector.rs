@@ -1,54 +1,88 @@
-//! `VecEnv`: N envs stepped on Rust threads in one call, auto-resetting in the step that ends an
-//! episode (gymnasium's `SAME_STEP` mode; the ended episode's last observation comes separately).
+//! `VecEnv`: N envs (of a preset, or of a training recipe with its agent and one shared
+//! curriculum) stepped on Rust threads in one call with the GIL released, auto-resetting in the
+//! step that ends an episode (gymnasium's `SAME_STEP` mode). Infos come back as NumPy arrays
+//! built here (one value per env), plus, for the envs whose episode ended, their last
+//! observation and last info.
 
 use std::sync::Mutex;
 
-use fairgrasp_env::env::obs::OBS_DIM;
-use fairgrasp_env::vec;
-use numpy::{
-    IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods,
-};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
 
-use crate::{checked_action, env_config, value_error};
+use crate::agent_vec::AgentVecEnv;
+use crate::env::action7;
+use crate::info::info_dict;
+use crate::setup::Setup;
+use crate::value_error;
 
-/// What `step` returns: obs [n, 23], rewards [n], terminated [n], truncated [n], final
-/// observations [n, 23] (NaN rows where no episode ended), and the infos as JSON.
+/// What `step` returns: obs [n, dim], rewards [n], terminated [n], truncated [n], the infos as
+/// arrays, and the ended episodes as a list of (env index, last observation, last info).
 type VecStepTuple<'py> = (
     Bound<'py, PyArray2<f32>>,
     Bound<'py, PyArray1<f64>>,
     Bound<'py, PyArray1<bool>>,
     Bound<'py, PyArray1<bool>>,
-    Bound<'py, PyArray2<f32>>,
-    Vec<String>,
+    Bound<'py, PyDict>,
+    Bound<'py, PyList>,
 );
 
-/// N grasping envs on `threads` Rust threads; episode k of env i starts from a scenario seed
-/// derived from (`seed`, i, k), reported in each info's `scenario.seed`.
+/// N grasping envs on `threads` Rust threads; episode k of env i starts from scenario seed
+/// `seed + i · 1 000 000 + k`, reported in `info["scenario_seed"]`.
 #[pyclass(module = "fairgrasp._native")]
 pub struct VecEnv {
-    inner: Mutex<vec::VecEnv>,
+    inner: Mutex<AgentVecEnv>,
+    setup: Setup,
     n: usize,
 }
 
-fn rows<'py>(py: Python<'py>, rows: Vec<Vec<f32>>) -> PyResult<Bound<'py, PyArray2<f32>>> {
-    let n = rows.len();
-    let flat: Vec<f32> = rows.into_iter().flatten().collect();
-    flat.into_pyarray(py).reshape([n, OBS_DIM])
+/// The per-env arrays of the last batch: `success`, `step`, `simulated`, `scenario_seed` (the
+/// episode each env is in now) and `curriculum_stage`. An env that auto-reset reports its new
+/// episode (not successful, step 0, not simulated).
+fn info_arrays<'py>(py: Python<'py>, env: &AgentVecEnv) -> PyResult<Bound<'py, PyDict>> {
+    let batch = env.batch();
+    let n = env.len();
+    let reset = |e: usize| batch.terminated[e] || batch.truncated[e];
+    let d = PyDict::new(py);
+    let success: Vec<bool> = (0..n)
+        .map(|e| !reset(e) && batch.infos[e].success)
+        .collect();
+    let step: Vec<i64> = (0..n)
+        .map(|e| {
+            if reset(e) {
+                0
+            } else {
+                batch.infos[e].step as i64
+            }
+        })
+        .collect();
+    let simulated: Vec<bool> = (0..n)
+        .map(|e| !reset(e) && batch.infos[e].simulated)
+        .collect();
+    d.set_item("success", PyArray1::from_vec(py, success))?;
+    d.set_item("step", PyArray1::from_vec(py, step))?;
+    d.set_item("simulated", PyArray1::from_vec(py, simulated))?;
+    d.set_item("scenario_seed", PyArray1::from_slice(py, &batch.seeds))?;
+    if let Some((stage, _)) = env.stage() {
+        d.set_item(
+            "curriculum_stage",
+            PyArray1::from_vec(py, vec![stage as i64; n]),
+        )?;
+    }
+    Ok(d)
 }
 
-/// Each env's info as JSON (parsed on the Python side).
-fn infos_json(infos: &[fairgrasp_env::Info]) -> PyResult<Vec<String>> {
-    infos
-        .iter()
-        .map(|i| serde_json::to_string(i).map_err(value_error))
-        .collect()
+fn obs_rows<'py>(py: Python<'py>, env: &AgentVecEnv) -> PyResult<Bound<'py, PyArray2<f32>>> {
+    PyArray1::from_slice(py, env.obs()).reshape([env.len(), env.dim()])
 }
 
 #[pymethods]
 impl VecEnv {
+    /// `n` envs of `preset` (or `config_toml`), or of `recipe` with `overrides_json` (see
+    /// `Env`), on `threads` threads.
     #[new]
-    #[pyo3(signature = (n, preset = "full", arm = "servo", threads = 2, seed = 0, config_toml = None))]
+    #[pyo3(signature = (n, preset = "full", arm = "servo", threads = 2, seed = 0, config_toml = None, recipe = None, overrides_json = None))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         n: usize,
         preset: &str,
@@ -56,16 +90,19 @@ impl VecEnv {
         threads: usize,
         seed: u64,
         config_toml: Option<&str>,
+        recipe: Option<&str>,
+        overrides_json: Option<&str>,
     ) -> PyResult<Self> {
         if !(1..=4096).contains(&n) || !(1..=256).contains(&threads) {
             return Err(value_error(format!(
                 "n = {n}, threads = {threads}: n must be in 1..=4096 and threads in 1..=256"
             )));
         }
-        let config = env_config(preset, arm, config_toml)?;
-        let inner = vec::VecEnv::new(&config, n, threads, seed).map_err(value_error)?;
+        let setup = Setup::new(preset, arm, config_toml, recipe, overrides_json)?;
+        let inner = AgentVecEnv::new(&setup, n, threads, seed).map_err(value_error)?;
         Ok(Self {
             inner: Mutex::new(inner),
+            setup,
             n,
         })
     }
@@ -76,19 +113,15 @@ impl VecEnv {
         self.n
     }
 
-    /// Starts every env's next episode: (obs [n, 23], infos JSON).
-    fn reset<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyArray2<f32>>, Vec<String>)> {
+    /// Starts every env's next episode: (obs [n, dim], infos as arrays).
+    fn reset<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyArray2<f32>>, Bound<'py, PyDict>)> {
         let mut guard = self.inner.lock().map_err(value_error)?;
-        let inner: &mut vec::VecEnv = &mut guard;
-        let out = py
-            .detach(|| {
-                inner.reset()?;
-                Ok::<_, fairgrasp_env::EnvError>(inner.batch().clone())
-            })
-            .map_err(value_error)?;
-        let obs = out.obs.iter().map(crate::env::obs_array).collect();
-        let infos = infos_json(&out.infos)?;
-        Ok((rows(py, obs)?, infos))
+        let inner: &mut AgentVecEnv = &mut guard;
+        py.detach(|| inner.reset()).map_err(value_error)?;
+        Ok((obs_rows(py, inner)?, info_arrays(py, inner)?))
     }
 
     /// Steps every env with its row of `actions` [n, 7] (physics on the Rust threads, GIL
@@ -109,30 +142,47 @@ impl VecEnv {
         let actions = values
             .chunks(7)
             .enumerate()
-            .map(|(i, row)| checked_action(row, &format!("actions[{i}]")))
+            .map(|(i, row)| action7(row, &format!("actions[{i}]")))
             .collect::<PyResult<Vec<_>>>()?;
         let mut guard = self.inner.lock().map_err(value_error)?;
-        let inner: &mut vec::VecEnv = &mut guard;
-        let out = py
-            .detach(|| inner.step(&actions).cloned())
-            .map_err(value_error)?;
-        let obs = out.obs.iter().map(crate::env::obs_array).collect();
-        let final_obs = out
-            .final_obs
-            .iter()
-            .map(|o| {
-                o.as_ref()
-                    .map_or(vec![f32::NAN; OBS_DIM], crate::env::obs_array)
-            })
-            .collect();
-        let infos = infos_json(&out.infos)?;
+        let inner: &mut AgentVecEnv = &mut guard;
+        py.detach(|| inner.step(&actions)).map_err(value_error)?;
+        let stage = inner.stage();
+        let ended = PyList::empty(py);
+        for (e, last, info) in inner.ended() {
+            let info = info_dict(py, info, stage.as_ref(), true)?;
+            ended.append((*e, PyArray1::from_slice(py, last), info))?;
+        }
+        let batch = inner.batch();
         Ok((
-            rows(py, obs)?,
-            out.rewards.clone().into_pyarray(py),
-            out.terminated.clone().into_pyarray(py),
-            out.truncated.clone().into_pyarray(py),
-            rows(py, final_obs)?,
-            infos,
+            obs_rows(py, inner)?,
+            PyArray1::from_slice(py, &batch.rewards),
+            PyArray1::from_slice(py, &batch.terminated),
+            PyArray1::from_slice(py, &batch.truncated),
+            info_arrays(py, inner)?,
+            ended,
         ))
+    }
+
+    /// The observation space as JSON (see `Env.observation_space_json`).
+    fn observation_space_json(&self) -> PyResult<String> {
+        self.setup.space_json(self.setup.observation_space())
+    }
+
+    /// The action space as JSON (see `Env.action_space_json`).
+    fn action_space_json(&self) -> PyResult<String> {
+        self.setup.space_json(self.setup.action_space())
+    }
+
+    /// The shared curriculum's stage (index, name); None without a curriculum.
+    fn curriculum_stage(&self) -> PyResult<Option<(usize, String)>> {
+        Ok(self.inner.lock().map_err(value_error)?.stage())
+    }
+
+    /// Moves the shared curriculum to `stage` (clamped to the last), from each env's next
+    /// reset on.
+    fn set_curriculum_stage(&self, stage: usize) -> PyResult<()> {
+        let mut env = self.inner.lock().map_err(value_error)?;
+        env.set_stage(stage).map_err(value_error)
     }
 }

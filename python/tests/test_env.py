@@ -90,10 +90,18 @@ def test_an_episode_ends_with_an_outcome_in_its_info():
     assert truncated and not terminated
     # The outcome is the Rust env's episode record, not re-derived here: a gripper command of 0
     # closes the fingers halfway, past the cube's width, without both pads on it.
-    assert info["outcome"] == info["episode"]["outcome"] == "missed_grasp"
-    assert info["success"] is False and info["episode"]["success"] is False
-    assert info["episode"]["steps"] == env.max_steps and not info["episode"]["held"]
-    assert info["scenario"]["seed"] == 1
+    assert info["outcome"] == info["episode_record"]["outcome"] == "missed_grasp"
+    assert info["success"] is False and info["episode_record"]["success"] is False
+    assert info["episode_record"]["steps"] == env.max_steps and not info["episode_record"]["held"]
+    assert info["scenario"]["seed"] == info["scenario_seed"] == 1
+    # gymnasium's episode statistics own info["episode"]: they wrap the env without complaint.
+    stats = gym.wrappers.RecordEpisodeStatistics(fairgrasp.FairGraspEnv(preset="fixed"))
+    stats.reset(seed=1)
+    for _ in range(env.max_steps):
+        *_, terminated, truncated, info = stats.step(np.zeros(7))
+        if terminated or truncated:
+            break
+    assert info["episode"]["l"] == env.max_steps and info["outcome"] == "missed_grasp"
 
 
 def test_render_returns_the_replay_view_as_rgb():

@@ -1,10 +1,8 @@
-"""FK/IK from Python equal the CLI's --json; the baseline as a policy object; the residual
-wrapper with a zero policy is the baseline."""
+"""FK/IK from Python equal the CLI's --json (the zero residual against the script: test_residual.py)."""
 
 import numpy as np
 import pytest
 
-import fairgrasp
 from fairgrasp import kinematics
 
 
@@ -39,36 +37,3 @@ def test_ik_qp_and_world_to_base():
     assert np.allclose(p, [0.2, -0.4, 0.025], atol=1e-12)
     with pytest.raises(ValueError, match=r"point\[1\]"):
         kinematics.world_to_base(np.zeros(6), [0, np.nan, 0])
-
-
-def run_baseline(preset, seeds):
-    env = fairgrasp.FairGraspEnv(preset=preset)
-    policy = fairgrasp.Baseline(preset=preset)
-    out = []
-    for s in seeds:
-        obs, _ = env.reset(seed=s)
-        policy.reset(s)
-        while True:
-            obs, _, te, tr, info = env.step(policy.act(obs))
-            if te or tr:
-                out.append(info["success"])
-                break
-    return out
-
-
-def test_the_residual_wrapper_with_a_zero_policy_is_the_baseline():
-    seeds = list(range(100, 120))
-    direct = run_baseline("seed", seeds)
-    env = fairgrasp.ResidualWrapper(fairgrasp.FairGraspEnv(preset="seed"))
-    assert env.observation_space.shape == (fairgrasp.OBS_DIM + 7,)
-    wrapped = []
-    for s in seeds:
-        obs, _ = env.reset(seed=s)
-        assert obs.shape == env.observation_space.shape
-        while True:
-            obs, _, te, tr, info = env.step(np.zeros(7))
-            if te or tr:
-                wrapped.append(info["success"])
-                break
-    assert wrapped == direct
-    assert sum(direct) >= 19, f"the baseline succeeded on {sum(direct)} of 20 seed scenarios"

@@ -9,43 +9,45 @@ import fairgrasp
 
 
 def test_the_vector_env_equals_n_single_envs():
+    """Every array the vector env returns (observations, rewards, flags, the info arrays, the
+    final observations and infos) equals what N single envs return for the same seeds and
+    actions, across autoresets."""
     n, steps = 3, 260
     vec = fairgrasp.VectorEnv(num_envs=n, preset="fixed", threads=2, seed=9)
     obs, info = vec.reset()
     rng = np.random.default_rng(0)
     actions = rng.uniform(-1, 1, size=(steps, n, 7))
-    # Per env: the episodes' seeds and the observations each episode produced.
-    episodes = [[[int(info["scenario_seed"][i]), [obs[i]], []]] for i in range(n)]
-    ended_any = False
+    singles = [fairgrasp.FairGraspEnv(preset="fixed") for _ in range(n)]
+    for i, env in enumerate(singles):
+        first, first_info = env.reset(seed=int(info["scenario_seed"][i]))
+        assert np.array_equal(first, obs[i])
+        assert first_info["scenario_seed"] == info["scenario_seed"][i]
+    ended = 0
     for t in range(steps):
         obs, rewards, terminated, truncated, info = vec.step(actions[t])
-        for i in range(n):
-            episode = episodes[i][-1]
-            seed, seen, acts = episode
-            acts.append(actions[t, i])
-            if terminated[i] or truncated[i]:
-                ended_any = True
-                assert info["_final_obs"][i]
-                seen.append(info["final_obs"][i])
-                reported = info["final_info"][i]["scenario"]["seed"]
-                if seed is None:
-                    episode[0] = reported
-                else:
-                    assert reported == seed
-                episodes[i].append([None, [obs[i]], []])
+        assert obs.dtype == np.float32 and rewards.dtype == np.float64
+        for i, env in enumerate(singles):
+            o, r, te, tr, single = env.step(actions[t, i])
+            assert (r, te, tr) == (rewards[i], terminated[i], truncated[i]), f"env {i} step {t}"
+            if te or tr:
+                ended += 1
+                assert info["_final_obs"][i] and info["_final_info"][i]
+                assert np.array_equal(info["final_obs"][i], o), f"env {i} step {t}"
+                final = info["final_info"]
+                for key in ("success", "step", "scenario_seed", "outcome"):
+                    assert final[key][i] == single[key], key
+                assert final["scenario"]["seed"][i] == single["scenario"]["seed"]
+                assert final["episode_record"]["outcome"][i] == single["episode_record"]["outcome"]
+                assert final["episode_record"]["steps"][i] == single["episode_record"]["steps"]
+                # The env has moved on: its new episode's first observation and seed.
+                o, _ = env.reset(seed=int(info["scenario_seed"][i]))
+                assert info["step"][i] == 0 and not info["success"][i]
             else:
-                seen.append(obs[i])
-    assert ended_any, "no episode ended: the autoreset path is untested"
-    single = fairgrasp.FairGraspEnv(preset="fixed")
-    for i in range(n):
-        for k, (seed, seen, acts) in enumerate(episodes[i]):
-            if seed is None:
-                continue  # the next episode's seed is reported when it ends
-            first, _ = single.reset(seed=seed)
-            assert np.array_equal(first, seen[0]), f"env {i} episode {k}"
-            for j, a in enumerate(acts):
-                o, *_ = single.step(a)
-                assert np.array_equal(o, seen[j + 1]), f"env {i} episode {k} step {j}"
+                for key in ("success", "step", "simulated", "scenario_seed"):
+                    assert info[key][i] == single[key], f"{key} env {i} step {t}"
+                assert "_final_obs" not in info or not info["_final_obs"][i]
+            assert np.array_equal(obs[i], o), f"env {i} step {t}"
+    assert ended >= 3, "too few episodes ended: the autoreset path is barely tested"
 
 
 def test_make_vec_uses_the_native_vector_env():

@@ -42,7 +42,7 @@ fn training_path(config: &EnvConfig, agent: &AgentConfig) -> Vec<Trace> {
     let first = env.reset().unwrap().to_vec();
     let record = |traces: &mut Vec<Trace>, env: &GraspVecEnv, inputs: &[f32]| {
         for (e, t) in traces.iter_mut().enumerate() {
-            t.actions.push(env.baseline_actions()[e].unwrap());
+            t.actions.push(env.baseline_action(e).unwrap());
             t.inputs.push(inputs[e * dim..(e + 1) * dim].to_vec());
         }
     };

@@ -94,7 +94,7 @@ pub fn action_space_of(kind: ActionSpace) -> BoxSpace {
 
 /// `[lo, hi]` widened to the nearest `f32` values outside it, so that the `f32` flat view of a
 /// value inside the bounds is inside them too.
-fn f32_outward(lo: f64, hi: f64) -> (f64, f64) {
+pub fn f32_outward(lo: f64, hi: f64) -> (f64, f64) {
     let (mut l, mut h) = (lo as f32, hi as f32);
     if f64::from(l) > lo {
         l = l.next_down();

@@ -18,4 +18,5 @@ pub(crate) mod chunk;
 pub mod vec_env;
 pub(crate) mod worker;
 
+pub use chunk::VecStep;
 pub use vec_env::*;

@@ -233,6 +233,12 @@ async function main() {
     play: () => s.playing || togglePlay(),
     pause: () => s.playing && togglePlay(),
     state: () => {
+      // The poses below are the scene's: bring it to the current time first (the animation
+      // loop may not have drawn since the last seek, e.g. on a busy machine).
+      if (dirty) {
+        dirty = false;
+        drawFrame();
+      }
       const v = view(s.current);
       return {
         episode: s.current, partner: s.partner, label: label(s.current), time: s.time,

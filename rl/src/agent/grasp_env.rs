@@ -1,7 +1,8 @@
-//! The grasping environment as PPO sees it: vectorised, with each env's script ([`Script`]) in
-//! residual mode: the baseline's action appended to each observation and the policy's output
-//! composed with it, or the task script's features appended and the policy's output correcting
-//! it.
+//! The grasping environment as PPO sees it: vectorised, each env stepped through its
+//! [`EnvAgent`] (the script in residual mode): the baseline's action appended to each
+//! observation and the policy's output composed with it, or the task script's features appended
+//! and the policy's output correcting it. Python's recipe envs step through the same
+//! [`EnvAgent`].
 //!
 //! The script acts on the environments' own typed [`Observation`]s (f64, `base_link`), at
 //! every step and at episode ends, exactly as in evaluation; the policy input is built from the
@@ -9,39 +10,25 @@
 //! place: a step allocates nothing here.
 
 use fairgrasp_env::vec::VecEnv;
-use fairgrasp_env::{Action, EnvConfig, EnvError, Observation};
+use fairgrasp_env::{Action, EnvConfig, EnvError};
 
 use crate::agent::grasp_agent::{ACT_DIM, AgentConfig};
-use crate::agent::script::Script;
 use crate::ppo::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 use fairgrasp_env::robot::tcp_action::TaskSpaceAction;
+use fairgrasp_eval::agent::EnvAgent;
 
-/// Vectorised grasp envs plus one script per env (residual mode).
+/// Vectorised grasp envs plus one agent side (script) per env.
 pub struct GraspVecEnv {
     inner: VecEnv,
     agent: AgentConfig,
     /// Task-space to joint actions (`agent.action_space = "tcp"`).
     task_space: Option<TaskSpaceAction>,
-    scripts: Vec<Option<Script>>,
-    /// The joint baselines' actions for the current observations (joint residual mode).
-    base_actions: Vec<Option<Action>>,
+    agents: Vec<EnvAgent>,
     /// The composed actions handed to the envs.
     env_actions: Vec<Action>,
     returns: Vec<f32>,
     lengths: Vec<usize>,
     batch: StepBatch,
-}
-
-/// The joint baseline's action for `obs` (if any) and the policy input built from both.
-fn act_and_write(
-    agent: &AgentConfig,
-    script: &mut Option<Script>,
-    obs: &Observation,
-    out: &mut [f32],
-) -> Option<Action> {
-    let base = script.as_mut().and_then(|s| s.prepare(obs));
-    agent.write_input(obs, script.as_ref(), base.as_ref(), out);
-    base
 }
 
 impl GraspVecEnv {
@@ -57,8 +44,7 @@ impl GraspVecEnv {
         let n = inner.len();
         Ok(Self {
             inner,
-            scripts: (0..n).map(|_| agent.script(config)).collect(),
-            base_actions: vec![None; n],
+            agents: (0..n).map(|_| EnvAgent::new(&agent, config)).collect(),
             env_actions: vec![Action::hold_open(); n],
             returns: vec![0.0; n],
             lengths: vec![0; n],
@@ -73,10 +59,10 @@ impl GraspVecEnv {
         &mut self.inner
     }
 
-    /// The joint baselines' actions for the current observations, per env (None in pure mode
-    /// and for a task-space residual): what the next step composes the policy's output with.
-    pub fn baseline_actions(&self) -> &[Option<Action>] {
-        &self.base_actions
+    /// The joint baseline's action for env `e`'s current observation (None in pure mode and
+    /// for a task-space residual): what the next step composes the policy's output with.
+    pub fn baseline_action(&self, e: usize) -> Option<Action> {
+        self.agents.get(e).and_then(|a| a.base_action().copied())
     }
 
     fn row(&self, e: usize) -> std::ops::Range<usize> {
@@ -87,7 +73,7 @@ impl GraspVecEnv {
 
 impl VecEnvironment for GraspVecEnv {
     fn n_envs(&self) -> usize {
-        self.scripts.len()
+        self.agents.len()
     }
     fn obs_dim(&self) -> usize {
         self.agent.input_dim()
@@ -99,17 +85,10 @@ impl VecEnvironment for GraspVecEnv {
     fn reset(&mut self) -> Result<&[f32], VecEnvError> {
         self.inner.reset()?;
         let now = self.inner.batch();
-        for e in 0..self.scripts.len() {
+        for e in 0..self.agents.len() {
             let row = self.row(e);
-            if let Some(s) = &mut self.scripts[e] {
-                s.reset(now.seeds[e]);
-            }
-            self.base_actions[e] = act_and_write(
-                &self.agent,
-                &mut self.scripts[e],
-                &now.obs[e],
-                &mut self.batch.obs[row],
-            );
+            self.agents[e].reset(now.seeds[e]);
+            self.agents[e].observe(&self.agent, &now.obs[e], &mut self.batch.obs[row]);
         }
         self.returns.fill(0.0);
         self.lengths.fill(0);
@@ -121,7 +100,7 @@ impl VecEnvironment for GraspVecEnv {
     }
 
     fn step(&mut self, actions: &[f32]) -> Result<&StepBatch, VecEnvError> {
-        let n = self.scripts.len();
+        let n = self.agents.len();
         if actions.len() != n * ACT_DIM {
             return Err(VecEnvError::ActionShape {
                 n_envs: n,
@@ -131,21 +110,14 @@ impl VecEnvironment for GraspVecEnv {
         }
         check_finite(actions, ACT_DIM, "action")?;
         let now = &self.inner.batch().obs;
-        for ((((slot, base), policy), obs), script) in self
+        for (((slot, policy), obs), agent) in self
             .env_actions
             .iter_mut()
-            .zip(&self.base_actions)
             .zip(actions.chunks(ACT_DIM))
             .zip(now)
-            .zip(&mut self.scripts)
+            .zip(&mut self.agents)
         {
-            *slot = self.agent.env_action(
-                obs,
-                script.as_mut(),
-                base.as_ref(),
-                policy,
-                self.task_space.as_ref(),
-            );
+            *slot = agent.act(&self.agent, obs, policy, self.task_space.as_ref());
         }
         let step = self.inner.step(&self.env_actions)?;
         for e in 0..n {
@@ -160,15 +132,14 @@ impl VecEnvironment for GraspVecEnv {
             if step.terminated[e] || step.truncated[e] {
                 // The final observation with the script's part the policy would have seen.
                 if let Some(last) = &step.final_obs[e] {
-                    act_and_write(
+                    self.agents[e].observe(
                         &self.agent,
-                        &mut self.scripts[e],
                         last,
                         &mut self.batch.final_obs[row.clone()],
                     );
                 }
                 // The env's record of the episode, with the script's verdict as in evaluation.
-                let verdict = self.scripts[e].as_ref().and_then(|s| s.gave_up());
+                let verdict = self.agents[e].verdict();
                 let outcome = step.infos[e]
                     .episode
                     .clone()
@@ -182,16 +153,9 @@ impl VecEnvironment for GraspVecEnv {
                 });
                 self.returns[e] = 0.0;
                 self.lengths[e] = 0;
-                if let Some(s) = &mut self.scripts[e] {
-                    s.reset(step.seeds[e]);
-                }
+                self.agents[e].reset(step.seeds[e]);
             }
-            self.base_actions[e] = act_and_write(
-                &self.agent,
-                &mut self.scripts[e],
-                &step.obs[e],
-                &mut self.batch.obs[row],
-            );
+            self.agents[e].observe(&self.agent, &step.obs[e], &mut self.batch.obs[row]);
         }
         Ok(&self.batch)
     }

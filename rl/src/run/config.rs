@@ -152,13 +152,7 @@ impl TrainConfig {
             c.validate()?;
         }
         let env = self.training_env_config().map_err(|e| e.to_string())?;
-        if env.arm.action_space != fairgrasp_env::config::ActionSpace::Joint {
-            return Err(
-                "[env.arm] action_space must stay \"joint\" for an agent: choose the agent's action with [agent] action_space (evaluations would not see an env override)"
-                    .into(),
-            );
-        }
-        Ok(())
+        recipe::check_agent_env(&env)
     }
 
     /// The environment configuration of the preset and arm (what evaluations use).

@@ -1,0 +1,104 @@
+"""What the SB3 examples share: SB3 PPO with a recipe's hyperparameters, and deterministic
+evaluation on held-out scenarios (seeds ``seed · 1 000 003 + i``, the scenario sets of
+``fairgrasp eval --seed``) with 95 % Wilson intervals."""
+
+import math
+import os
+import tomllib
+
+import numpy as np
+
+import fairgrasp
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def recipe_file(name):
+    with open(os.path.join(ROOT, "assets", "experiments", name + ".toml"), "rb") as f:
+        return tomllib.load(f)
+
+
+def ppo_from_recipe(env, recipe, seed, zero_actor_output=None, **extra):
+    """SB3 PPO with the recipe's [ppo] and [model]: separate tanh MLPs of `hidden` for actor and
+    critic, `log_std_init`, the learning rate annealed linearly to 0 when `anneal_lr`, the target
+    KL, advantage normalisation; `norm_obs` is the caller's VecNormalize. With
+    `zero_actor_output` the actor's output layer starts at zero (the untrained residual is the
+    script)."""
+    import torch
+    from stable_baselines3 import PPO
+
+    ppo, model = recipe["ppo"], recipe["model"]
+    lr = ppo["learning_rate"]
+    learning_rate = (lambda progress: lr * progress) if ppo.get("anneal_lr", True) else lr
+    agent = PPO(
+        "MlpPolicy",
+        env,
+        n_steps=ppo["n_steps"],
+        batch_size=ppo["batch_size"],
+        n_epochs=ppo["n_epochs"],
+        gamma=ppo["gamma"],
+        gae_lambda=ppo["gae_lambda"],
+        clip_range=ppo["clip_coef"],
+        ent_coef=ppo["ent_coef"],
+        vf_coef=ppo["vf_coef"],
+        max_grad_norm=ppo["max_grad_norm"],
+        learning_rate=learning_rate,
+        target_kl=ppo.get("target_kl"),
+        normalize_advantage=ppo.get("norm_adv", True),
+        policy_kwargs=dict(
+            net_arch=dict(pi=model["hidden"], vf=model["hidden"]),
+            activation_fn=torch.nn.Tanh,
+            log_std_init=model["log_std_init"],
+        ),
+        seed=seed,
+        device="cpu",
+        **extra,
+    )
+    zero = model.get("zero_actor_output", False) if zero_actor_output is None else zero_actor_output
+    if zero:
+        with torch.no_grad():
+            agent.policy.action_net.weight.zero_()
+            agent.policy.action_net.bias.zero_()
+    return agent
+
+
+def wilson(k, n, z=1.96):
+    if n == 0:
+        return (0.0, 1.0)
+    p = k / n
+    d = 1 + z * z / n
+    c = (p + z * z / (2 * n)) / d
+    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
+    return (max(0.0, c - h), min(1.0, c + h))
+
+
+def evaluate(env, act, episodes, seed):
+    """Plays `episodes` held-out scenarios (seeds seed · 1 000 003 + i) with `act(obs) -> action`:
+    (successes, outcome counts)."""
+    successes, outcomes = 0, {}
+    for i in range(episodes):
+        obs, _ = env.reset(seed=seed * 1_000_003 + i)
+        while True:
+            obs, _, te, tr, info = env.step(act(obs))
+            if te or tr:
+                successes += int(info["outcome"] == "success")
+                outcomes[info["outcome"]] = outcomes.get(info["outcome"], 0) + 1
+                break
+    return successes, outcomes
+
+
+def policy_act(model, normalizer=None):
+    """The SB3 model's deterministic action for one observation (through VecNormalize's
+    statistics if given)."""
+
+    def act(obs):
+        x = obs if normalizer is None else normalizer.normalize_obs(obs[None, :])[0]
+        action, _ = model.predict(x, deterministic=True)
+        return np.asarray(action, dtype=np.float64)
+
+    return act
+
+
+def fmt(k, n):
+    lo, hi = wilson(k, n)
+    return f"{k}/{n} = {100 * k / n:.1f} % (95 % CI {100 * lo:.1f}–{100 * hi:.1f} %)"

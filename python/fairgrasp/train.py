@@ -1,0 +1,47 @@
+"""The Rust PPO trainer from Python: ``fairgrasp.train(config, run_dir, **overrides)`` runs
+``fairgrasp train`` in this process (the GIL released while it trains), writing the same run
+folder (``config.toml``, ``metrics.csv``, ``checkpoints/``, ``eval.json``).
+
+    import fairgrasp
+    report = fairgrasp.train("residual_miscalibrated", "runs/nudged_s1", preset="nudged", seed=1,
+                             progress=lambda p: print(p["timesteps"], p["success"]))
+    report["success_rate"], report["ci_low"], report["ci_high"], report["outcomes"]
+
+``config``: a shipped recipe's name (``fairgrasp.recipe_names()``) or a training config's path;
+``overrides``: any of the config's keys (``seed``, ``total_timesteps``, ``preset``,
+``ppo={"learning_rate": 1e-4}``, ...; tables merge key by key; a misspelt key is refused with the
+valid ones). Needs the extension built with the cargo feature ``train`` (the default).
+"""
+
+import json
+import os
+import sys
+
+from . import _native
+
+
+def _bar(p):
+    eval_part = "" if p["eval"] is None else f" eval {100 * p['eval']:.0f}%"
+    print(
+        f"\r{p['timesteps']}/{p['total']} steps  success {100 * p['success']:.0f}%  "
+        f"return {p['mean_return']:.2f}  stage {p['stage']}{eval_part}   ",
+        end="", file=sys.stderr, flush=True,
+    )
+
+
+def train(config, run_dir, *, resume=False, progress=None, **overrides):
+    """Trains ``config`` with ``overrides`` in ``run_dir`` (``resume=True`` continues it);
+    ``progress``: a callable given a dict after every update (``timesteps``, ``total``,
+    ``stage``, ``eval``, ``episodes``, ``success``, ``mean_return``), or ``True`` for a one-line
+    bar on stderr. Returns the final evaluation as a dict (``eval.json``'s report)."""
+    if not getattr(_native, "HAS_TRAIN", False):
+        raise RuntimeError(
+            "this build of fairgrasp has no trainer: build the extension with the cargo feature "
+            "`train` (maturin develop --features train)"
+        )
+    callback = _bar if progress is True else progress
+    overrides_json = json.dumps(overrides) if overrides else None
+    report = _native.train(str(config), os.fspath(run_dir), overrides_json, bool(resume), callback)
+    if progress is True:
+        print(file=sys.stderr)
+    return report

@@ -1,0 +1,138 @@
+//! One env as Python steps it (plain Rust, no Python types): the `GraspEnv`, and for a recipe
+//! the agent's side ([`EnvAgent`]: the observation becomes the policy input, the policy's output
+//! the env action, as in `fairgrasp train`) and the curriculum (its stage sets the scenario
+//! randomisation; it advances on the episodes this env plays).
+
+use fairgrasp_env::env::obs::Observation;
+use fairgrasp_env::scenario::curriculum::Curriculum;
+use fairgrasp_env::{Action, EnvError, GraspEnv, Info, Step};
+use fairgrasp_eval::agent::{AgentConfig, EnvAgent};
+
+use crate::info::Stage;
+use crate::setup::Setup;
+
+/// The curriculum's stage, as the info reports it.
+pub(crate) fn stage_of(c: &Curriculum) -> Stage {
+    (c.stage(), c.stage_name(c.stage()))
+}
+
+/// Applies the agent's verdict to an ended episode's record and feeds the curriculum; returns
+/// the curriculum's new randomisation if the stage advanced. The success the curriculum counts
+/// is the record's (as the trainer counts it).
+pub(crate) fn episode_ended(
+    info: &mut Info,
+    agent: Option<&EnvAgent>,
+    curriculum: Option<&mut Curriculum>,
+) -> Option<fairgrasp_env::config::RandomizationConfig> {
+    if let Some(a) = agent {
+        info.episode = info
+            .episode
+            .take()
+            .map(|r| r.with_policy_verdict(a.verdict()));
+    }
+    let c = curriculum?;
+    let success = info.episode.as_ref().is_some_and(|r| r.success());
+    let xy = info.scenario.map(|s| s.object_xy);
+    c.record_at(success, xy).then(|| c.randomization())
+}
+
+/// One env with its agent side and curriculum.
+pub(crate) struct AgentEnv {
+    env: GraspEnv,
+    agent: Option<(AgentConfig, EnvAgent)>,
+    curriculum: Option<Curriculum>,
+    /// The observation handed out last: the policy input (the env's flat observation without
+    /// an agent).
+    input: Vec<f32>,
+    /// The env's own observation the next action acts on.
+    last: Option<Observation>,
+}
+
+impl AgentEnv {
+    pub fn new(setup: &Setup) -> Result<Self, EnvError> {
+        let mut env = GraspEnv::new(setup.config.clone())?;
+        let curriculum = setup.curriculum();
+        if let Some(c) = &curriculum {
+            env.set_randomization(c.randomization())?;
+        }
+        Ok(Self {
+            agent: setup
+                .agent
+                .clone()
+                .map(|a| (a.clone(), EnvAgent::new(&a, &setup.config))),
+            input: vec![0.0; setup.obs_dim()],
+            curriculum,
+            env,
+            last: None,
+        })
+    }
+
+    pub fn env(&self) -> &GraspEnv {
+        &self.env
+    }
+
+    /// The observation handed out last.
+    pub fn input(&self) -> &[f32] {
+        &self.input
+    }
+
+    /// The env's own observation the next action acts on (None before the first reset).
+    pub fn last(&self) -> Option<&Observation> {
+        self.last.as_ref()
+    }
+
+    pub fn stage(&self) -> Option<Stage> {
+        self.curriculum.as_ref().map(stage_of)
+    }
+
+    /// Moves the curriculum to `stage` (clamped to the last) with empty windows; the new
+    /// randomisation holds from the next reset.
+    pub fn set_stage(&mut self, stage: usize) -> Result<(), EnvError> {
+        if let Some(c) = self.curriculum.take() {
+            let c = c.at_stage(stage);
+            self.env.set_randomization(c.randomization())?;
+            self.curriculum = Some(c);
+        }
+        Ok(())
+    }
+
+    fn observe(&mut self, obs: &Observation) {
+        match &mut self.agent {
+            Some((config, agent)) => agent.observe(config, obs, &mut self.input),
+            None => self.input.copy_from_slice(&obs.to_array()),
+        }
+        self.last = Some(*obs);
+    }
+
+    /// Starts the episode of scenario `seed` (drawn under the curriculum's stage).
+    pub fn reset(&mut self, seed: u64) -> Result<Info, EnvError> {
+        let (obs, info) = self.env.reset(seed)?;
+        if let Some((_, agent)) = &mut self.agent {
+            agent.reset(seed);
+        }
+        self.observe(&obs);
+        Ok(info)
+    }
+
+    /// One step with the policy's output `action` (the env action itself without an agent);
+    /// returns the env action taken and the step, whose record carries the agent's verdict.
+    pub fn step(&mut self, action: &[f64; 7]) -> Result<(Action, Step), EnvError> {
+        let obs = self.last.ok_or(EnvError::EpisodeOver)?;
+        let env_action = match &mut self.agent {
+            Some((config, agent)) => {
+                let policy = action.map(|v| v as f32);
+                agent.act(config, &obs, &policy, None)
+            }
+            None => Action(*action),
+        };
+        let mut step = self.env.step(&env_action)?;
+        if step.terminated || step.truncated {
+            let agent = self.agent.as_ref().map(|(_, a)| a);
+            if let Some(r) = episode_ended(&mut step.info, agent, self.curriculum.as_mut()) {
+                self.env.set_randomization(r)?;
+            }
+        }
+        self.observe(&step.obs);
+        Ok((env_action, step))
+    }
+}
