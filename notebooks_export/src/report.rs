@@ -270,8 +270,8 @@ fn comparison_section(
         "### The numbers as data\n\n`compare.csv` holds one row per method and preset (rates \
          as fractions); `compare.json` adds every episode's seed, outcome, steps, return and \
          cube start. This cell reads the CSV with Python's standard library only (folder: \
-         `{}`).",
-        shown.display()
+         {}).",
+        code_span(&shown.to_string_lossy())
     ));
     // Jupyter runs a notebook from its own folder: name the CSV relative to it when it is there.
     let same = dir
@@ -287,9 +287,9 @@ fn comparison_section(
             .unwrap_or_else(|_| dir.join("compare.csv"))
     };
     doc.code(format!(
-        "import csv\nrows = list(csv.DictReader(open(r\"{}\")))\nfor r in rows:\n    \
+        "import csv\nrows = list(csv.DictReader(open({})))\nfor r in rows:\n    \
          print(f\"{{r['preset']:>8}} {{r['method']:<32}} {{100 * float(r['success_rate']):5.1f}} %\")",
-        csv.display()
+        python_string(&csv.to_string_lossy())
     ));
     doc.markdown("### Environment configs\n\nThe complete config of each preset (TOML; pass the file to `--preset` to rerun it).");
     for (preset, toml) in &c.preset_configs {
@@ -353,4 +353,23 @@ fn runs_section(
          changes cost anything? Did the entropy collapse before the policy was good?",
     );
     Ok(())
+}
+
+/// `text` as a Python string literal that holds exactly `text` (JSON's escaping, which Python
+/// reads the same: quotes, backslashes and control characters escaped), so a folder name can
+/// never end the literal and become code in the notebook.
+fn python_string(text: &str) -> String {
+    serde_json::to_string(text).unwrap_or_else(|_| "\"\"".into())
+}
+
+/// `text` as one Markdown code span: line breaks become spaces, and the span is fenced by more
+/// backticks than `text` holds in a row, so a name can neither end it nor start a new block.
+fn code_span(text: &str) -> String {
+    let flat: String = text
+        .chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    let longest = flat.split(|c| c != '`').map(str::len).max().unwrap_or(0);
+    let fence = "`".repeat(longest + 1);
+    format!("{fence} {flat} {fence}")
 }
