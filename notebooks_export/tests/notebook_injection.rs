@@ -18,7 +18,7 @@ fn a_hostile_folder_name_never_becomes_code_in_the_notebook() {
     let cmp = dir.join(HOSTILE);
     write_comparison(&cmp, vec![]);
     let out = dir.join("out");
-    build_report(&[cmp.clone()], &out, Existing::Refuse).unwrap();
+    build_report(std::slice::from_ref(&cmp), &out, Existing::Refuse).unwrap();
 
     let nb: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.ipynb")).unwrap()).unwrap();
