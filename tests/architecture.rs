@@ -1,0 +1,401 @@
+//! No import loop between the files of any crate of the workspace: every `crate::…` and
+//! `super::…` path in a file (in `use` items and inline) is resolved to the file that defines
+//! what it names — through a module's `pub use child::…` re-exports to the child's file — and
+//! the graph of those imports must have no cycle. A `mod.rs`' or crate root's own `pub use`
+//! re-exports and `mod` declarations are the module's public face, not imports. A cycle fails
+//! the test naming its files.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The crates whose `src/` is checked (the workspace's members and the root package).
+const CRATES: [&str; 10] = [
+    "types",
+    "kinematics",
+    "env",
+    "planner",
+    "eval",
+    "rl",
+    "bench",
+    "notebooks_export",
+    "python",
+    ".",
+];
+
+fn repo() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Every `.rs` file under `dir`, with its module path (`lib.rs`/`main.rs` = [], `a.rs` and
+/// `a/mod.rs` = [a], `a/b.rs` = [a, b]).
+fn modules(src: &Path) -> BTreeMap<Vec<String>, PathBuf> {
+    let mut out = BTreeMap::new();
+    let mut stack = vec![src.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            if path.extension().is_none_or(|e| e != "rs") {
+                continue;
+            }
+            let rel = path.strip_prefix(src).unwrap();
+            let mut segments: Vec<String> = rel
+                .iter()
+                .map(|s| s.to_string_lossy().trim_end_matches(".rs").to_string())
+                .collect();
+            let last = segments.last().unwrap().clone();
+            if last == "mod" || (segments.len() == 1 && (last == "lib" || last == "main")) {
+                segments.pop();
+            }
+            // A crate with both lib.rs and main.rs (the root package): the library is the root.
+            if segments.is_empty() && out.contains_key(&segments) && last == "main" {
+                continue;
+            }
+            out.insert(segments, path);
+        }
+    }
+    out
+}
+
+/// The text without comments (line comments and block comments) and string literals' content.
+fn code_of(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '/' if chars.peek() == Some(&'/') => {
+                for c in chars.by_ref() {
+                    if c == '\n' {
+                        out.push('\n');
+                        break;
+                    }
+                }
+            }
+            '/' if chars.peek() == Some(&'*') => {
+                let mut prev = ' ';
+                for c in chars.by_ref() {
+                    if prev == '*' && c == '/' {
+                        break;
+                    }
+                    prev = c;
+                }
+            }
+            '"' => {
+                let mut escaped = false;
+                for c in chars.by_ref() {
+                    if escaped {
+                        escaped = false;
+                    } else if c == '\\' {
+                        escaped = true;
+                    } else if c == '"' {
+                        break;
+                    }
+                }
+                out.push_str("\"\"");
+            }
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// The module paths a piece of code names: `crate::a::b`, `super::a`, and groups
+/// (`crate::a::{b, c::d}`), each as the path from the crate root (`super` resolved against
+/// `here`, the module of the file).
+fn named_paths(code: &str, here: &[String], is_module_root: bool) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    let text = code;
+    for start in ["crate::", "super::"] {
+        let mut from = 0;
+        while let Some(pos) = text[from..].find(start) {
+            let at = from + pos;
+            from = at + start.len();
+            let before = text[..at].chars().last();
+            if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
+                continue;
+            }
+            // The statement this path is in: a module root's own `pub use` re-exports are skipped.
+            let line_start = text[..at].rfind(['\n', ';', '{', '}']).map_or(0, |i| i + 1);
+            let statement = text[line_start..at].trim();
+            if is_module_root && statement.starts_with("pub use") {
+                continue;
+            }
+            let mut base: Vec<String> = Vec::new();
+            let mut rest = &text[at..];
+            if start == "crate::" {
+                rest = &rest["crate::".len()..];
+            } else {
+                // `super` is the parent of the file's module (a/b.rs is a::b, a/mod.rs is a).
+                base = here.to_vec();
+                while let Some(r) = rest.strip_prefix("super::") {
+                    base.pop();
+                    rest = r;
+                }
+            }
+            expand(rest, &base, &mut out);
+        }
+    }
+    out
+}
+
+/// Appends the paths of `rest` (what follows `crate::` or the `super::`s) under `base`.
+fn expand(rest: &str, base: &[String], out: &mut Vec<Vec<String>>) {
+    let mut path = base.to_vec();
+    let mut chars = rest.char_indices().peekable();
+    let mut ident = String::new();
+    while let Some((i, c)) = chars.next() {
+        if c.is_alphanumeric() || c == '_' {
+            ident.push(c);
+        } else if c == ':' && rest[i..].starts_with("::") {
+            chars.next();
+            if !ident.is_empty() {
+                path.push(std::mem::take(&mut ident));
+            }
+            if rest[i + 2..].starts_with('{') {
+                // A group: each top-level entry under the path so far.
+                let inner = &rest[i + 3..];
+                let mut depth = 0;
+                let mut entry_start = 0;
+                for (j, d) in inner.char_indices() {
+                    match d {
+                        '{' => depth += 1,
+                        '}' if depth == 0 => {
+                            expand(inner[entry_start..j].trim(), &path, out);
+                            return;
+                        }
+                        '}' => depth -= 1,
+                        ',' if depth == 0 => {
+                            expand(inner[entry_start..j].trim(), &path, out);
+                            entry_start = j + 1;
+                        }
+                        _ => {}
+                    }
+                }
+                return;
+            }
+        } else {
+            break;
+        }
+    }
+    if !ident.is_empty() && ident != "self" {
+        path.push(ident);
+    }
+    out.push(path);
+}
+
+/// The file that defines what `path` names: the deepest module on it, and, when the next
+/// segment is an item a module root re-exports from a child (`pub use child::…`), the child.
+fn resolve(
+    path: &[String],
+    modules: &BTreeMap<Vec<String>, PathBuf>,
+    texts: &BTreeMap<Vec<String>, String>,
+) -> Option<Vec<String>> {
+    let mut depth = path.len();
+    while !modules.contains_key(&path[..depth]) {
+        depth = depth.checked_sub(1)?;
+    }
+    let mut module = path[..depth].to_vec();
+    // Follow re-exports of the next segment (an item) into children, as far as they go.
+    if let Some(item) = path.get(depth) {
+        for _ in 0..4 {
+            let Some(text) = texts.get(&module) else {
+                break;
+            };
+            let Some(child) = reexporting_child(text, item, &module, modules, texts) else {
+                break;
+            };
+            module = child;
+        }
+    }
+    Some(module)
+}
+
+/// The child module of `module` that `text` (its code) re-exports `item` from, if any.
+fn reexporting_child(
+    text: &str,
+    item: &str,
+    module: &[String],
+    modules: &BTreeMap<Vec<String>, PathBuf>,
+    texts: &BTreeMap<Vec<String>, String>,
+) -> Option<Vec<String>> {
+    for statement in text.split(';') {
+        let s = statement.trim();
+        let Some(rest) = s.strip_prefix("pub use ") else {
+            continue;
+        };
+        let rest = rest.trim_start_matches("self::");
+        let child_name: String = rest
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        let mut child = module.to_vec();
+        child.push(child_name);
+        let Some(child_text) = texts.get(&child) else {
+            continue;
+        };
+        let named = rest.contains(&format!("{{{item}"))
+            || rest.contains(&format!(" {item},"))
+            || rest.contains(&format!(" {item}}}"))
+            || rest.contains(&format!(", {item}"))
+            || rest.ends_with(&format!("::{item}"));
+        let glob = rest.ends_with("::*") && defines(child_text, item);
+        if (named || glob) && modules.contains_key(&child) {
+            return Some(child);
+        }
+    }
+    None
+}
+
+/// Whether `code` defines `item` at some level (fn, struct, enum, trait, type, const, static,
+/// macro or a re-export of it).
+fn defines(code: &str, item: &str) -> bool {
+    [
+        "fn ", "struct ", "enum ", "trait ", "type ", "const ", "static ", "mod ",
+    ]
+    .iter()
+    .any(|kw| {
+        code.match_indices(&format!("{kw}{item}")).any(|(i, _)| {
+            code[i + kw.len() + item.len()..]
+                .chars()
+                .next()
+                .is_none_or(|c| !(c.is_alphanumeric() || c == '_'))
+        })
+    }) || code.contains(&format!("pub use {item}"))
+}
+
+/// The first cycle in `edges` (as module paths), if any.
+fn find_cycle(edges: &BTreeMap<Vec<String>, BTreeSet<Vec<String>>>) -> Option<Vec<Vec<String>>> {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Mark {
+        New,
+        Open,
+        Done,
+    }
+    fn visit(
+        node: &Vec<String>,
+        edges: &BTreeMap<Vec<String>, BTreeSet<Vec<String>>>,
+        marks: &mut BTreeMap<Vec<String>, Mark>,
+        stack: &mut Vec<Vec<String>>,
+    ) -> Option<Vec<Vec<String>>> {
+        marks.insert(node.clone(), Mark::Open);
+        stack.push(node.clone());
+        for next in edges.get(node).into_iter().flatten() {
+            match marks.get(next).copied().unwrap_or(Mark::New) {
+                Mark::Open => {
+                    let from = stack.iter().position(|n| n == next).unwrap();
+                    let mut cycle = stack[from..].to_vec();
+                    cycle.push(next.clone());
+                    return Some(cycle);
+                }
+                Mark::New => {
+                    if let Some(c) = visit(next, edges, marks, stack) {
+                        return Some(c);
+                    }
+                }
+                Mark::Done => {}
+            }
+        }
+        stack.pop();
+        marks.insert(node.clone(), Mark::Done);
+        None
+    }
+    let mut marks = BTreeMap::new();
+    for node in edges.keys() {
+        if marks.get(node).copied().unwrap_or(Mark::New) == Mark::New {
+            let mut stack = Vec::new();
+            if let Some(c) = visit(node, edges, &mut marks, &mut stack) {
+                return Some(c);
+            }
+        }
+    }
+    None
+}
+
+/// The import graph of one crate's files.
+fn import_graph(src: &Path) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
+    let modules = modules(src);
+    let texts: BTreeMap<Vec<String>, String> = modules
+        .iter()
+        .map(|(m, p)| (m.clone(), code_of(&std::fs::read_to_string(p).unwrap())))
+        .collect();
+    let mut edges: BTreeMap<Vec<String>, BTreeSet<Vec<String>>> = BTreeMap::new();
+    for (module, path) in &modules {
+        let name = path.file_name().unwrap().to_string_lossy();
+        let is_module_root = name == "mod.rs" || name == "lib.rs" || name == "main.rs";
+        let code = &texts[module];
+        for named in named_paths(code, module, is_module_root) {
+            if let Some(target) = resolve(&named, &modules, &texts)
+                && &target != module
+                // A module's own ancestors are where it is declared; naming them is not a loop
+                // unless they import it back, which their own edges show.
+                && !(target.is_empty() && named.len() <= 1)
+            {
+                edges.entry(module.clone()).or_default().insert(target);
+            }
+        }
+        edges.entry(module.clone()).or_default();
+    }
+    edges
+}
+
+#[test]
+fn no_two_files_of_a_crate_import_each_other_directly_or_through_a_loop() {
+    let mut report = Vec::new();
+    let mut files = 0;
+    let mut imports = 0;
+    for krate in CRATES {
+        let src = repo().join(krate).join("src");
+        let graph = import_graph(&src);
+        files += graph.len();
+        imports += graph.values().map(BTreeSet::len).sum::<usize>();
+        if let Some(cycle) = find_cycle(&graph) {
+            let names: Vec<String> = cycle
+                .iter()
+                .map(|m| {
+                    if m.is_empty() {
+                        "(crate root)".to_string()
+                    } else {
+                        m.join("::")
+                    }
+                })
+                .collect();
+            report.push(format!("{krate}: {}", names.join(" → ")));
+        }
+    }
+    eprintln!("{files} files, {imports} imports between files");
+    assert!(files > 150, "only {files} files found: the scan is broken");
+    assert!(
+        imports > 300,
+        "only {imports} imports resolved: the scan is broken"
+    );
+    assert!(report.is_empty(), "import loops:\n{}", report.join("\n"));
+}
+
+#[test]
+fn the_loop_finder_finds_a_loop_between_two_files() {
+    let dir = std::env::temp_dir().join(format!("fairgrasp-arch-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("a")).unwrap();
+    std::fs::write(dir.join("lib.rs"), "pub mod a;\npub mod b;\n").unwrap();
+    std::fs::write(dir.join("a/mod.rs"), "mod inner;\npub use inner::*;\n").unwrap();
+    std::fs::write(
+        dir.join("a/inner.rs"),
+        "use crate::b::Thing;\npub struct Other;\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("b.rs"),
+        "use crate::a::Other;\npub struct Thing;\n",
+    )
+    .unwrap();
+    let cycle = find_cycle(&import_graph(&dir));
+    std::fs::remove_dir_all(&dir).ok();
+    let cycle = cycle.expect("b → a::inner → b is a loop (through a's re-export)");
+    let names: BTreeSet<String> = cycle.iter().map(|m| m.join("::")).collect();
+    assert!(
+        names.contains("b") && names.contains("a::inner"),
+        "{names:?}"
+    );
+}
