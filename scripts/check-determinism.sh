@@ -11,7 +11,8 @@ out="$(mktemp -d "${TMPDIR:-/tmp}/fairgrasp-determinism.XXXXXX")"
 trap 'rm -rf "$out"' EXIT
 for i in $(seq 1 "$runs"); do
     start=$(date +%s)
-    if ! cargo test --quiet --locked -p fairgrasp-rl --test ppo --test determinism \
+    # --workspace, not -p: the same feature set as the suite's build, so nothing is rebuilt.
+    if ! cargo test --quiet --locked --workspace --test ppo --test determinism \
         -- --nocapture >"$out/run$i.log" 2>&1; then
         cat "$out/run$i.log"
         echo "determinism check: run $i of $runs failed" >&2
