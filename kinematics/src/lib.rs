@@ -6,6 +6,7 @@
 //! - [`fk`]: closed-form DH forward kinematics, geometric Jacobian, manipulability.
 //! - [`geometry`]: exact segment–box and box–box distances and penetration depths.
 //! - [`urdf`]: any serial URDF: joint table, chain to a tip link, FK; errors name the culprit.
+//! - [`calibrate`]: the base's mount and a fixed camera's pose from measurements in a cell.
 //! - [`analytic_ik`]: all (up to 8) closed-form IK branches, wrapped into the joint limits.
 //! - [`diff_ik`] and [`qp_ik`]: differential IK as one clarabel QP, and an iterative solver.
 //!
@@ -36,6 +37,7 @@
 
 pub mod analytic_ik;
 pub mod angles;
+pub mod calibrate;
 pub mod collision;
 pub mod diff_ik;
 pub mod fairino;
