@@ -363,5 +363,5 @@ fn performance_commands_run_as_written() {
 
 #[test]
 fn real_cell_commands_run_as_written() {
-    run_page("docs/real_cell.md");
+    run_page("docs/real_cell.md").has("docs/real_cell.md", &["my_cell.toml"]);
 }

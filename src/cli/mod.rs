@@ -4,11 +4,13 @@ mod args;
 mod baseline;
 mod bench;
 mod bench_ppo;
+mod calibrate;
 mod compare;
 mod fk;
 mod frames;
 mod ik;
 mod joints;
+mod measurements;
 mod progress;
 mod replay;
 mod report;
@@ -41,6 +43,9 @@ enum Command {
     Ik(ik::IkArgs),
     /// Frame sanity checks: the zero pose, and a world point expressed in a rotated base frame.
     Frames(frames::FramesArgs),
+    /// Calibrate a real cell from measurements: the base's mount from touched points, a fixed
+    /// camera's pose from robot and marker poses (hand-eye).
+    Calibrate(calibrate::CalibrateArgs),
     /// The scene's numbers and every contact right after a reset: collisions, ignored pairs.
     Scene(scene::SceneArgs),
     /// The scripted grasp baseline on a preset's seeded scenario set: success rate and failures.
@@ -70,6 +75,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Fk(a) => fk::run(&a),
         Command::Ik(a) => ik::run(&a),
         Command::Frames(a) => frames::run(&a),
+        Command::Calibrate(a) => calibrate::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Baseline(a) => baseline::run(&a),
         Command::Train(a) => train::run_train(&a),
