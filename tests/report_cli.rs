@@ -59,12 +59,17 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
         .map(|m| m.as_str().unwrap())
         .collect();
     assert_eq!(
-        methods[..3],
-        ["scripted baseline", "closed-loop script", "oracle script"]
+        methods[..4],
+        [
+            "scripted baseline",
+            "closed-loop script",
+            "oracle script",
+            "script + calibration"
+        ]
     );
     let learned = results.iter().filter(|r| !r["policy"].is_null()).count() / 2;
     assert!(learned >= 2, "{methods:?}");
-    assert_eq!(methods.len(), 3 + learned);
+    assert_eq!(methods.len(), 4 + learned);
     assert_eq!(results.len(), 2 * methods.len());
     // The paired tests: every learned method against every script on each preset, with the
     // discordant counts of the two result lists.
@@ -87,8 +92,8 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
     };
     let mut pairs = 0;
     for preset in ["fixed", "hard"] {
-        for l in &methods[3..] {
-            for s in &methods[..3] {
+        for l in &methods[4..] {
+            for s in &methods[..4] {
                 let (a, b) = (outcome_list(l, preset), outcome_list(s, preset));
                 let only_a = a.iter().zip(&b).filter(|(x, y)| **x && !**y).count();
                 let only_b = a.iter().zip(&b).filter(|(x, y)| !**x && **y).count();

@@ -62,6 +62,7 @@ fn a_copied_binary_run_elsewhere_compares_the_built_in_policies_on_a_built_in_pr
         "scripted baseline".to_string(),
         "closed-loop script".into(),
         "oracle script".into(),
+        "script + calibration".into(),
     ];
     methods.extend(names.iter().map(|n| {
         let mode = n.split('_').next().unwrap();
@@ -72,7 +73,7 @@ fn a_copied_binary_run_elsewhere_compares_the_built_in_policies_on_a_built_in_pr
     // The learned policies are the shipped bytes, unpacked under TMPDIR: nothing is read from
     // the source tree the binary was built in.
     for (i, name) in names.iter().enumerate() {
-        let policy = PathBuf::from(v["results"][i + 3]["policy"].as_str().unwrap());
+        let policy = PathBuf::from(v["results"][i + 4]["policy"].as_str().unwrap());
         assert!(
             policy.starts_with(&tmp) && !policy.starts_with(repo().join("assets")),
             "{}",

@@ -8,11 +8,14 @@
 //! - [`phase`]: [`Phase`], where the script is (plan, approach, descend, close, lift, hold).
 //! - [`closed_loop`]: [`ClosedLoopGrasp`], the closed-loop script (re-plans, retries once) and
 //!   the oracle (the same on the true cube pose).
+//! - [`calibrated`]: [`CalibratedScript`], the open-loop script after a (simulated) camera
+//!   calibration: the engineer's fix for a miscalibrated cell.
 //! - [`correction`]: a task-space correction of the grasp and its map to joints (Jacobian).
 //! - [`residual`]: [`ResidualScript`], what a residual policy corrects the script through, and
 //!   [`OracleResidual`], the hand-written residual that uses the true pose through it.
 
 pub mod baseline;
+pub mod calibrated;
 pub mod closed_loop;
 pub mod correction;
 pub mod grasp;
@@ -21,6 +24,7 @@ pub mod phase;
 pub mod residual;
 
 pub use baseline::{BaselineConfig, CloseTiming, Phase, PlannedObject, ScriptedGrasp};
+pub use calibrated::{CalibratedScript, CameraCalibration};
 pub use closed_loop::{ClosedLoopConfig, ClosedLoopGrasp, CubeSource};
 pub use correction::{CorrectionLimits, TaskCorrection};
 pub use residual::{OracleResidual, ResidualScript};

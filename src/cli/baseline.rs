@@ -8,7 +8,9 @@ use clap::{Args, ValueEnum};
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::config::presets::{self, PRESETS};
 use fairgrasp_env::episode::{EvalReport, Policy, evaluate_seeded};
-use fairgrasp_planner::{BaselineConfig, ClosedLoopGrasp, ScriptedGrasp};
+use fairgrasp_planner::{
+    BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
+};
 use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -56,13 +58,15 @@ pub enum ScriptArg {
     ClosedLoop,
     /// The closed loop on the cube's true pose (the ceiling).
     Oracle,
+    /// The open-loop script after a simulated camera calibration (8 touched marker spots).
+    Calibrated,
 }
 
 #[derive(Args, Debug)]
 pub struct BaselineArgs {
     #[command(flatten)]
     scenarios: ScenarioArgs,
-    /// Which script: open_loop (the baseline), closed_loop or oracle.
+    /// Which script: open_loop (the baseline), closed_loop, oracle or calibrated.
     #[arg(long, value_enum, default_value = "open_loop")]
     script: ScriptArg,
 }
@@ -184,6 +188,36 @@ pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
         ScriptArg::Oracle => {
             let make = |config: &EnvConfig| ClosedLoopGrasp::oracle(config);
             evaluate_and_print(&a.scenarios, "oracle", &make, none)
+        }
+        ScriptArg::Calibrated => {
+            let config = preset_config(&a.scenarios.preset, a.scenarios.arm)?;
+            let calibration = CameraCalibration::of(&config).map_err(anyhow::Error::msg)?;
+            let extra = match &calibration.fit {
+                Ok(fit) => serde_json::json!({"calibration": {
+                    "touches": fit.residuals.len(), "rms_m": fit.rms,
+                    "camera_error": fit.base_in_world.record(),
+                }}),
+                Err(why) => serde_json::json!({"calibration": {"refused": why}}),
+            };
+            if !a.scenarios.json {
+                match &calibration.fit {
+                    Ok(fit) => {
+                        let (dp, dr) = fit.base_in_world.distance_to(&Default::default());
+                        println!(
+                            "camera calibrated from {} touches (RMS {:.2} mm): the fitted error moves the base origin {:.1} mm and turns {:.2}°",
+                            fit.residuals.len(),
+                            fit.rms * 1e3,
+                            dp * 1e3,
+                            dr.to_degrees()
+                        );
+                    }
+                    Err(why) => println!(
+                        "camera calibration refused ({why}): the script runs on the camera as it is"
+                    ),
+                }
+            }
+            let make = |config: &EnvConfig| CalibratedScript::new(config, calibration.clone());
+            evaluate_and_print(&a.scenarios, "calibrated", &make, extra)
         }
     }
 }

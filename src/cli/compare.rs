@@ -27,8 +27,8 @@ pub struct CompareArgs {
     episodes: u32,
     /// Learned policies (checkpoint folders); repeat for several. Default: the shipped policies
     /// (assets/policies/, built into the binary; all but the pitfall exhibit pure_hard). Every
-    /// comparison also runs the three scripts: the open-loop baseline, the closed-loop script
-    /// and the oracle.
+    /// comparison also runs the four scripts: the open-loop baseline, the closed-loop script,
+    /// the oracle and the open-loop script after a simulated camera calibration.
     #[arg(long = "policy", value_name = "DIR")]
     policies: Vec<PathBuf>,
     /// Seed of the scenario sets.

@@ -17,7 +17,7 @@ use super::baseline::preset_config;
 
 #[derive(Args, Debug)]
 pub struct ReplayArgs {
-    /// What acts: a script (open_loop, closed_loop, oracle), a shipped policy by name
+    /// What acts: a script (open_loop, closed_loop, oracle, calibrated), a shipped policy by name
     /// (residual_hard, pure_full, residual_miscalibrated, …) or a checkpoint folder. Repeat the
     /// flag to run several on the same scenario (shown side by side in the page).
     #[arg(long = "policy", value_name = "P", required = true)]

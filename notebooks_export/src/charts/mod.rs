@@ -67,7 +67,8 @@ pub(crate) fn line_mark(color: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(
 }
 
 /// Tableau 10: readable on white, distinguishable in greyscale print by lightness; ten methods
-/// (three scripts and seven policies) get ten colours before any repeats.
+/// (the four scripts and six shipped policies of the default comparison) get ten colours
+/// before any repeats.
 pub const PALETTE: [RGBColor; 10] = [
     RGBColor(78, 121, 167),
     RGBColor(242, 142, 43),

@@ -8,7 +8,7 @@ use crate::compare::{CompareError, LearnedPolicy, SCRIPTS};
 use crate::run::shipped::ShippedPolicy;
 
 /// The command-line names of the scripts, in the order of [`SCRIPTS`].
-pub const SCRIPT_NAMES: [&str; 3] = ["open_loop", "closed_loop", "oracle"];
+pub const SCRIPT_NAMES: [&str; 4] = ["open_loop", "closed_loop", "oracle", "calibrated"];
 
 /// A method to run: a script (index into [`SCRIPTS`]) or a learned policy.
 pub enum Method {

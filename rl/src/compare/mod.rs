@@ -24,7 +24,9 @@ use fairgrasp_env::episode::trajectory::Trajectory;
 use fairgrasp_env::episode::{EvalReport, Policy, evaluate};
 use fairgrasp_env::scenario::{Scenario, scenario_set};
 use fairgrasp_env::{EnvConfig, EnvError};
-use fairgrasp_planner::{BaselineConfig, ClosedLoopGrasp, ScriptedGrasp};
+use fairgrasp_planner::{
+    BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
+};
 use fairgrasp_types::fs::slug;
 use fairgrasp_types::{Comparison, MethodResult, RecordedEpisode};
 
@@ -36,9 +38,15 @@ use crate::run::evaluate::agent_policy;
 pub const BASELINE: &str = "scripted baseline";
 
 /// The scripts every comparison runs first, in order: the open-loop baseline, the closed-loop
-/// script (re-plans on the observed cube, retries once) and the oracle (the closed loop on the
-/// true pose: the ceiling).
-pub const SCRIPTS: [&str; 3] = [BASELINE, "closed-loop script", "oracle script"];
+/// script (re-plans on the observed cube, retries once), the oracle (the closed loop on the
+/// true pose: the ceiling) and the open-loop script after a simulated camera calibration (the
+/// engineer's fix for a miscalibrated cell, [`fairgrasp_planner::calibrated`]).
+pub const SCRIPTS: [&str; 4] = [
+    BASELINE,
+    "closed-loop script",
+    "oracle script",
+    "script + calibration",
+];
 
 /// Why a comparison could not run.
 #[derive(Debug, thiserror::Error)]
@@ -167,16 +175,19 @@ impl CompareOutput {
     }
 }
 
-/// A fresh policy of method `i` (the [`SCRIPTS`], then `learned` in order) for `config`.
+/// A fresh policy of method `i` (the [`SCRIPTS`], then `learned` in order) for `config`, whose
+/// camera calibration is `calibration`.
 pub(crate) fn make_policy(
     i: usize,
     learned: &[LearnedPolicy],
     config: &EnvConfig,
+    calibration: &CameraCalibration,
 ) -> Box<dyn Policy> {
     match i {
         0 => Box::new(ScriptedGrasp::new(config, BaselineConfig::default())),
         1 => Box::new(ClosedLoopGrasp::observed(config)),
         2 => Box::new(ClosedLoopGrasp::oracle(config)),
+        3 => Box::new(CalibratedScript::new(config, calibration.clone())),
         i => {
             let l = &learned[i - SCRIPTS.len()];
             Box::new(agent_policy(&l.meta, &l.model, config))
@@ -205,6 +216,17 @@ impl Policy for Boxed {
     }
 }
 
+/// The simulated camera calibration of a config's cell, for "script + calibration".
+pub(crate) fn calibration_of(
+    config: &EnvConfig,
+    preset: &str,
+) -> Result<CameraCalibration, CompareError> {
+    CameraCalibration::of(config).map_err(|message| CompareError::Preset {
+        preset: preset.to_string(),
+        message,
+    })
+}
+
 /// The seeded scenario set of one preset.
 fn scenarios_of(preset: &ComparePreset, spec: &CompareSpec) -> Result<Vec<Scenario>, CompareError> {
     preset
@@ -231,12 +253,13 @@ pub fn run_comparison(
     let mut last_scenarios = Vec::new();
     for preset in &spec.presets {
         let scenarios = scenarios_of(preset, spec)?;
+        let calibration = calibration_of(&preset.config, &preset.name)?;
         for (i, method) in methods.iter().enumerate() {
             progress(CompareEvent::Method {
                 preset: &preset.name,
                 method,
             });
-            let make = || Boxed(make_policy(i, learned, &preset.config));
+            let make = || Boxed(make_policy(i, learned, &preset.config, &calibration));
             let report: EvalReport = evaluate(
                 &preset.config,
                 &scenarios,

@@ -9,7 +9,7 @@ use fairgrasp_env::scenario::Scenario;
 use fairgrasp_env::{EnvConfig, GraspEnv};
 use fairgrasp_types::Outcome;
 
-use crate::compare::{CompareError, LearnedPolicy, make_policy};
+use crate::compare::{CompareError, LearnedPolicy, calibration_of, make_policy};
 
 /// One recorded episode: method index, scenario index, outcome and trajectory.
 pub struct Recording {
@@ -36,6 +36,7 @@ pub fn record_episodes(
         .iter()
         .flat_map(|&m| picked.iter().map(move |&k| (m, k)))
         .collect();
+    let calibration = &calibration_of(config, "the recorded preset")?;
     let chunk = jobs.len().div_ceil(threads.max(1)).max(1);
     let mut out = Vec::with_capacity(jobs.len());
     std::thread::scope(|scope| -> Result<(), CompareError> {
@@ -46,7 +47,7 @@ pub fn record_episodes(
                     let mut env = GraspEnv::new(config.clone())?;
                     let mut done = Vec::with_capacity(part.len());
                     for &(method, scenario) in part {
-                        let mut policy = make_policy(method, learned, config);
+                        let mut policy = make_policy(method, learned, config, calibration);
                         let mut trajectory = Trajectory::default();
                         let record = run_episode(
                             &mut env,
