@@ -12,7 +12,7 @@ trap 'rm -rf "$out"' EXIT
 for i in $(seq 1 "$runs"); do
     start=$(date +%s)
     # --workspace, not -p: the same feature set as the suite's build, so nothing is rebuilt.
-    if ! cargo test --quiet --locked --workspace --test ppo --test determinism \
+    if ! cargo test --quiet --locked --workspace --features fairgrasp/train --test ppo --test determinism \
         -- --nocapture >"$out/run$i.log" 2>&1; then
         cat "$out/run$i.log"
         echo "determinism check: run $i of $runs failed" >&2

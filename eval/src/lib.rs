@@ -6,9 +6,15 @@
 //! - [`recipes`]: the training recipes shipped in `assets/experiments/`.
 //! - [`burnpack`]: the weights of a checkpoint's `model.bpk`.
 //! - [`actor`]: the policy network's actor as plain arrays (its mean action).
+//! - [`checkpoint`]: a checkpoint's `meta.json` and verified weights, as a policy.
+//! - [`shipped`]: the trained policies built into the binary.
+//! - [`compare`]: every method on the same scenario sets (the `compare` experiment).
 
 pub mod actor;
 pub mod agent;
 pub mod burnpack;
+pub mod checkpoint;
+pub mod compare;
 pub mod recipe;
 pub mod recipes;
+pub mod shipped;

@@ -4,8 +4,10 @@
 use burn::tensor::{Device, Tensor, TensorData};
 use fairgrasp_eval::actor::Actor;
 use fairgrasp_eval::burnpack::read_tensors;
+use fairgrasp_rl::agent::Mode;
 use fairgrasp_rl::run::checkpoint::load_model;
 use fairgrasp_rl::run::shipped::ShippedPolicy;
+use fairgrasp_types::paired::mcnemar_exact;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -37,5 +39,75 @@ fn every_shipped_policy_acts_the_same_without_burn_to_1e_5() {
         }
         eprintln!("{}: largest difference {worst:e}", policy.name());
         assert!(worst <= 1e-5, "{}: {worst}", policy.name());
+    }
+}
+
+/// The preset each shipped policy was trained for (its name after the mode).
+fn family(policy: ShippedPolicy) -> &'static str {
+    let name = policy.name();
+    name.split_once('_').map_or(name, |(_, rest)| rest)
+}
+
+#[test]
+fn every_shipped_policy_ends_300_episodes_the_same_without_burn() {
+    use fairgrasp_env::config::presets;
+    use fairgrasp_env::episode::evaluate;
+    use fairgrasp_env::scenario::scenario_set;
+    use fairgrasp_eval::checkpoint::{actor_policy, load_actor};
+    use fairgrasp_rl::run::evaluate::agent_policy;
+
+    let device = Device::flex();
+    for policy in ShippedPolicy::ALL {
+        let dir = policy.checkpoint_dir().unwrap();
+        let (meta, model) = load_model(&dir, &device).unwrap();
+        let (_, actor) = load_actor(&dir).unwrap();
+        let config = presets::load(family(policy)).unwrap();
+        let scenarios = scenario_set(&config, 7, 300).unwrap();
+        let with_burn = evaluate(
+            &config,
+            &scenarios,
+            2,
+            None,
+            &|| agent_policy(&meta, &model, &config),
+            &|| {},
+        )
+        .unwrap();
+        let without = evaluate(
+            &config,
+            &scenarios,
+            2,
+            None,
+            &|| actor_policy(&meta, &actor, &config),
+            &|| {},
+        )
+        .unwrap();
+        // The two forward passes differ in the last bits (≤ 1e-5). A residual's correction is
+        // small and the script leads: its outcomes must be identical. A pure policy acts alone
+        // every step and contact can amplify a last-bit difference: its outcomes may differ on
+        // a few episodes, never significantly (McNemar, both ways).
+        let pairs: Vec<_> = with_burn.results.iter().zip(&without.results).collect();
+        assert_eq!(pairs.len(), 300);
+        assert!(pairs.iter().all(|(a, b)| a.seed == b.seed));
+        let only = |burn: bool| {
+            pairs
+                .iter()
+                .filter(|(a, b)| a.success() == burn && b.success() != burn)
+                .count()
+        };
+        let (only_burn, only_actor) = (only(true), only(false));
+        let other_outcome = pairs.iter().filter(|(a, b)| a.outcome != b.outcome).count();
+        let p = mcnemar_exact(only_burn, only_actor);
+        eprintln!(
+            "{} on {}: {:.1} % with burn, {:.1} % without; {other_outcome} episodes end otherwise \
+             ({only_burn} / {only_actor} successes of one only, McNemar p = {p:.3})",
+            policy.name(),
+            family(policy),
+            100.0 * with_burn.success_rate,
+            100.0 * without.success_rate,
+        );
+        if meta.agent.mode == Mode::Residual {
+            assert_eq!(other_outcome, 0, "{}", policy.name());
+        }
+        assert!(p >= 0.05, "{}: p = {p}", policy.name());
     }
 }

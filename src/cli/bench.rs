@@ -68,7 +68,13 @@ pub struct EnvBenchArgs {
 pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
     match &a.what {
         BenchWhat::Env(a) => run_env(a),
+        #[cfg(feature = "train")]
         BenchWhat::Ppo(a) => super::bench_ppo::run(a.iterations, &a.preset, a.json),
+        #[cfg(not(feature = "train"))]
+        BenchWhat::Ppo(_) => anyhow::bail!(
+            "bench ppo measures PPO in burn, which this fairgrasp was built without: \
+             cargo run --release --features train -- bench ppo …"
+        ),
         BenchWhat::Soak(a) => super::soak::run(a),
     }
 }

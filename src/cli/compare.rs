@@ -6,10 +6,10 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
+use fairgrasp_eval::compare::{ComparePreset, CompareSpec, LearnedPolicy, run_comparison};
+use fairgrasp_eval::shipped;
 use fairgrasp_report::compare;
 use fairgrasp_report::{Input, StagedFolder, write_report};
-use fairgrasp_rl::compare::{ComparePreset, CompareSpec, LearnedPolicy, run_comparison};
-use fairgrasp_rl::run::shipped;
 use fairgrasp_types::{ArmSimulation, write_atomic};
 
 use super::baseline::preset_config;
@@ -68,7 +68,7 @@ pub struct CompareArgs {
 
 pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     let names = if a.presets.is_empty() {
-        fairgrasp_rl::compare::DEFAULT_PRESETS
+        fairgrasp_eval::compare::DEFAULT_PRESETS
             .map(String::from)
             .to_vec()
     } else {

@@ -3,9 +3,11 @@
 mod args;
 mod baseline;
 mod bench;
+#[cfg(feature = "train")]
 mod bench_ppo;
 mod calibrate;
 mod compare;
+mod eval;
 mod fk;
 mod frames;
 mod ik;
@@ -50,10 +52,11 @@ enum Command {
     Scene(scene::SceneArgs),
     /// The scripted grasp baseline on a preset's seeded scenario set: success rate and failures.
     Baseline(baseline::BaselineArgs),
-    /// Train a PPO agent (residual on the baseline, or pure) from a TOML config.
+    /// Train a PPO agent (residual on the baseline, or pure) from a TOML config (needs a build
+    /// with the `train` feature: `cargo run --release --features train -- train …`).
     Train(train::TrainArgs),
     /// Evaluate a trained agent (default: the shipped residual policy) on a preset.
-    Eval(train::EvalArgs),
+    Eval(eval::EvalArgs),
     /// The baseline and learned policies on identical scenario sets: table, CSV/JSON, charts,
     /// replays, report.md and report.ipynb in one folder (the main job).
     Compare(compare::CompareArgs),
@@ -79,7 +82,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Bench(a) => bench::run(&a),
         Command::Baseline(a) => baseline::run(&a),
         Command::Train(a) => train::run_train(&a),
-        Command::Eval(a) => train::run_eval(&a),
+        Command::Eval(a) => eval::run_eval(&a),
         Command::Compare(a) => compare::run(&a),
         Command::Scene(a) => scene::run(&a),
         Command::Plot(a) => report::run_plot(&a),

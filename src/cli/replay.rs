@@ -7,10 +7,10 @@ use std::process::ExitCode;
 use anyhow::{Context, bail};
 use clap::Args;
 use fairgrasp_env::scenario::scenario_set;
+use fairgrasp_eval::compare::methods::Method;
+use fairgrasp_eval::compare::record::record_episodes;
+use fairgrasp_eval::compare::{LearnedPolicy, SCRIPTS};
 use fairgrasp_report::replay3d::{self, ReplayEpisode};
-use fairgrasp_rl::compare::methods::Method;
-use fairgrasp_rl::compare::record::record_episodes;
-use fairgrasp_rl::compare::{LearnedPolicy, SCRIPTS};
 use fairgrasp_types::ArmSimulation;
 
 use super::baseline::preset_config;

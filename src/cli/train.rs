@@ -1,16 +1,9 @@
-//! `fairgrasp train` and `fairgrasp eval`: the PPO agent.
+//! `fairgrasp train`: the PPO trainer (burn), built with the `train` feature. Without it the
+//! command says how to build a fairgrasp that trains; every other command works without burn.
 
-use std::path::{Path, PathBuf};
-use std::process::ExitCode;
+use std::path::PathBuf;
 
-use anyhow::Context;
-use burn::tensor::Device;
 use clap::Args;
-use fairgrasp_env::EnvConfig;
-use fairgrasp_rl::run::checkpoint;
-use fairgrasp_rl::run::train::{TrainConfig, agent_policy, train_with};
-
-use super::baseline::{ScenarioArgs, evaluate_and_print, print_report};
 
 #[derive(Args, Debug)]
 pub struct TrainArgs {
@@ -41,95 +34,151 @@ pub struct TrainArgs {
     max_wall_time: Option<f64>,
 }
 
-pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
-    let mut config = TrainConfig::from_toml_file(&a.config)?;
-    if let Some(s) = a.seed {
-        config.seed = s;
-    }
-    if let Some(t) = a.timesteps {
-        config.total_timesteps = t;
-    }
-    if let Some(t) = a.max_wall_time {
-        config.max_wall_time_s = Some(t);
-    }
-    let run_dir = a.run_dir.clone().unwrap_or_else(|| {
-        let stem = a
-            .config
-            .file_stem()
-            .map_or("run".into(), |s| s.to_string_lossy().into_owned());
-        Path::new("runs").join(stem)
-    });
-    if a.resume && a.seed.is_none() {
-        config.seed = fairgrasp_rl::run::resume::run_seed(&run_dir, config.seed)?;
-    }
-    if a.resume
-        && !fairgrasp_rl::run::resume::has_checkpoint(&run_dir)
-        && run_dir.join("config.toml").exists()
-    {
-        eprintln!(
-            "note: {} holds no checkpoint yet (killed before its first one?): starting it fresh",
-            run_dir.display()
-        );
-    }
-    let options = fairgrasp_rl::run::resume::ResumeOptions {
-        resume: a.resume,
-        accept_config_changes: a.accept_config_changes,
-    };
-    let mut lines = super::progress::TrainLines::new();
-    let report = train_with(&config, &run_dir, options, &mut |p| {
-        if let Some(line) = lines.line(&p) {
-            eprintln!("{line}");
+/// Without the `train` feature: the exact command that builds a fairgrasp that trains.
+#[cfg(not(feature = "train"))]
+pub fn run_train(_: &TrainArgs) -> anyhow::Result<std::process::ExitCode> {
+    anyhow::bail!(
+        "this fairgrasp was built without training (PPO in burn is a large build that compare, \
+         eval and replay do not need). Build one that trains and run it the same way:\n  \
+         cargo run --release --features train -- train …\n  \
+         (or `cargo install --path . --features train`)"
+    )
+}
+
+#[cfg(feature = "train")]
+pub use trainer::run_train;
+
+#[cfg(feature = "train")]
+mod trainer {
+    use std::path::Path;
+    use std::process::ExitCode;
+    use std::time::{Duration, Instant};
+
+    use fairgrasp_rl::run::train::{Progress, TrainConfig, train_with};
+
+    use super::TrainArgs;
+    use crate::cli::baseline::print_report;
+
+    /// Seconds between two of `train`'s progress lines (the first update and evaluations always
+    /// print).
+    const TRAIN_LINE_EVERY: Duration = Duration::from_secs(5);
+
+    /// `1h02m`, `4m05s`, `12s`.
+    fn duration_text(seconds: f64) -> String {
+        if !seconds.is_finite() {
+            return "?".into();
         }
-    })?;
-    println!("run folder {}", run_dir.display());
-    print_report(
-        "trained agent",
-        &config.preset,
-        config.arm,
-        1_000_000,
-        &report,
-    );
-    Ok(ExitCode::SUCCESS)
-}
-
-#[derive(Args, Debug)]
-pub struct EvalArgs {
-    /// Checkpoint folder (a run's checkpoints/best or checkpoints/latest). Default: the shipped
-    /// residual policy (built into the binary; assets/policies/residual_hard in the sources).
-    #[arg(long, value_name = "DIR")]
-    policy: Option<PathBuf>,
-    /// Ablation: set every policy input whose name starts with NAME to 0 (e.g. `wrist` for the
-    /// wrist camera's features of a task-space residual, `cube_moved` for the push). Repeat for
-    /// several. An unknown name is refused with the list of input names.
-    #[arg(long = "mask-input", value_name = "NAME")]
-    mask_input: Vec<String>,
-    #[command(flatten)]
-    scenarios: ScenarioArgs,
-}
-
-pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
-    // The shipped residual policy is built into the binary: found from any folder.
-    let policy = match &a.policy {
-        Some(p) => p.clone(),
-        None => fairgrasp_rl::run::shipped::default_policy()
-            .context("unpacking the shipped residual policy")?,
-    };
-    let (meta, model) = checkpoint::load_model(&policy, &Device::flex())
-        .context("loading the policy (pass --policy DIR to choose one)")?;
-    let mut masked = Vec::new();
-    for prefix in &a.mask_input {
-        let found = meta
-            .agent
-            .input_indices(prefix)
-            .map_err(|e| anyhow::anyhow!("--mask-input {prefix}: {e}"))?;
-        masked.extend(found);
+        let s = seconds.max(0.0).round() as u64;
+        match (s / 3600, (s / 60) % 60, s % 60) {
+            (0, 0, sec) => format!("{sec}s"),
+            (0, m, sec) => format!("{m}m{sec:02}s"),
+            (h, m, _) => format!("{h}h{m:02}m"),
+        }
     }
-    let mut method = format!("{} agent ({})", meta.agent.mode, policy.display());
-    if !a.mask_input.is_empty() {
-        method += &format!(", inputs masked: {}", a.mask_input.join(", "));
+
+    pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
+        let mut config = TrainConfig::from_toml_file(&a.config)?;
+        if let Some(s) = a.seed {
+            config.seed = s;
+        }
+        if let Some(t) = a.timesteps {
+            config.total_timesteps = t;
+        }
+        if let Some(t) = a.max_wall_time {
+            config.max_wall_time_s = Some(t);
+        }
+        let run_dir = a.run_dir.clone().unwrap_or_else(|| {
+            let stem = a
+                .config
+                .file_stem()
+                .map_or("run".into(), |s| s.to_string_lossy().into_owned());
+            Path::new("runs").join(stem)
+        });
+        if a.resume && a.seed.is_none() {
+            config.seed = fairgrasp_rl::run::resume::run_seed(&run_dir, config.seed)?;
+        }
+        if a.resume
+            && !fairgrasp_rl::run::resume::has_checkpoint(&run_dir)
+            && run_dir.join("config.toml").exists()
+        {
+            eprintln!(
+                "note: {} holds no checkpoint yet (killed before its first one?): starting it fresh",
+                run_dir.display()
+            );
+        }
+        let options = fairgrasp_rl::run::resume::ResumeOptions {
+            resume: a.resume,
+            accept_config_changes: a.accept_config_changes,
+        };
+        let mut lines = TrainLines::new();
+        let report = train_with(&config, &run_dir, options, &mut |p| {
+            if let Some(line) = lines.line(&p) {
+                eprintln!("{line}");
+            }
+        })?;
+        println!("run folder {}", run_dir.display());
+        print_report(
+            "trained agent",
+            &config.preset,
+            config.arm,
+            1_000_000,
+            &report,
+        );
+        Ok(ExitCode::SUCCESS)
     }
-    let make =
-        |config: &EnvConfig| agent_policy(&meta, &model, config).with_masked_inputs(masked.clone());
-    let extra = serde_json::json!({"policy": policy.display().to_string(), "trained_timesteps": meta.timesteps, "masked_inputs": a.mask_input});
-    evaluate_and_print(&a.scenarios, &method, &make, extra)
+
+    /// `train`'s progress: one line per call of [`TrainLines::line`] that is due.
+    pub struct TrainLines {
+        last: Option<Instant>,
+        /// Smoothed environment steps per second.
+        speed: Option<f64>,
+        updates: u64,
+    }
+
+    impl TrainLines {
+        pub fn new() -> Self {
+            TrainLines {
+                last: None,
+                speed: None,
+                updates: 0,
+            }
+        }
+
+        /// The line for this update if one is due: the first update, an evaluation, the last
+        /// update, or [`TRAIN_LINE_EVERY`] since the previous line.
+        pub fn line(&mut self, p: &Progress) -> Option<String> {
+            self.updates += 1;
+            let speed = match self.speed {
+                Some(s) => 0.8 * s + 0.2 * p.steps_per_second,
+                None => p.steps_per_second,
+            };
+            self.speed = Some(speed);
+            let done = p.timesteps >= p.total;
+            let due = self.last.is_none_or(|t| t.elapsed() >= TRAIN_LINE_EVERY);
+            if !(due || done || p.eval.is_some()) {
+                return None;
+            }
+            self.last = Some(Instant::now());
+            let n = p.stats.episodes.len();
+            let success = if n == 0 {
+                "–".to_string()
+            } else {
+                let s = p.stats.episodes.iter().filter(|e| e.success).count();
+                format!("{:.0}%", 100.0 * s as f64 / n as f64)
+            };
+            let eval = p
+                .eval
+                .map_or(String::new(), |e| format!(" · eval {:.0}%", 100.0 * e));
+            let left = p.total.saturating_sub(p.timesteps) as f64 / speed.max(1e-9);
+            Some(format!(
+                "train: {}/{} steps ({:.0}%) · stage {} · success {success} ({n} episodes){eval} · {:.0} steps/s · {} left",
+                p.timesteps,
+                p.total,
+                100.0 * p.timesteps as f64 / p.total.max(1) as f64,
+                p.stage,
+                speed,
+                duration_text(left),
+            ))
+        }
+    }
 }

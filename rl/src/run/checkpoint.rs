@@ -1,5 +1,8 @@
 //! Checkpoints: a folder with the network (`model.bpk`, burnpack), the optimiser state
-//! (`optimizer.bpk`) and `meta.json` (sizes, configs, observation statistics, progress).
+//! (`optimizer.bpk`) and `meta.json` (sizes, configs, observation statistics, progress). What
+//! reading one needs without burn (the meta, its checks, the weights' checksum) is
+//! `fairgrasp_eval::checkpoint`, re-exported here; this module writes checkpoints and loads them
+//! into burn to train on.
 //!
 //! Written atomically: into `NAME.tmp`, then `NAME` is moved to `NAME.old`, the new folder into
 //! place, and `NAME.old` removed; a loader that finds no `NAME` falls back to `NAME.old`.
@@ -10,96 +13,17 @@
 //! of reaching burn. Checkpoints written before the checksum existed (the shipped ones carry it
 //! now) load with the shape check of burn's loader, whose panics are caught and reported.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use burn::module::Module;
 use burn::optim::ModuleOptimizer;
 use burn::tensor::Device;
-use serde::{Deserialize, Serialize};
 
-use crate::agent::grasp_agent::{ACT_DIM, AgentConfig};
-use crate::ppo::model::{ActorCritic, ModelConfig};
-use crate::ppo::normalizer::RunningNorm;
+pub use fairgrasp_eval::checkpoint::{
+    CheckpointError, CheckpointMeta, checksum, err, existing, load_meta, verified_model_bytes,
+};
 
-/// Everything in `meta.json`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CheckpointMeta {
-    /// Format version of this file.
-    pub version: u32,
-    pub input_dim: usize,
-    pub act_dim: usize,
-    pub model: ModelConfig,
-    pub agent: AgentConfig,
-    pub obs_norm: RunningNorm,
-    /// Environment steps trained so far.
-    pub timesteps: u64,
-    /// PPO updates done so far.
-    pub updates: u64,
-    /// Training wall-clock time so far, over all invocations [s].
-    #[serde(default)]
-    pub wall_time_s: f64,
-    /// Evaluation success rate of this checkpoint, if evaluated.
-    pub eval_success_rate: Option<f64>,
-    /// The best evaluation success rate of the run up to this checkpoint (what `best` holds).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub best_eval_success_rate: Option<f64>,
-    /// The `metrics.csv` row of the update this checkpoint ends (a resume restores it if a
-    /// kill came between the checkpoint and the row).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub metrics_row: Option<String>,
-    /// The curriculum stage the run had reached (a resume continues there).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub curriculum_stage: Option<usize>,
-    /// `fnv1a64:` checksum of `model.bpk` with the network's shape (see the module docs).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub model_checksum: Option<String>,
-    /// `fnv1a64:` checksum of `optimizer.bpk`, when saved.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub optimizer_checksum: Option<String>,
-}
-
-/// 64-bit FNV-1a over `parts` in order, as `fnv1a64:HEX`: catches any flipped byte (not an
-/// adversary; nothing here needs one).
-pub fn checksum(parts: &[&[u8]]) -> String {
-    let mut h = fairgrasp_types::checksum::Fnv1a64::default();
-    parts.iter().for_each(|p| h.update(p));
-    format!("fnv1a64:{:016x}", h.value())
-}
-
-impl CheckpointMeta {
-    /// What the weights must agree with: mode, action space, sizes and hidden widths.
-    fn shape_key(&self) -> String {
-        format!(
-            "mode={:?};action_space={:?};input={};act={};hidden={:?}",
-            self.agent.mode,
-            self.agent.action_space,
-            self.input_dim,
-            self.act_dim,
-            self.model.hidden
-        )
-    }
-
-    /// The checksum `model_checksum` must hold for these model bytes.
-    pub fn model_checksum_of(&self, model_bytes: &[u8]) -> String {
-        checksum(&[self.shape_key().as_bytes(), model_bytes])
-    }
-}
-
-/// A checkpoint that cannot be read, with the file and the reason.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("checkpoint {path}: {reason}")]
-pub struct CheckpointError {
-    pub path: String,
-    pub reason: String,
-}
-
-fn err(path: &Path, reason: impl std::fmt::Display) -> CheckpointError {
-    CheckpointError {
-        path: path.display().to_string(),
-        reason: reason.to_string(),
-    }
-}
+use crate::ppo::model::ActorCritic;
 
 /// Writes a checkpoint folder at `dir` atomically.
 pub fn save(
@@ -158,84 +82,14 @@ fn sync_dir_files(dir: &Path) {
     }
 }
 
-/// The folder to read: `dir`, or `dir.old` after an interrupted save.
-fn existing(dir: &Path) -> Result<PathBuf, CheckpointError> {
-    if dir.join("meta.json").exists() {
-        return Ok(dir.to_path_buf());
-    }
-    let old = dir.with_extension("old");
-    if old.join("meta.json").exists() {
-        return Ok(old);
-    }
-    Err(err(
-        dir,
-        "no meta.json here (is this a checkpoint folder written by `fairgrasp train`?)",
-    ))
-}
-
-/// Reads `meta.json`.
-pub fn load_meta(dir: &Path) -> Result<CheckpointMeta, CheckpointError> {
-    let dir = existing(dir)?;
-    let path = dir.join("meta.json");
-    let text = std::fs::read_to_string(&path).map_err(|e| err(&path, e))?;
-    let meta: CheckpointMeta = serde_json::from_str(&text)
-        .map_err(|e| err(&path, format!("not a valid checkpoint description: {e}")))?;
-    if meta.version != 1 {
-        return Err(err(
-            &path,
-            format!(
-                "format version {} is not supported (expected 1)",
-                meta.version
-            ),
-        ));
-    }
-    if meta.act_dim != ACT_DIM || meta.input_dim != meta.agent.input_dim() {
-        return Err(err(
-            &path,
-            format!(
-                "input_dim {} and act_dim {} do not fit a {} agent (input {}, {ACT_DIM} actions)",
-                meta.input_dim,
-                meta.act_dim,
-                meta.agent.mode,
-                meta.agent.input_dim()
-            ),
-        ));
-    }
-    if meta.obs_norm.mean.len() != meta.input_dim || meta.obs_norm.var.len() != meta.input_dim {
-        return Err(err(
-            &path,
-            "the observation statistics do not match input_dim",
-        ));
-    }
-    Ok(meta)
-}
-
 /// Reads a checkpoint's meta and network onto `device`.
 pub fn load_model(
     dir: &Path,
     device: &Device,
 ) -> Result<(CheckpointMeta, ActorCritic), CheckpointError> {
     let meta = load_meta(dir)?;
-    let dir = existing(dir)?;
-    let path = dir.join("model.bpk");
-    let bytes = std::fs::read(&path).map_err(|e| err(&path, e))?;
-    if let Some(expected) = &meta.model_checksum {
-        let found = meta.model_checksum_of(&bytes);
-        if &found != expected {
-            return Err(err(
-                &path,
-                format!(
-                    "checksum {found} differs from meta.json's {expected}: the weights are corrupted, or meta.json was edited (mode, input_dim or model.hidden no longer match the weights)"
-                ),
-            ));
-        }
-    }
-    if let Err(reason) = meta.model.check() {
-        return Err(err(
-            &dir.join("meta.json"),
-            format!("{reason}: not a network this tool writes"),
-        ));
-    }
+    // Checksum and network rule, as every loader checks them (burn's loader reads the file).
+    let (path, _) = verified_model_bytes(dir, &meta)?;
     // The fresh weights are replaced by the file's: any seed will do.
     let fresh = ActorCritic::new(meta.input_dim, meta.act_dim, &meta.model, 0, device);
     // burn's loader panics on some shape mismatches; report them as this checkpoint's error.

@@ -8,7 +8,7 @@
 //! - [`checkpoint`]: saving and loading a network with its metadata, atomically and checked.
 //! - [`resume`]: continuing a run folder safely; [`crash`]: the kill tests' fault injection.
 //! - [`evaluate`]: a checkpoint as a policy, evaluated on a preset.
-//! - [`shipped`]: the policies built into the binary.
+//! - [`shipped`]: the policies built into the binary (`fairgrasp_eval::shipped`, re-exported).
 
 pub mod checkpoint;
 pub mod config;
@@ -17,7 +17,7 @@ pub mod error;
 pub mod evaluate;
 pub mod metrics;
 pub mod resume;
-pub mod shipped;
+pub use fairgrasp_eval::shipped;
 pub mod tensorboard;
 pub mod train;
 

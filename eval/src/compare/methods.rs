@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::compare::{CompareError, LearnedPolicy, SCRIPTS};
-use crate::run::shipped::ShippedPolicy;
+use crate::shipped::ShippedPolicy;
 
 /// The command-line names of the scripts, in the order of [`SCRIPTS`].
 pub const SCRIPT_NAMES: [&str; 4] = ["open_loop", "closed_loop", "oracle", "calibrated"];

@@ -42,7 +42,7 @@ macro_rules! policy_files {
             (
                 "checkpoint/meta.json",
                 include_bytes!(concat!(
-                    "../../../assets/policies/",
+                    "../../assets/policies/",
                     $name,
                     "/checkpoint/meta.json"
                 )) as &[u8],
@@ -50,22 +50,22 @@ macro_rules! policy_files {
             (
                 "checkpoint/model.bpk",
                 include_bytes!(concat!(
-                    "../../../assets/policies/",
+                    "../../assets/policies/",
                     $name,
                     "/checkpoint/model.bpk"
                 )),
             ),
             (
                 "metrics.csv",
-                include_bytes!(concat!("../../../assets/policies/", $name, "/metrics.csv")),
+                include_bytes!(concat!("../../assets/policies/", $name, "/metrics.csv")),
             ),
             (
                 "config.toml",
-                include_bytes!(concat!("../../../assets/policies/", $name, "/config.toml")),
+                include_bytes!(concat!("../../assets/policies/", $name, "/config.toml")),
             ),
             (
                 "train.toml",
-                include_bytes!(concat!("../../../assets/policies/", $name, "/train.toml")),
+                include_bytes!(concat!("../../assets/policies/", $name, "/train.toml")),
             ),
         ]
     };
@@ -215,8 +215,7 @@ mod tests {
                 let path = dir.parent().unwrap().join(relative);
                 assert_eq!(&std::fs::read(&path).unwrap(), bytes, "{}", path.display());
             }
-            let (meta, _) =
-                crate::run::checkpoint::load_model(&dir, &burn::tensor::Device::flex()).unwrap();
+            let (meta, _) = crate::checkpoint::load_actor(&dir).unwrap();
             let mode = serde_json::to_value(meta.agent.mode).unwrap();
             assert_eq!(p.name().split('_').next(), mode.as_str(), "{}", p.name());
         }

@@ -19,7 +19,6 @@ pub use spec::{ComparePreset, CompareSpec, DEFAULT_PRESETS};
 
 use std::path::{Path, PathBuf};
 
-use burn::tensor::Device;
 use fairgrasp_env::episode::trajectory::Trajectory;
 use fairgrasp_env::episode::{EvalReport, Policy, evaluate};
 use fairgrasp_env::scenario::{Scenario, scenario_set};
@@ -30,9 +29,8 @@ use fairgrasp_planner::{
 use fairgrasp_types::fs::slug;
 use fairgrasp_types::{Comparison, MethodResult, RecordedEpisode};
 
-use crate::ppo::model::ActorCritic;
-use crate::run::checkpoint::{self, CheckpointError, CheckpointMeta};
-use crate::run::evaluate::agent_policy;
+use crate::actor::Actor;
+use crate::checkpoint::{self, CheckpointError, CheckpointMeta, actor_policy};
 
 /// The name of the scripted baseline (the open-loop script) in every comparison.
 pub const BASELINE: &str = "scripted baseline";
@@ -74,16 +72,16 @@ pub struct LearnedPolicy {
     /// The checkpoint folder.
     pub dir: PathBuf,
     pub meta: CheckpointMeta,
-    pub model: ActorCritic,
+    /// Its actor, run without burn ([`crate::actor`]).
+    pub actor: Actor,
 }
 
 impl LearnedPolicy {
     /// Loads every checkpoint folder in `dirs`, naming each after its mode and run folder.
     pub fn load_all(dirs: &[PathBuf]) -> Result<Vec<Self>, CompareError> {
-        let device = Device::flex();
         let mut out: Vec<Self> = Vec::new();
         for dir in dirs {
-            let (meta, model) = checkpoint::load_model(dir, &device)?;
+            let (meta, actor) = checkpoint::load_actor(dir)?;
             let folder = run_folder_of(dir).unwrap_or_else(|| dir.clone());
             let label = folder
                 .file_name()
@@ -97,7 +95,7 @@ impl LearnedPolicy {
                 name,
                 dir: dir.clone(),
                 meta,
-                model,
+                actor,
             });
         }
         Ok(out)
@@ -190,7 +188,7 @@ pub(crate) fn make_policy(
         3 => Box::new(CalibratedScript::new(config, calibration.clone())),
         i => {
             let l = &learned[i - SCRIPTS.len()];
-            Box::new(agent_policy(&l.meta, &l.model, config))
+            Box::new(actor_policy(&l.meta, &l.actor, config))
         }
     }
 }

@@ -6,10 +6,10 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use fairgrasp_env::config::presets;
-use fairgrasp_rl::compare::{
+use fairgrasp_eval::compare::{
     CompareError, CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, SCRIPTS, run_comparison,
 };
-use fairgrasp_rl::run::shipped::ShippedPolicy;
+use fairgrasp_eval::shipped::ShippedPolicy;
 use fairgrasp_types::ArmSimulation;
 
 fn preset(name: &str) -> ComparePreset {

@@ -1,0 +1,54 @@
+//! `fairgrasp eval`: a trained agent (a checkpoint folder, or the shipped residual policy) on a
+//! preset's seeded scenarios, run without burn (`fairgrasp_eval::checkpoint`).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+use fairgrasp_env::EnvConfig;
+use fairgrasp_eval::checkpoint::{actor_policy, load_actor};
+
+use super::baseline::{ScenarioArgs, evaluate_and_print};
+
+#[derive(Args, Debug)]
+pub struct EvalArgs {
+    /// Checkpoint folder (a run's checkpoints/best or checkpoints/latest). Default: the shipped
+    /// residual policy (built into the binary; assets/policies/residual_hard in the sources).
+    #[arg(long, value_name = "DIR")]
+    policy: Option<PathBuf>,
+    /// Ablation: set every policy input whose name starts with NAME to 0 (e.g. `wrist` for the
+    /// wrist camera's features of a task-space residual, `cube_moved` for the push). Repeat for
+    /// several. An unknown name is refused with the list of input names.
+    #[arg(long = "mask-input", value_name = "NAME")]
+    mask_input: Vec<String>,
+    #[command(flatten)]
+    scenarios: ScenarioArgs,
+}
+
+pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
+    // The shipped residual policy is built into the binary: found from any folder.
+    let policy = match &a.policy {
+        Some(p) => p.clone(),
+        None => fairgrasp_eval::shipped::default_policy()
+            .context("unpacking the shipped residual policy")?,
+    };
+    let (meta, actor) =
+        load_actor(&policy).context("loading the policy (pass --policy DIR to choose one)")?;
+    let mut masked = Vec::new();
+    for prefix in &a.mask_input {
+        let found = meta
+            .agent
+            .input_indices(prefix)
+            .map_err(|e| anyhow::anyhow!("--mask-input {prefix}: {e}"))?;
+        masked.extend(found);
+    }
+    let mut method = format!("{} agent ({})", meta.agent.mode, policy.display());
+    if !a.mask_input.is_empty() {
+        method += &format!(", inputs masked: {}", a.mask_input.join(", "));
+    }
+    let make =
+        |config: &EnvConfig| actor_policy(&meta, &actor, config).with_masked_inputs(masked.clone());
+    let extra = serde_json::json!({"policy": policy.display().to_string(), "trained_timesteps": meta.timesteps, "masked_inputs": a.mask_input});
+    evaluate_and_print(&a.scenarios, &method, &make, extra)
+}
