@@ -72,6 +72,26 @@ fn each_reported_bad_env_value_is_refused_naming_its_field() {
         ("[scene]\ncube_mass = inf", "scene.cube_mass"),
         ("[task]\nlift_height = inf", "task.lift_height"),
         ("[task]\nmax_steps = 1000000000", "task.max_steps"),
+        // Issue 27: staged weights of 1e308 trained to NaN and the error blamed the learning
+        // rate; a perception noise of 1e10 m was accepted.
+        ("[task.staged]\nreach = 1e308", "task.staged.reach"),
+        ("[task.staged]\nsuccess = 1e308", "task.staged.success"),
+        (
+            "[task.staged]\nlift_sharpness = 1e6",
+            "task.staged.lift_sharpness",
+        ),
+        (
+            "[randomization]\nobserved_position_noise = 1e10",
+            "randomization.observed_position_noise",
+        ),
+        (
+            "[randomization]\nobserved_yaw_noise = 7.0",
+            "randomization.observed_yaw_noise",
+        ),
+        (
+            "[randomization]\njoint_noise = 3.0",
+            "randomization.joint_noise",
+        ),
     ];
     for (text, field) in cases {
         let message = EnvConfig::from_toml_str(text)

@@ -239,19 +239,41 @@ impl EnvConfig {
             t.protective_stop_force,
             "must be a finite force in (0, inf) N (default 35 N)",
         )?;
+        // Weights beyond these make the per-step reward (and PPO's value targets) overflow long
+        // before they mean anything: 1e308 trained to NaN and the error named the learning rate.
         let w = &t.staged;
-        for (value, field) in [
-            (w.reach, "task.staged.reach"),
-            (w.grasp, "task.staged.grasp"),
-            (w.lift, "task.staged.lift"),
-            (w.reach_sharpness, "task.staged.reach_sharpness"),
-            (w.lift_sharpness, "task.staged.lift_sharpness"),
+        for (value, field, rule) in [
+            (
+                w.reach,
+                "task.staged.reach",
+                "must be in [0, 1000] (default 1)",
+            ),
+            (
+                w.grasp,
+                "task.staged.grasp",
+                "must be in [0, 1000] (default 1)",
+            ),
+            (
+                w.lift,
+                "task.staged.lift",
+                "must be in [0, 1000] (default 1)",
+            ),
+            (
+                w.reach_sharpness,
+                "task.staged.reach_sharpness",
+                "must be in [0, 1000] 1/m (default 5)",
+            ),
+            (
+                w.lift_sharpness,
+                "task.staged.lift_sharpness",
+                "must be in [0, 1000] 1/m (default 50)",
+            ),
         ] {
             check(
-                value.is_finite() && value >= 0.0,
+                value.is_finite() && (0.0..=1000.0).contains(&value),
                 field,
                 value,
-                "must be a non-negative number",
+                rule,
             )?;
         }
         check(
@@ -264,7 +286,12 @@ impl EnvConfig {
             (w.success, "task.staged.success"),
             (w.collision, "task.staged.collision"),
         ] {
-            check(value.is_finite(), field, value, "must be a finite number")?;
+            check(
+                value.is_finite() && value.abs() <= 1e4,
+                field,
+                value,
+                "must be a number in [-10000, 10000]",
+            )?;
         }
         let r = &self.randomization;
         check_range(&r.radius, "randomization.radius", 0.0)?;
@@ -281,24 +308,33 @@ impl EnvConfig {
                 "must be positive",
             )?;
         }
-        check(
-            r.joint_noise >= 0.0 && r.joint_noise.is_finite(),
-            "randomization.joint_noise",
-            r.joint_noise,
-            "must be a non-negative number",
-        )?;
-        for (value, field) in [
+        // Noise beyond these puts the start joints or the observed cube outside anything a
+        // scenario means (the workspace is 0.25–0.45 m from the base).
+        for (value, field, bound, rule) in [
+            (
+                r.joint_noise,
+                "randomization.joint_noise",
+                0.5,
+                "must be in [0, 0.5] rad (default 0.05 on the randomised presets)",
+            ),
             (
                 r.observed_position_noise,
                 "randomization.observed_position_noise",
+                0.2,
+                "must be in [0, 0.2] m (hard: 0.01)",
             ),
-            (r.observed_yaw_noise, "randomization.observed_yaw_noise"),
+            (
+                r.observed_yaw_noise,
+                "randomization.observed_yaw_noise",
+                std::f64::consts::PI,
+                "must be in [0, π] rad (hard: 0.1745, 10°)",
+            ),
         ] {
             check(
-                value >= 0.0 && value.is_finite(),
+                value.is_finite() && (0.0..=bound).contains(&value),
                 field,
                 value,
-                "must be a non-negative number",
+                rule,
             )?;
         }
         self.validate_families()
