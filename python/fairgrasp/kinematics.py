@@ -1,4 +1,5 @@
-"""The FR3/FR5 kinematics, NumPy in and out (the Rust library the CLI uses).
+"""The FR3/FR5 kinematics and frame calibration, NumPy in and out (the Rust library the CLI
+uses).
 
 Poses are ``[x, y, z, roll, pitch, yaw]`` in base_link (metres, URDF fixed-axis radians), as
 ``fairgrasp fk/ik --json`` print them; frames are ``"tool0"`` (the flange) or ``"tcp"``.
@@ -37,3 +38,30 @@ def ik_qp(pose, start, frame="tool0", seed=0, model="fr3"):
 def world_to_base(base_pose, point):
     """A world point expressed in base_link, given base_link's pose in the world."""
     return _native.world_to_base(_vec(base_pose, 6, "base_pose"), _vec(point, 3, "point"))
+
+
+def _rows(values, width, what):
+    a = np.ascontiguousarray(values, dtype=np.float64)
+    if a.ndim != 2 or a.shape[1] != width:
+        raise ValueError(f"{what} has shape {a.shape}, expected (n, {width})")
+    return a
+
+
+def calibrate_points(world_points, base_points, max_residual=0.005):
+    """``world ↔ base_link`` from touched points (``fairgrasp calibrate points``): each row of
+    ``world_points`` and ``base_points`` ((n, 3), metres) is one point in the two frames.
+    Returns ``{"base_in_world": [x, y, z, roll, pitch, yaw], "residuals", "rms", "scale",
+    "warnings"}``; too few, collinear or mistyped points raise ValueError naming the problem."""
+    return _native.calibrate_points(
+        _rows(world_points, 3, "world_points"), _rows(base_points, 3, "base_points"), max_residual
+    )
+
+
+def calibrate_hand_eye(tcp_poses, marker_poses):
+    """A fixed camera's pose in base_link (eye-to-hand, Park–Martin; ``fairgrasp calibrate
+    hand-eye``) from stations: ``tcp_poses`` (the TCP in base_link) and ``marker_poses`` (the
+    marker in the camera), (n, 6) each as ``[x, y, z, roll, pitch, yaw]``. Returns
+    ``{"camera_in_base", "marker_in_tcp", "position_residuals", "angle_residuals", "method"}``."""
+    return _native.calibrate_hand_eye(
+        _rows(tcp_poses, 6, "tcp_poses"), _rows(marker_poses, 6, "marker_poses")
+    )

@@ -15,6 +15,7 @@ use pyo3::prelude::*;
 mod agent_env;
 mod agent_vec;
 mod bench;
+mod calibrate;
 mod env;
 mod info;
 mod kinematics;
@@ -90,6 +91,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(bench::bench_rust_env, m)?)?;
     m.add_function(wrap_pyfunction!(bench::bench_rust_vec, m)?)?;
     kinematics::register(m)?;
+    m.add_function(wrap_pyfunction!(calibrate::calibrate_points, m)?)?;
+    m.add_function(wrap_pyfunction!(calibrate::calibrate_hand_eye, m)?)?;
     m.add("OBS_DIM", fairgrasp_env::env::obs::OBS_DIM)?;
     m.add("ACT_DIM", ACT_DIM)?;
     Ok(())

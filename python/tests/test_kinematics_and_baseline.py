@@ -37,3 +37,50 @@ def test_ik_qp_and_world_to_base():
     assert np.allclose(p, [0.2, -0.4, 0.025], atol=1e-12)
     with pytest.raises(ValueError, match=r"point\[1\]"):
         kinematics.world_to_base(np.zeros(6), [0, np.nan, 0])
+
+
+def _rpy_matrix(r, p, y):
+    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
+    return np.array([
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+        [-sp, cp * sr, cp * cr],
+    ])
+
+
+def test_calibrate_points_recovers_a_mount_and_refuses_a_line():
+    mount = np.array([0.2, -0.1, 0.75, 0.0, 0.1745, 1.5708])
+    rng = np.random.default_rng(3)
+    base = rng.uniform([0.2, -0.3, 0.0], [0.5, 0.3, 0.3], size=(6, 3))
+    world = base @ _rpy_matrix(*mount[3:]).T + mount[:3]
+    fit = kinematics.calibrate_points(world, base)
+    assert np.allclose(fit["base_in_world"], mount, atol=1e-9)
+    assert fit["rms"] < 1e-9 and len(fit["residuals"]) == 6
+    line = np.array([[0.3 + 0.05 * k, 0.1, 0.2] for k in range(4)])
+    with pytest.raises(ValueError, match="one line"):
+        kinematics.calibrate_points(line, line)
+    with pytest.raises(ValueError, match="shape"):
+        kinematics.calibrate_points(world[:, :2], base)
+
+
+def test_calibrate_hand_eye_equals_the_cli_on_the_example(cli):
+    import csv
+    import os
+
+    root = os.path.join(os.path.dirname(__file__), "..", "..")
+    path = os.path.join(root, "assets", "calibration", "camera_stations_example.csv")
+    with open(path) as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    joints = [[np.radians(float(r[f"j{i}_deg"])) for i in range(1, 7)] for r in rows]
+    tcp = []
+    for q in joints:
+        pose = kinematics.fk(q)["tcp"]
+        tcp.append(np.concatenate([pose["xyz"], pose["rpy"]]))
+    xyz = ("marker_x_m", "marker_y_m", "marker_z_m")
+    rpy = ("marker_roll_deg", "marker_pitch_deg", "marker_yaw_deg")
+    marker = [[float(r[k]) for k in xyz] + [np.radians(float(r[k])) for k in rpy] for r in rows]
+    ours = kinematics.calibrate_hand_eye(np.array(tcp), np.array(marker))
+    theirs = cli("calibrate", "hand-eye", path, "--json")
+    assert np.allclose(ours["camera_in_base"][:3], theirs["camera_in_base"]["xyz"], atol=1e-9)
+    assert np.allclose(ours["camera_in_base"][3:], theirs["camera_in_base"]["rpy"], atol=1e-9)
+    assert "Park" in ours["method"]
