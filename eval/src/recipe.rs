@@ -101,7 +101,9 @@ impl Recipe {
             path: path.display().to_string(),
             message,
         };
-        let text = std::fs::read_to_string(path).map_err(|e| file(e.to_string()))?;
+        let text =
+            fairgrasp_types::fs::read_text_bounded(path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
+                .map_err(|e| file(e.to_string()))?;
         toml::from_str(&text).map_err(|e| file(e.to_string()))
     }
 

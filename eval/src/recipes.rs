@@ -43,10 +43,12 @@ pub fn text(name_or_path: &str) -> Result<(String, String), ConfigError> {
     }
     let path = Path::new(name_or_path);
     if path.extension().is_some_and(|e| e == "toml") || path.exists() {
-        let text = std::fs::read_to_string(path).map_err(|e| ConfigError::File {
-            path: name_or_path.to_string(),
-            message: e.to_string(),
-        })?;
+        let text =
+            fairgrasp_types::fs::read_text_bounded(path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
+                .map_err(|e| ConfigError::File {
+                    path: name_or_path.to_string(),
+                    message: e.to_string(),
+                })?;
         return Ok((text, name_or_path.to_string()));
     }
     Err(ConfigError::File {

@@ -54,7 +54,8 @@ impl ReportError {
 
 /// Reads a text file, naming it on failure.
 pub(crate) fn read_text(path: &Path) -> Result<String, ReportError> {
-    std::fs::read_to_string(path).map_err(|e| ReportError::io(path, e))
+    fairgrasp_types::fs::read_text_bounded(path, fairgrasp_types::fs::MAX_DATA_BYTES)
+        .map_err(|e| ReportError::io(path, e))
 }
 
 /// [`fairgrasp_types::write_atomic`], naming the file on failure.

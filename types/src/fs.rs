@@ -1,6 +1,7 @@
-//! Writing result files so that a crash or an interrupt never leaves a half-written one.
+//! Writing result files so that a crash or an interrupt never leaves a half-written one, and
+//! reading input files so that a FIFO, a device or a huge file never hangs or exhausts memory.
 
-use std::io::Write;
+use std::io::{Read, Write};
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -35,6 +36,53 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
+/// The largest config, `meta.json` or other small text input read [bytes] (1 MiB: the largest
+/// shipped config is 4 KB).
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+/// The largest data file read whole (`metrics.csv`, `compare.json`, a network's weights) [bytes]
+/// (1 GiB: the largest network the trainer allows is about 1 GB of f32 weights).
+pub const MAX_DATA_BYTES: u64 = 1 << 30;
+
+/// Reads a regular file of at most `max_bytes`. Anything else is refused before it is opened
+/// (a FIFO would block, `/dev/zero` never ends, a folder is not a file) and a larger file before
+/// it is read, each with an `InvalidInput` error that says why; a file that grows past the cap
+/// while read is refused too.
+pub fn read_bounded(path: &Path, max_bytes: u64) -> std::io::Result<Vec<u8>> {
+    let refuse = |why: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, why);
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(refuse(
+            "not a regular file (a folder, FIFO or device is never read)".into(),
+        ));
+    }
+    if meta.len() > max_bytes {
+        return Err(refuse(format!(
+            "{} bytes, more than the {max_bytes} this file may have",
+            meta.len()
+        )));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::fs::File::open(path)?
+        .take(max_bytes + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(refuse(format!(
+            "grew past the {max_bytes} bytes this file may have while it was read"
+        )));
+    }
+    Ok(bytes)
+}
+
+/// [`read_bounded`] as UTF-8 text (invalid UTF-8 is an `InvalidData` error).
+pub fn read_text_bounded(path: &Path, max_bytes: u64) -> std::io::Result<String> {
+    String::from_utf8(read_bounded(path, max_bytes)?).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
+        )
+    })
+}
+
 /// A file name fragment from a method or preset name: lowercase ASCII letters, digits and single
 /// `_` between them (`"residual PPO: run_1"` → `"residual_ppo_run_1"`).
 pub fn slug(s: &str) -> String {
@@ -52,6 +100,39 @@ pub fn slug(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_regular_files_within_the_cap_are_read() {
+        let dir = std::env::temp_dir().join(format!("fairgrasp-bounded-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let small = dir.join("small.toml");
+        std::fs::write(&small, "a = 1\n").unwrap();
+        assert_eq!(read_text_bounded(&small, 100).unwrap(), "a = 1\n");
+        let big = read_bounded(&small, 3).unwrap_err();
+        assert!(big.to_string().contains("more than the 3"), "{big}");
+        // A FIFO is refused before it is opened (opening it would block until a writer came).
+        let fifo = dir.join("fifo.toml");
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        let e = read_bounded(&fifo, 100).unwrap_err();
+        assert!(e.to_string().contains("not a regular file"), "{e}");
+        // A device that never ends, and a folder.
+        for path in [Path::new("/dev/zero"), dir.as_path()] {
+            let e = read_bounded(path, MAX_CONFIG_BYTES).unwrap_err();
+            assert!(
+                e.to_string().contains("not a regular file"),
+                "{}: {e}",
+                path.display()
+            );
+        }
+        std::fs::write(&small, [b'a', 0xff, b'b']).unwrap();
+        let e = read_text_bounded(&small, 100).unwrap_err();
+        assert!(e.to_string().contains("not UTF-8"), "{e}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
 
     #[test]
     fn slug_keeps_letters_and_digits_and_squeezes_the_rest() {

@@ -24,6 +24,6 @@ pub mod trajectory;
 pub use compare::{Comparison, MethodResult, RecordedEpisode, SchemaError};
 pub use episode::{EpisodeFacts, EpisodeRecord};
 pub use eval::{EvalReport, wilson_interval};
-pub use fs::write_atomic;
+pub use fs::{read_bounded, read_text_bounded, write_atomic};
 pub use names::{ArmSimulation, Outcome, UnknownName};
 pub use paired::{PairedTest, PairingError, learned_vs_scripts, mcnemar_exact, paired_test};

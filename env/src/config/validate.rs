@@ -61,7 +61,11 @@ impl EnvConfig {
     /// Reads a TOML file; missing fields take their defaults, unknown fields are refused.
     pub fn from_toml_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
         let path_str = path.as_ref().display().to_string();
-        let text = std::fs::read_to_string(path.as_ref()).map_err(|e| ConfigError::File {
+        let text = fairgrasp_types::fs::read_text_bounded(
+            path.as_ref(),
+            fairgrasp_types::fs::MAX_CONFIG_BYTES,
+        )
+        .map_err(|e| ConfigError::File {
             path: path_str.clone(),
             message: e.to_string(),
         })?;

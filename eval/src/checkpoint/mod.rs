@@ -127,7 +127,8 @@ pub fn existing(dir: &Path) -> Result<PathBuf, CheckpointError> {
 pub fn load_meta(dir: &Path) -> Result<CheckpointMeta, CheckpointError> {
     let dir = existing(dir)?;
     let path = dir.join("meta.json");
-    let text = std::fs::read_to_string(&path).map_err(|e| err(&path, e))?;
+    let text = fairgrasp_types::fs::read_text_bounded(&path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
+        .map_err(|e| err(&path, e))?;
     let meta: CheckpointMeta = serde_json::from_str(&text)
         .map_err(|e| err(&path, format!("not a valid checkpoint description: {e}")))?;
     if meta.version != 1 {
@@ -168,7 +169,8 @@ pub fn verified_model_bytes(
 ) -> Result<(PathBuf, Vec<u8>), CheckpointError> {
     let dir = existing(dir)?;
     let path = dir.join("model.bpk");
-    let bytes = std::fs::read(&path).map_err(|e| err(&path, e))?;
+    let bytes = fairgrasp_types::fs::read_bounded(&path, fairgrasp_types::fs::MAX_DATA_BYTES)
+        .map_err(|e| err(&path, e))?;
     if let Some(expected) = &meta.model_checksum {
         let found = meta.model_checksum_of(&bytes);
         if &found != expected {

@@ -90,7 +90,9 @@ impl Default for TrainConfig {
 impl TrainConfig {
     /// Reads and checks a TOML file.
     pub fn from_toml_file(path: &Path) -> Result<Self, TrainError> {
-        let text = std::fs::read_to_string(path).map_err(io(path))?;
+        let text =
+            fairgrasp_types::fs::read_text_bounded(path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
+                .map_err(io(path))?;
         let config: TrainConfig = toml::from_str(&text).map_err(|e| {
             let message = fairgrasp_env::config::validate::toml_error_message(&text, &e);
             TrainError::Config(format!("{}: {message}", path.display()))

@@ -123,7 +123,8 @@ pub fn config_differences(
 /// accepted, never accepts a change of the network's shape, and records accepted ones.
 pub fn check_config(run_dir: &Path, config: &TrainConfig, accept: bool) -> Result<(), TrainError> {
     let path = run_dir.join("config.toml");
-    let text = std::fs::read_to_string(&path).map_err(io(&path))?;
+    let text = fairgrasp_types::fs::read_text_bounded(&path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
+        .map_err(io(&path))?;
     let saved: TrainConfig = toml::from_str(&text)
         .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
     let diffs = config_differences(&saved, config)?;
