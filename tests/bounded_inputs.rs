@@ -7,9 +7,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn scratch() -> PathBuf {
-    let dir =
-        Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("bounded-{}", std::process::id()));
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("bounded-{name}-{}", std::process::id()));
     std::fs::remove_dir_all(&dir).ok();
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -47,7 +47,7 @@ fn refused(args: &[&str], needles: &[&str]) {
 
 #[test]
 fn fifos_devices_and_huge_files_are_refused_naming_the_file() {
-    let dir = scratch();
+    let dir = scratch("files");
     let fifo = dir.join("fifo.toml");
     assert!(
         Command::new("mkfifo")
@@ -98,6 +98,42 @@ fn fifos_devices_and_huge_files_are_refused_naming_the_file() {
             "1",
         ],
         &["meta.json", "not a regular file"],
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_empty_tmpdir_never_puts_files_in_the_working_directory() {
+    // `eval` unpacks the shipped policy into the temporary folder; with TMPDIR="" it used to
+    // unpack into the folder it ran in.
+    let dir = scratch("tmpdir");
+    let out = Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+        .args([
+            "eval",
+            "--preset",
+            "fixed",
+            "--episodes",
+            "1",
+            "--threads",
+            "1",
+        ])
+        .env("TMPDIR", "")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    assert!(
+        left.is_empty(),
+        "files written into the working directory: {left:?}"
     );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -131,9 +131,10 @@ impl ShippedPolicy {
         }
     }
 
-    /// The policy's checkpoint folder, unpacked under the system's temporary directory.
+    /// The policy's checkpoint folder, unpacked under the system's temporary directory (never
+    /// the working directory, whatever `TMPDIR` says).
     pub fn checkpoint_dir(self) -> Result<PathBuf, ShippedError> {
-        self.checkpoint_dir_in(&std::env::temp_dir())
+        self.checkpoint_dir_in(&fairgrasp_types::fs::system_temp_dir())
     }
 
     /// The policy's checkpoint folder, unpacked under `root`
@@ -142,7 +143,9 @@ impl ShippedPolicy {
         let folder = unpack_root(root).join(self.name());
         for (relative, bytes) in self.files() {
             let path = folder.join(relative);
-            let current = std::fs::read(&path).ok();
+            // Only a regular file is compared (a FIFO put in its place is not opened).
+            let current =
+                fairgrasp_types::fs::read_bounded(&path, fairgrasp_types::fs::MAX_DATA_BYTES).ok();
             if current.as_deref() != Some(*bytes) {
                 write_atomic(&path, bytes).map_err(|source| ShippedError {
                     policy: self.name(),

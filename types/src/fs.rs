@@ -83,6 +83,17 @@ pub fn read_text_bounded(path: &Path, max_bytes: u64) -> std::io::Result<String>
     })
 }
 
+/// The system's folder for temporary files: `TMPDIR` when it names an absolute folder, else
+/// `/tmp` (an empty or relative `TMPDIR` would put them in the working directory).
+pub fn system_temp_dir() -> std::path::PathBuf {
+    let dir = std::env::temp_dir();
+    if dir.is_absolute() {
+        dir
+    } else {
+        std::path::PathBuf::from("/tmp")
+    }
+}
+
 /// A file name fragment from a method or preset name: lowercase ASCII letters, digits and single
 /// `_` between them (`"residual PPO: run_1"` → `"residual_ppo_run_1"`).
 pub fn slug(s: &str) -> String {
