@@ -1,9 +1,8 @@
-//! No import loop between the files of any crate of the workspace: every `crate::…` and
-//! `super::…` path in a file (in `use` items and inline) is resolved to the file that defines
-//! what it names — through a module's `pub use child::…` re-exports to the child's file — and
-//! the graph of those imports must have no cycle. A `mod.rs`' or crate root's own `pub use`
-//! re-exports and `mod` declarations are the module's public face, not imports. A cycle fails
-//! the test naming its files.
+//! No import loop between the files of any crate: every `crate::…` and `super::…` path in a file
+//! (in `use` items and inline) is resolved to the file that defines what it names — through a
+//! module's `pub use child::…` re-exports to the child's file — and the graph of those imports
+//! must have no cycle. A `mod.rs`' or crate root's own `pub use` re-exports and `mod`
+//! declarations are the module's public face, not imports. A cycle fails naming its files.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};

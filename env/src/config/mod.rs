@@ -1,6 +1,7 @@
 //! The environment's configuration: plain serde data with defaults ([`env_config`], the
 //! families' settings in [`families`], the staged reward's weights in [`reward`]), loaded from
-//! TOML and checked with messages that name the field ([`validate`], [`numbers`], [`error`]),
+//! TOML and checked with messages that name the field ([`validate`] and the families' rules in
+//! `validate_families`, both written with `check`; [`numbers`], [`error`]),
 //! and the named presets ([`presets`]).
 //!
 //! A leaf: nothing here imports the env's behaviour (only the frame arithmetic of
@@ -9,6 +10,7 @@
 //! Frames: `world` is z-up with the table top at `scene.table_height`; the arm's `base_link` sits
 //! at `arm.base_xyz` / `arm.base_rpy` in the world. Units: metres, radians, kilograms, seconds.
 
+mod check;
 pub mod env_config;
 pub mod error;
 pub mod families;
@@ -17,6 +19,7 @@ pub mod presets;
 pub mod range;
 pub mod reward;
 pub mod validate;
+mod validate_families;
 
 pub use env_config::*;
 pub use error::ConfigError;

@@ -2,29 +2,13 @@
 
 use std::path::Path;
 
-use crate::config::env_config::{EnvConfig, Range};
+use crate::config::check::{check, check_range};
+use crate::config::env_config::EnvConfig;
 pub use crate::config::error::ConfigError;
 pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
 
 /// The largest tilt of the base from upright that the env accepts [rad] (15°).
 pub const MAX_BASE_TILT: f64 = 15.0 * std::f64::consts::PI / 180.0;
-
-fn check(
-    ok: bool,
-    field: &str,
-    value: impl std::fmt::Debug,
-    rule: &'static str,
-) -> Result<(), ConfigError> {
-    if ok {
-        Ok(())
-    } else {
-        Err(ConfigError::Invalid {
-            field: field.to_string(),
-            value: format!("{value:?}"),
-            rule,
-        })
-    }
-}
 
 /// Refuses any non-finite number or out-of-range integer in a configuration, naming the field.
 pub fn check_all_finite(config: &impl serde::Serialize) -> Result<(), ConfigError> {
@@ -40,22 +24,6 @@ pub const MAX_SUBSTEPS: usize = 200;
 pub const MAX_SOLVER_ITERATIONS: usize = 100;
 /// The longest episode the env accepts [steps].
 pub const MAX_EPISODE_STEPS: usize = 100_000;
-
-fn check_range(range: &Range, field: &'static str, lowest: f64) -> Result<(), ConfigError> {
-    check(
-        range.iter().all(|v| v.is_finite()),
-        field,
-        range,
-        "must be finite",
-    )?;
-    check(
-        range[0] <= range[1],
-        field,
-        range,
-        "min must not exceed max",
-    )?;
-    check(range[0] >= lowest, field, range, "must not be negative")
-}
 
 impl EnvConfig {
     /// Reads a TOML file; missing fields take their defaults, unknown fields are refused.
@@ -342,71 +310,5 @@ impl EnvConfig {
             )?;
         }
         self.validate_families()
-    }
-
-    /// The scenario families' fields ([`crate::scenario::families`]).
-    fn validate_families(&self) -> Result<(), ConfigError> {
-        use crate::config::families::{
-            MAX_CAMERA_SHIFT, MAX_CAMERA_YAW, MAX_NUDGE, MAX_WRIST_RANGE, MIN_TCP_DISTANCE,
-        };
-        let r = &self.randomization;
-        if let Some(w) = &r.wrist_camera {
-            check(
-                w.range.is_finite() && w.range > 0.0 && w.range <= MAX_WRIST_RANGE,
-                "randomization.wrist_camera.range",
-                w.range,
-                "must be in (0, 0.5] m",
-            )?;
-        }
-        if let Some(c) = &r.camera_offset {
-            check(
-                c.origin.iter().all(|v| v.is_finite() && v.abs() <= 2.0),
-                "randomization.camera_offset.origin",
-                c.origin,
-                "must be finite and within 2 m of the base [m]",
-            )?;
-            check(
-                c.xyz
-                    .iter()
-                    .all(|v| v.is_finite() && v.abs() <= MAX_CAMERA_SHIFT),
-                "randomization.camera_offset.xyz",
-                c.xyz,
-                "each component must be finite and within ±0.05 m",
-            )?;
-            check(
-                c.yaw.is_finite() && c.yaw.abs() <= MAX_CAMERA_YAW,
-                "randomization.camera_offset.yaw",
-                c.yaw,
-                "must be finite and within ±0.2618 rad (15°)",
-            )?;
-        }
-        if let Some(n) = &r.nudge {
-            check_range(&n.distance, "randomization.nudge.distance", 0.0)?;
-            check(
-                n.distance[0] > 0.0 && n.distance[1] <= MAX_NUDGE,
-                "randomization.nudge.distance",
-                n.distance,
-                "must lie in (0, 0.15] m",
-            )?;
-            check(
-                n.step[0] <= n.step[1] && n.step[1] < self.task.max_steps,
-                "randomization.nudge.step",
-                n.step,
-                "min must not exceed max, and max must be below task.max_steps",
-            )?;
-            check(
-                n.min_tcp_distance.is_finite() && n.min_tcp_distance >= MIN_TCP_DISTANCE,
-                "randomization.nudge.min_tcp_distance",
-                n.min_tcp_distance,
-                "must be at least 0.12 m (5 cm of gap plus the cube and the open fingers)",
-            )?;
-            check(
-                r.position,
-                "randomization.nudge",
-                "set",
-                "needs randomization.position = true (the push stays in its radius range)",
-            )?;
-        }
-        Ok(())
     }
 }
