@@ -120,13 +120,7 @@ pub fn fit_points(
         });
     }
     let translation = cw - rotation * cb;
-    let cost = |r: &Rotation3<f64>, t: &Vector3<f64>| -> f64 {
-        base.iter()
-            .zip(&world)
-            .map(|(b, w)| (r * b + t - w).norm_squared())
-            .sum()
-    };
-    let closed_form_rms = (cost(&rotation, &translation) / n).sqrt();
+    let closed_form_rms = (squared_distances(&base, &world, &rotation, &translation) / n).sqrt();
     let (rotation, translation, iterations) = refine(&base, &world, rotation, translation);
 
     let residuals: Vec<f64> = base
@@ -185,6 +179,19 @@ pub fn fit_points(
     })
 }
 
+/// `Σ |R·b + t − w|²` over the pairs [m²]: what the fit minimises.
+fn squared_distances(
+    base: &[Vector3<f64>],
+    world: &[Vector3<f64>],
+    r: &Rotation3<f64>,
+    t: &Vector3<f64>,
+) -> f64 {
+    base.iter()
+        .zip(world)
+        .map(|(b, w)| (r * b + t - w).norm_squared())
+        .sum()
+}
+
 /// Gauss–Newton on `Σ |R·b + t − w|²` from the closed form, with `R ← exp(δθ)·R`, `t ← t + δt`;
 /// a step is kept only if it lowers the cost. Returns the refined pose and the steps taken.
 fn refine(
@@ -193,13 +200,7 @@ fn refine(
     mut r: Rotation3<f64>,
     mut t: Vector3<f64>,
 ) -> (Rotation3<f64>, Vector3<f64>, usize) {
-    let cost = |r: &Rotation3<f64>, t: &Vector3<f64>| -> f64 {
-        base.iter()
-            .zip(world)
-            .map(|(b, w)| (r * b + t - w).norm_squared())
-            .sum()
-    };
-    let mut current = cost(&r, &t);
+    let mut current = squared_distances(base, world, &r, &t);
     for iteration in 0..20 {
         let mut jtj = Matrix6::<f64>::zeros();
         let mut jtr = Vector6::<f64>::zeros();
@@ -220,7 +221,7 @@ fn refine(
         };
         let r_new = Rotation3::from_scaled_axis(step.fixed_rows::<3>(0).into_owned()) * r;
         let t_new = t + step.fixed_rows::<3>(3);
-        let next = cost(&r_new, &t_new);
+        let next = squared_distances(base, world, &r_new, &t_new);
         if next >= current || step.norm() < 1e-15 {
             return (r, t, iteration);
         }
