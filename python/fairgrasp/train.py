@@ -29,8 +29,9 @@ def _bar(p):
     )
 
 
-def train(config, run_dir, *, resume=False, progress=None, **overrides):
-    """Trains ``config`` with ``overrides`` in ``run_dir`` (``resume=True`` continues it);
+def train(config, run_dir, *, resume=False, force=False, progress=None, **overrides):
+    """Trains ``config`` with ``overrides`` in ``run_dir`` (``resume=True`` continues it;
+    ``force=True`` moves a run the folder holds aside to ``run_dir.replaced-N`` and starts over);
     ``progress``: a callable given a dict after every update (``timesteps``, ``total``,
     ``stage``, ``eval``, ``episodes``, ``success``, ``mean_return``), or ``True`` for a one-line
     bar on stderr. Returns the final evaluation as a dict (``eval.json``'s report)."""
@@ -41,7 +42,8 @@ def train(config, run_dir, *, resume=False, progress=None, **overrides):
         )
     callback = _bar if progress is True else progress
     overrides_json = json.dumps(overrides) if overrides else None
-    report = _native.train(str(config), os.fspath(run_dir), overrides_json, bool(resume), callback)
+    report = _native.train(str(config), os.fspath(run_dir), overrides_json, bool(resume), callback,
+                            bool(force))
     if progress is True:
         print(file=sys.stderr)
     return report

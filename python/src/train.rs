@@ -68,7 +68,7 @@ fn progress_dict<'py>(py: Python<'py>, p: &Progress) -> PyResult<Bound<'py, PyDi
 /// every update (with the GIL). Returns the final evaluation (`eval.json`'s report) as a dict.
 /// An exception in `progress` stops nothing: it is raised when the run has ended.
 #[pyfunction]
-#[pyo3(signature = (config, run_dir, overrides_json = None, resume = false, progress = None))]
+#[pyo3(signature = (config, run_dir, overrides_json = None, resume = false, progress = None, force = false))]
 pub(crate) fn train<'py>(
     py: Python<'py>,
     config: &str,
@@ -76,6 +76,7 @@ pub(crate) fn train<'py>(
     overrides_json: Option<&str>,
     resume: bool,
     progress: Option<Py<PyAny>>,
+    force: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let mut config = train_config(config, overrides_json)?;
     let run_dir = Path::new(run_dir);
@@ -88,6 +89,7 @@ pub(crate) fn train<'py>(
     let options = ResumeOptions {
         resume,
         accept_config_changes: false,
+        force,
     };
     let mut callback_error: Option<PyErr> = None;
     let report = py

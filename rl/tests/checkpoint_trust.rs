@@ -118,6 +118,7 @@ fn a_resume_with_a_changed_config_is_refused_listing_the_differences_unless_acce
     let accept = ResumeOptions {
         resume: true,
         accept_config_changes: true,
+        ..ResumeOptions::default()
     };
     train_with(&changed, &dir, accept, &mut |_| {}).unwrap();
     let saved = TrainConfig::from_toml_file(&dir.join("config.toml")).unwrap();

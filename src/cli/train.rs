@@ -23,6 +23,10 @@ pub struct TrainArgs {
     /// total_timesteps); the network's shape ([model] hidden) and [agent] never can.
     #[arg(long, requires = "resume")]
     accept_config_changes: bool,
+    /// Start over in a --run-dir that holds a run (or a damaged one): the old run is moved
+    /// aside to DIR.replaced-N, never deleted. A folder that is not a run's is refused even so.
+    #[arg(long, conflicts_with = "resume")]
+    force: bool,
     /// Override the config's seed (a --resume without it keeps the run's seed).
     #[arg(long)]
     seed: Option<u64>,
@@ -77,7 +81,15 @@ mod trainer {
     }
 
     pub fn run_train(a: &TrainArgs) -> anyhow::Result<ExitCode> {
-        let mut config = TrainConfig::from_toml_file(&a.config)?;
+        let run_dir = a.run_dir.clone().unwrap_or_else(|| {
+            let stem = a
+                .config
+                .file_stem()
+                .map_or("run".into(), |s| s.to_string_lossy().into_owned());
+            Path::new("runs").join(stem)
+        });
+        let mut config =
+            TrainConfig::from_toml_file_in(&a.config, a.resume.then_some(run_dir.as_path()))?;
         if let Some(s) = a.seed {
             config.seed = s;
         }
@@ -87,19 +99,12 @@ mod trainer {
         if let Some(t) = a.max_wall_time {
             config.max_wall_time_s = Some(t);
         }
-        let run_dir = a.run_dir.clone().unwrap_or_else(|| {
-            let stem = a
-                .config
-                .file_stem()
-                .map_or("run".into(), |s| s.to_string_lossy().into_owned());
-            Path::new("runs").join(stem)
-        });
         if a.resume && a.seed.is_none() {
             config.seed = fairgrasp_rl::run::resume::run_seed(&run_dir, config.seed)?;
         }
         if a.resume
-            && !fairgrasp_rl::run::resume::has_checkpoint(&run_dir)
-            && run_dir.join("config.toml").exists()
+            && fairgrasp_rl::run::folder::inspect(&run_dir)
+                == fairgrasp_rl::run::folder::FolderState::Unstarted
         {
             eprintln!(
                 "note: {} holds no checkpoint yet (killed before its first one?): starting it fresh",
@@ -109,6 +114,7 @@ mod trainer {
         let options = fairgrasp_rl::run::resume::ResumeOptions {
             resume: a.resume,
             accept_config_changes: a.accept_config_changes,
+            force: a.force,
         };
         let mut lines = TrainLines::new();
         let report = train_with(&config, &run_dir, options, &mut |p| {

@@ -56,6 +56,10 @@ pub struct TrainConfig {
     /// config file (e.g. `[env.task] reward = "staged"`, `terminate_on_collision = false`).
     /// Evaluations use the preset as it is: the success criterion never changes.
     pub env: Option<toml::Table>,
+    /// The run folder's copy of a preset file (`RUN/env.toml`), which a resumed run trains on
+    /// instead of `preset` (see [`crate::run::resume::with_env_snapshot`]); not saved.
+    #[serde(skip)]
+    pub env_snapshot: Option<std::path::PathBuf>,
 }
 
 impl Default for TrainConfig {
@@ -73,6 +77,7 @@ impl Default for TrainConfig {
             critic_warmup_updates: 0,
             curriculum: None,
             env: None,
+            env_snapshot: None,
             agent: AgentConfig::default(),
             model: ModelConfig {
                 log_std_init: -1.0,
@@ -90,13 +95,22 @@ impl Default for TrainConfig {
 impl TrainConfig {
     /// Reads and checks a TOML file.
     pub fn from_toml_file(path: &Path) -> Result<Self, TrainError> {
+        Self::from_toml_file_in(path, None)
+    }
+
+    /// [`TrainConfig::from_toml_file`] for a resume of the run in `run_dir`: a preset file is
+    /// taken from the run's copy of it (`env.toml`), wherever the command runs.
+    pub fn from_toml_file_in(path: &Path, run_dir: Option<&Path>) -> Result<Self, TrainError> {
         let text =
             fairgrasp_types::fs::read_text_bounded(path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
                 .map_err(io(path))?;
-        let config: TrainConfig = toml::from_str(&text).map_err(|e| {
+        let mut config: TrainConfig = toml::from_str(&text).map_err(|e| {
             let message = fairgrasp_env::config::validate::toml_error_message(&text, &e);
             TrainError::Config(format!("{}: {message}", path.display()))
         })?;
+        if let Some(dir) = run_dir {
+            config.env_snapshot = crate::run::resume::env_snapshot_of(&config, dir);
+        }
         config
             .validate()
             .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
@@ -159,12 +173,21 @@ impl TrainConfig {
 
     /// The environment configuration of the preset and arm (what evaluations use).
     pub fn env_config(&self) -> Result<EnvConfig, fairgrasp_env::ConfigError> {
-        recipe::env_config(&self.preset, self.arm)
+        recipe::env_config(&self.env_preset(), self.arm)
+    }
+
+    /// The preset environments are built from: the run's copy of a preset file when resuming,
+    /// else `preset`.
+    pub fn env_preset(&self) -> String {
+        match &self.env_snapshot {
+            Some(p) => p.to_string_lossy().into_owned(),
+            None => self.preset.clone(),
+        }
     }
 
     /// The environment configuration training steps: [`TrainConfig::env_config`] with the
     /// `[env]` overrides laid over it, validated.
     pub fn training_env_config(&self) -> Result<EnvConfig, fairgrasp_env::ConfigError> {
-        recipe::training_env_config(&self.preset, self.arm, self.env.as_ref())
+        recipe::training_env_config(&self.env_preset(), self.arm, self.env.as_ref())
     }
 }

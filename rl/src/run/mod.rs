@@ -6,7 +6,8 @@
 //! - [`train`]: the training loop over a run folder; [`metrics`]: its `metrics.csv` rows;
 //!   [`tensorboard`]: the same values as TensorBoard event files.
 //! - [`checkpoint`]: saving and loading a network with its metadata, atomically and checked.
-//! - [`resume`]: continuing a run folder safely; [`crash`]: the kill tests' fault injection.
+//! - [`folder`]: what a run folder holds and who may train in it; [`resume`]: continuing a run
+//!   safely; [`crash`]: the kill tests' fault injection.
 //! - [`evaluate`]: a checkpoint as a policy, evaluated on a preset.
 //! - [`shipped`]: the policies built into the binary (`fairgrasp_eval::shipped`, re-exported).
 
@@ -15,6 +16,7 @@ pub mod config;
 pub mod crash;
 pub mod error;
 pub mod evaluate;
+pub mod folder;
 pub mod metrics;
 pub mod resume;
 pub use fairgrasp_eval::shipped;

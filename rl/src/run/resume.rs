@@ -1,5 +1,5 @@
-//! Continuing a run folder safely: which folders a fresh run or a resume accepts, the config a
-//! resume may change, `metrics.csv` repaired to match `checkpoints/latest`, and the best score
+//! Continuing a run folder safely (which folders a fresh run or a resume accepts is
+//! [`crate::run::folder`]): the config a resume may change, `metrics.csv` repaired to match `checkpoints/latest`, and the best score
 //! carried over.
 //!
 //! The invariant a kill at any point keeps: `metrics.csv` holds exactly one row per update up to
@@ -32,41 +32,65 @@ pub struct ResumeOptions {
     /// Accept a config that differs from the run's `config.toml` (recorded in
     /// `config_changes.log`, and `config.toml` rewritten).
     pub accept_config_changes: bool,
+    /// Without `resume`: move a run the folder holds aside and start over (`--force`).
+    pub force: bool,
+}
+
+/// A run's copy of the preset file it was started with, in its folder.
+pub const ENV_SNAPSHOT: &str = "env.toml";
+
+/// The run's copy of its preset file, if the run was started from one and kept it.
+pub fn env_snapshot_of(config: &TrainConfig, run_dir: &Path) -> Option<std::path::PathBuf> {
+    let snapshot = run_dir.join(ENV_SNAPSHOT);
+    (config.preset.ends_with(".toml") && snapshot.is_file()).then_some(snapshot)
+}
+
+/// The config a run trains with. A run started from a preset file (`preset = "….toml"`) keeps
+/// a copy of it as `RUN/env.toml`, and a resume trains on that copy, from whatever folder it is
+/// started (a relative `preset` would otherwise name another file there); a preset file there
+/// that differs from the copy is not used, and a note says so.
+pub fn with_env_snapshot(
+    config: &TrainConfig,
+    run_dir: &Path,
+    resume: bool,
+) -> Result<TrainConfig, TrainError> {
+    let mut config = config.clone();
+    config.env_snapshot = None;
+    if !config.preset.ends_with(".toml") {
+        config.validate().map_err(TrainError::Config)?;
+        return Ok(config);
+    }
+    let read = |p: &Path| {
+        fairgrasp_types::fs::read_bounded(p, fairgrasp_types::fs::MAX_CONFIG_BYTES).map_err(io(p))
+    };
+    let snapshot = run_dir.join(ENV_SNAPSHOT);
+    if resume && let Some(kept) = env_snapshot_of(&config, run_dir) {
+        if read(Path::new(&config.preset)).ok() != read(&kept).ok() {
+            eprintln!(
+                "note: the run trains on its own copy of its preset ({}, saved when it started); {} here differs or is missing and is not used",
+                kept.display(),
+                config.preset
+            );
+        }
+        config.env_snapshot = Some(kept);
+        config.validate().map_err(TrainError::Config)?;
+    } else {
+        config.validate().map_err(TrainError::Config)?;
+        let bytes = read(Path::new(&config.preset))?;
+        write_atomic(&snapshot, &bytes).map_err(io(&snapshot))?;
+    }
+    Ok(config)
 }
 
 /// The seed a resume trains with when none is given again: the one the run in `run_dir` was
 /// started with (its `config.toml`), else `given` (a folder with no run yet).
 pub fn run_seed(run_dir: &Path, given: u64) -> Result<u64, TrainError> {
     let saved = run_dir.join("config.toml");
-    if saved.exists() {
-        Ok(TrainConfig::from_toml_file(&saved)?.seed)
+    // Only a run's own config.toml (a folder that holds no run is refused by the trainer).
+    if crate::run::folder::inspect(run_dir) == crate::run::folder::FolderState::Run {
+        Ok(TrainConfig::from_toml_file_in(&saved, Some(run_dir))?.seed)
     } else {
         Ok(given)
-    }
-}
-
-/// Whether the folder holds a checkpoint (a run with something to lose).
-pub fn has_checkpoint(run_dir: &Path) -> bool {
-    let latest = run_dir.join("checkpoints/latest");
-    latest.join("meta.json").exists() || latest.with_extension("old").join("meta.json").exists()
-}
-
-/// Decides between a fresh start and a resume: a fresh run refuses a folder holding a
-/// checkpoint; a resume of a run folder without one (killed before its first checkpoint: it has
-/// `config.toml`) starts fresh; a resume of a folder that holds no run is refused (a mistyped
-/// `--run-dir`). Returns true to resume.
-pub fn decide(run_dir: &Path, resume: bool) -> Result<bool, TrainError> {
-    match (resume, has_checkpoint(run_dir)) {
-        (false, true) => Err(TrainError::Config(format!(
-            "{} already holds a run (checkpoints/latest): pass --resume to continue it, or choose another --run-dir",
-            run_dir.display()
-        ))),
-        (true, false) if !run_dir.join("config.toml").exists() => Err(TrainError::Config(format!(
-            "--resume: {} holds no run (no config.toml, no checkpoints/latest); leave out --resume to start one",
-            run_dir.display()
-        ))),
-        (true, false) => Ok(false),
-        (r, _) => Ok(r),
     }
 }
 
@@ -181,39 +205,50 @@ pub fn best_so_far(run_dir: &Path, latest: &CheckpointMeta) -> f64 {
         .fold(-1.0, f64::max)
 }
 
-/// Rewrites `metrics.csv` to hold one row per update up to `meta.updates`, in order: drops a
-/// torn last line, rows past the checkpoint and any out of order, and restores the checkpoint's
-/// own row if it is missing (a kill between the checkpoint and the row). Rows missing further
-/// back (a file from before rows travelled in checkpoints, or a power cut before the append
-/// reached the disk) cannot be restored: they are counted in the result. A file written before
-/// columns were added at the end of the header (the outcome shares) keeps its rows, padded with
-/// empty cells. Returns (rows dropped, rows restored, updates still without a row).
+/// Rewrites `metrics.csv` to hold one row per update up to `meta.updates`, in order, and
+/// restores the checkpoint's own row if it is missing (a kill between the checkpoint and the
+/// row). History is never shortened: a line that cannot be a row here (torn by a kill, not
+/// UTF-8, past the checkpoint, out of order) is appended to `metrics.rejected.csv` before
+/// `metrics.csv` is rewritten. Rows missing further back (a file from before rows travelled in
+/// checkpoints, or a power cut before the append reached the disk) cannot be restored: they are
+/// counted in the result. A file written before columns were added at the end of the header
+/// (the outcome shares) keeps its rows, padded with empty cells. Returns (lines set aside, rows
+/// restored, updates still without a row).
 pub fn repair_metrics(
     run_dir: &Path,
     meta: &CheckpointMeta,
     header: &str,
 ) -> Result<(usize, usize, u64), TrainError> {
     let path = run_dir.join("metrics.csv");
-    let text = std::fs::read_to_string(&path).unwrap_or_default();
-    let complete = match text.rfind('\n') {
-        Some(end) => &text[..=end],
-        None => "",
+    let bytes = match fairgrasp_types::fs::read_bounded(&path, fairgrasp_types::fs::MAX_DATA_BYTES)
+    {
+        Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Vec::new(),
+        Err(e) => return Err(io(&path)(e)),
     };
     let older_header = |l: &str| l != header && header.starts_with(&format!("{l},"));
     let mut rows: Vec<&str> = Vec::new();
+    let mut aside: Vec<&[u8]> = Vec::new();
     let mut last = 0u64;
-    let mut dropped = usize::from(complete.len() < text.len());
-    for line in complete
-        .lines()
-        .filter(|l| !l.is_empty() && *l != header && !older_header(l))
-    {
-        let update = line.split(',').next().and_then(|u| u.parse::<u64>().ok());
-        match update {
+    let mut lines: Vec<&[u8]> = bytes.split(|b| *b == b'\n').collect();
+    // The piece after the last newline: empty for a complete file, else a line a kill tore.
+    if let Some(torn) = lines.pop().filter(|t| !t.is_empty()) {
+        aside.push(torn);
+    }
+    for raw in lines {
+        let Ok(line) = std::str::from_utf8(raw) else {
+            aside.push(raw);
+            continue;
+        };
+        if line.is_empty() || line == header || older_header(line) {
+            continue;
+        }
+        match line.split(',').next().and_then(|u| u.parse::<u64>().ok()) {
             Some(u) if u > last && u <= meta.updates => {
                 rows.push(line);
                 last = u;
             }
-            _ => dropped += 1,
+            _ => aside.push(raw),
         }
     }
     let mut restored = 0;
@@ -223,8 +258,21 @@ pub fn repair_metrics(
         rows.push(row);
         restored = 1;
     }
-    let missing = meta.updates - rows.len() as u64;
-    if dropped > 0 || restored > 0 || !text.starts_with(header) {
+    let missing = meta.updates.saturating_sub(rows.len() as u64);
+    if !aside.is_empty() {
+        let rejected = run_dir.join("metrics.rejected.csv");
+        let mut kept = match std::fs::read(&rejected) {
+            Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Vec::new(),
+            Err(e) => return Err(io(&rejected)(e)),
+        };
+        for line in &aside {
+            kept.extend_from_slice(line);
+            kept.push(b'\n');
+        }
+        write_atomic(&rejected, &kept).map_err(io(&rejected))?;
+    }
+    if !aside.is_empty() || restored > 0 || !bytes.starts_with(header.as_bytes()) {
         let mut out = format!("{header}\n");
         let columns = header.split(',').count();
         for row in &rows {
@@ -236,5 +284,5 @@ pub fn repair_metrics(
         }
         write_atomic(&path, out.as_bytes()).map_err(io(&path))?;
     }
-    Ok((dropped, restored, missing))
+    Ok((aside.len(), restored, missing))
 }

@@ -28,6 +28,7 @@ use crate::run::crash;
 pub use crate::run::error::TrainError;
 use crate::run::error::io;
 pub use crate::run::evaluate::{agent_policy, evaluate_model};
+use crate::run::folder::{self, RunLock, Start, StartFlags};
 use crate::run::metrics::{metrics_header, metrics_row};
 use crate::run::resume::{self, ResumeOptions};
 use crate::run::tensorboard::TensorBoardLog;
@@ -63,6 +64,8 @@ struct Run<'a> {
     saved_updates: u64,
     /// The run's TensorBoard event file (the same values as `metrics.csv`).
     tensorboard: TensorBoardLog,
+    /// Held while the run trains: no second process trains into the folder.
+    _lock: RunLock,
 }
 
 impl Run<'_> {
@@ -189,7 +192,7 @@ fn start_from(
             resume::repair_metrics(run_dir, &meta, &metrics_header())?;
         if dropped + restored > 0 || missing > 0 {
             eprintln!(
-                "note: metrics.csv repaired to match checkpoints/latest (update {}): {dropped} torn or extra rows dropped, {restored} restored from the checkpoint, {missing} earlier updates without a row",
+                "note: metrics.csv repaired to match checkpoints/latest (update {}): {dropped} torn, unreadable or extra lines set aside in metrics.rejected.csv, {restored} restored from the checkpoint, {missing} earlier updates without a row",
                 meta.updates
             );
         }
@@ -236,7 +239,7 @@ pub fn train(
 ) -> Result<EvalReport, TrainError> {
     let options = ResumeOptions {
         resume,
-        accept_config_changes: false,
+        ..ResumeOptions::default()
     };
     train_with(config, run_dir, options, report)
 }
@@ -250,8 +253,32 @@ pub fn train_with(
     options: ResumeOptions,
     report: &mut dyn FnMut(Progress),
 ) -> Result<EvalReport, TrainError> {
-    config.validate().map_err(TrainError::Config)?;
-    let resume = resume::decide(run_dir, options.resume)?;
+    let flags = StartFlags {
+        resume: options.resume,
+        force: options.force,
+    };
+    // Refused before anything is written (a foreign folder gets no lock file); decided again
+    // under the lock, where no other process can change the folder.
+    folder::decide(run_dir, flags)?;
+    let mut lock = RunLock::acquire(run_dir)?;
+    let start = folder::decide(run_dir, flags)?;
+    if let Start::FreshAfterMovingAside(to) = &start {
+        folder::move_aside(run_dir, to)?;
+        eprintln!(
+            "note: the run that was in {} is now in {}",
+            run_dir.display(),
+            to.display()
+        );
+        lock = RunLock::acquire(run_dir)?;
+    }
+    if let Some(pid) = &lock.stale_pid {
+        eprintln!(
+            "note: {} had a lock file of process {pid}, which ended without releasing it: taken over",
+            run_dir.display()
+        );
+    }
+    let resume = start == Start::Resume;
+    let config = &resume::with_env_snapshot(config, run_dir, resume)?;
     if resume {
         resume::check_config(run_dir, config, options.accept_config_changes)?;
     }
@@ -319,6 +346,7 @@ pub fn train_with(
         meta,
         ppo,
         env,
+        _lock: lock,
     };
     if !resume {
         run.save_latest()?;
