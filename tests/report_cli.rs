@@ -215,12 +215,18 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
         "the same data must give the same chart"
     );
 
-    // `plot` draws a recorded episode next to its file.
-    let episode = std::fs::read_dir(out_dir.join("episodes"))
+    // `plot` draws a recorded episode next to its file, but never inside a report folder
+    // (whose files only compare and report write).
+    let recorded = std::fs::read_dir(out_dir.join("episodes"))
         .unwrap()
         .map(|e| e.unwrap().path())
         .find(|p| p.extension().is_some_and(|e| e == "json"))
         .unwrap();
+    let refused = fairgrasp(&["plot", recorded.to_str().unwrap()]);
+    assert_eq!(refused.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("inside the report folder"));
+    let episode = dir.join("episode_0005.json");
+    std::fs::copy(&recorded, &episode).unwrap();
     ok(&fairgrasp(&["plot", episode.to_str().unwrap()]));
     assert!(episode.with_extension("png").is_file());
     assert!(episode.with_extension("gif").is_file());

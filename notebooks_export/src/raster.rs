@@ -69,6 +69,8 @@ pub fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, png::E
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_compression(png::Compression::Best);
+        // The mark that lets a later command replace this file (fairgrasp_types::output).
+        encoder.add_text_chunk("Software".into(), fairgrasp_types::output::GENERATOR.into())?;
         let mut writer = encoder.write_header()?;
         writer.write_image_data(rgb)?;
     }
@@ -141,6 +143,13 @@ pub fn render_gif(
         let mut encoder = gif::Encoder::new(&mut bytes, w, h, &flat).map_err(|e| err(&e))?;
         encoder
             .set_repeat(gif::Repeat::Infinite)
+            .map_err(|e| err(&e))?;
+        // The mark that lets a later command replace this file (fairgrasp_types::output).
+        encoder
+            .write_raw_extension(
+                gif::Extension::Comment.into(),
+                &[fairgrasp_types::output::GENERATOR.as_bytes()],
+            )
             .map_err(|e| err(&e))?;
         let mut rgb = vec![255u8; (width * height * 3) as usize];
         for (i, delay) in delays_cs.iter().enumerate() {

@@ -39,7 +39,8 @@ pub struct ScenarioArgs {
     /// Worker threads, 1–256 (default: all cores).
     #[arg(long, value_parser = crate::cli::args::thread_count)]
     pub threads: Option<usize>,
-    /// Write each episode's trajectory (CSV and JSON) into this folder.
+    /// Write each episode's trajectory (CSV and JSON) into this folder: a new one, or one that
+    /// holds only earlier recordings (episode_NNNN.*), which are replaced.
     #[arg(long, value_name = "DIR")]
     pub record: Option<PathBuf>,
     /// Print one JSON object instead of text.
@@ -83,6 +84,9 @@ pub fn evaluate_and_print<P: Policy>(
     let threads = a
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if let Some(dir) = &a.record {
+        fairgrasp_types::output::check_record_folder(dir).map_err(anyhow::Error::msg)?;
+    }
     let bar = progress_bar(u64::from(a.episodes), a.json, method);
     let report = evaluate_seeded(
         &config,

@@ -1,7 +1,7 @@
 //! `fairgrasp plot` (learning curves, episode charts and replays) and `fairgrasp report`
 //! (charts, report.md and report.ipynb from comparison and run folders).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::bail;
@@ -17,7 +17,9 @@ pub struct PlotArgs {
     /// as an episode chart (.png) and a replay (.gif) next to the file.
     #[arg(required = true, value_name = "RUN_OR_EPISODE")]
     inputs: Vec<PathBuf>,
-    /// Learning-curve PNG. Default: <first run>/plots/learning_curves.png.
+    /// Learning-curve PNG. Default: <first run>/plots/learning_curves.png. An existing file is
+    /// replaced only if it is a chart fairgrasp wrote (never an input, a run's metrics.csv or
+    /// model, a folder or a device, nor a file inside a report folder).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// Also write one replay frame at this step as <episode>_step<N>.png (for documents that
@@ -25,6 +27,30 @@ pub struct PlotArgs {
     /// refused (the error gives the range) before anything is drawn.
     #[arg(long, value_name = "STEP")]
     still: Option<usize>,
+    /// Write the episode charts, replays and stills into this folder (created if missing)
+    /// instead of beside each episode file; needed for an episode inside a report folder,
+    /// whose files only `compare` and `report` write.
+    #[arg(long, value_name = "DIR")]
+    out_dir: Option<PathBuf>,
+}
+
+/// Where `plot` draws an episode's chart (`.png`), replay (`.gif`) and, with `--still N`, the
+/// still (`_stepN.png`): beside the episode file, or in `out_dir`.
+fn episode_outputs(
+    episode: &Path,
+    out_dir: Option<&Path>,
+    still: Option<usize>,
+) -> (PathBuf, PathBuf, Option<PathBuf>) {
+    let stem = episode.file_stem().unwrap_or_default().to_string_lossy();
+    let dir = out_dir.map_or_else(
+        || episode.parent().unwrap_or(Path::new("")).to_path_buf(),
+        Path::to_path_buf,
+    );
+    (
+        dir.join(format!("{stem}.png")),
+        dir.join(format!("{stem}.gif")),
+        still.map(|step| dir.join(format!("{stem}_step{step}.png"))),
+    )
 }
 
 pub fn run_plot(a: &PlotArgs) -> anyhow::Result<ExitCode> {
@@ -57,11 +83,19 @@ pub fn run_plot(a: &PlotArgs) -> anyhow::Result<ExitCode> {
             }
         }
     }
-    if let Some(first) = runs.first() {
-        let out = a
-            .out
+    let curves_out = runs.first().map(|first| {
+        a.out
             .clone()
-            .unwrap_or_else(|| first.path.join("plots/learning_curves.png"));
+            .unwrap_or_else(|| first.path.join("plots/learning_curves.png"))
+    });
+    check_plot_outputs(
+        curves_out.as_deref(),
+        &episodes,
+        a.still,
+        a.out_dir.as_deref(),
+        &a.inputs,
+    )?;
+    if let Some(out) = curves_out {
         curves::learning_curves(&runs, &out)?;
         println!(
             "learning curves of {} run(s): {}",
@@ -76,7 +110,7 @@ pub fn run_plot(a: &PlotArgs) -> anyhow::Result<ExitCode> {
             t.rows.len(),
             t.rows.last().map_or(0.0, |r| r.time_s)
         );
-        let (png, gif) = (path.with_extension("png"), path.with_extension("gif"));
+        let (png, gif, still) = episode_outputs(path, a.out_dir.as_deref(), a.still);
         episode::episode_chart(t, &title, &png)?;
         replay::replay_gif(t, &title, &gif)?;
         println!(
@@ -84,14 +118,73 @@ pub fn run_plot(a: &PlotArgs) -> anyhow::Result<ExitCode> {
             png.display(),
             gif.display()
         );
-        if let Some(step) = a.still {
-            let stem = path.file_stem().unwrap_or_default().to_string_lossy();
-            let still = path.with_file_name(format!("{stem}_step{step}.png"));
+        if let (Some(step), Some(still)) = (a.still, still) {
             replay::replay_still(t, &title, step, &still)?;
             println!("still:         {}", still.display());
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The files `plot` writes: the learning curves, then per episode its chart, replay and still.
+/// Checked before anything is drawn: each must be new or a chart fairgrasp wrote
+/// ([`fairgrasp_types::output`]), none may be an input or written twice, and `--out` is a PNG.
+fn check_plot_outputs(
+    curves: Option<&Path>,
+    episodes: &[&PathBuf],
+    still: Option<usize>,
+    out_dir: Option<&Path>,
+    inputs: &[PathBuf],
+) -> anyhow::Result<()> {
+    use fairgrasp_types::output::{check_replaceable, gif_is_ours, png_is_ours};
+    let mut outputs: Vec<(PathBuf, bool)> = curves
+        .map(|c| (c.to_path_buf(), true))
+        .into_iter()
+        .collect();
+    for path in episodes {
+        let (png, gif, still) = episode_outputs(path, out_dir, still);
+        outputs.push((png, true));
+        outputs.push((gif, false));
+        outputs.extend(still.map(|p| (p, true)));
+    }
+    let same =
+        |a: &Path, b: &Path| a == b || std::path::absolute(a).ok() == std::path::absolute(b).ok();
+    for (i, (path, png)) in outputs.iter().enumerate() {
+        if let Some(input) = inputs.iter().find(|input| same(input, path)) {
+            bail!(
+                "{} is an input of this command: it is never written over",
+                input.display()
+            );
+        }
+        if outputs[..i].iter().any(|(earlier, _)| same(earlier, path)) {
+            bail!(
+                "{} would be written twice by this command (--out names another chart's file): choose another --out",
+                path.display()
+            );
+        }
+        let checked = if *png {
+            check_replaceable(path, "chart", png_is_ours)
+        } else {
+            check_replaceable(path, "replay", gif_is_ours)
+        };
+        checked.map_err(|e| match out_dir {
+            None if !episodes.is_empty() && e.contains("inside the report folder") => {
+                anyhow::anyhow!("{e} (for an episode of a report: plot … --out-dir DIR)")
+            }
+            _ => anyhow::Error::msg(e),
+        })?;
+    }
+    if let Some(out) = curves
+        && !out
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+    {
+        bail!(
+            "--out {}: the learning curves are a PNG; give a file name ending in .png",
+            out.display()
+        );
+    }
+    Ok(())
 }
 
 #[derive(Args, Debug)]

@@ -138,6 +138,25 @@ impl Comparison {
                 r.method, r.preset
             )));
         }
+        // Paths are read relative to the comparison's folder: only plain names below it.
+        let inside = |p: &str| {
+            !p.is_empty()
+                && std::path::Path::new(p)
+                    .components()
+                    .all(|c| matches!(c, std::path::Component::Normal(_)))
+        };
+        if let Some(r) = self
+            .recorded
+            .iter()
+            .chain(&self.replay)
+            .find(|r| !inside(&r.trajectory))
+        {
+            let shown: String = r.trajectory.chars().take(80).collect();
+            return Err(SchemaError(format!(
+                "recorded episode of `{}` on `{}`: trajectory `{shown}` is not a path inside the comparison folder (absolute paths and `..` are refused)",
+                r.method, r.preset
+            )));
+        }
         Ok(())
     }
 
@@ -208,5 +227,24 @@ mod tests {
         )
         .unwrap_err();
         assert!(e.0.contains("not listed"), "{e}");
+    }
+
+    #[test]
+    fn recorded_paths_outside_the_comparison_folder_are_refused() {
+        let base = FLAT;
+        for bad in [
+            "/etc/passwd",
+            "../../secret.json",
+            "episodes/../../x.json",
+            "",
+        ] {
+            let text = base.replace("episodes/x.json", bad);
+            let e = Comparison::from_json(&text).unwrap_err();
+            assert!(
+                e.0.contains("not a path inside the comparison folder"),
+                "{bad}: {e:?}"
+            );
+        }
+        assert!(Comparison::from_json(&base.replace("episodes/x.json", "a/b/c.json")).is_ok());
     }
 }

@@ -9,7 +9,8 @@
 //! - [`paired`]: McNemar's exact test between two methods on the same scenarios.
 //! - [`trajectory`]: one recorded episode (written by the env, read by the report); [`body`]:
 //!   the robot's bodies and shapes in it, for 3D replays.
-//! - [`fs`]: [`write_atomic`], the one way fairgrasp writes a result file.
+//! - [`fs`]: [`write_atomic`], the one way fairgrasp writes a result file; [`output`]: when an
+//!   existing file may be written over (only one fairgrasp wrote).
 
 pub mod body;
 pub mod checksum;
@@ -18,6 +19,7 @@ pub mod episode;
 pub mod eval;
 pub mod fs;
 pub mod names;
+pub mod output;
 pub mod paired;
 pub mod trajectory;
 

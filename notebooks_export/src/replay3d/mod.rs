@@ -54,7 +54,8 @@ pub fn three_version() -> Option<&'static str> {
 
 /// Is `path` a replay that fairgrasp wrote (so it may be replaced)?
 pub fn is_replay_file(path: &Path) -> bool {
-    std::fs::read(path).is_ok_and(|bytes| {
+    // Only the start of a regular file is read (a device or a pipe is not a replay).
+    fairgrasp_types::output::head(path).is_some_and(|bytes| {
         let head = &bytes[..bytes.len().min(2_000)];
         String::from_utf8_lossy(head).contains(&format!("content=\"{GENERATOR}\""))
     })

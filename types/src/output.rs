@@ -1,0 +1,213 @@
+//! The one rule for writing an output file over an existing path: a command replaces only a
+//! regular file that fairgrasp wrote, recognised by the mark every generated chart, replay and
+//! page carries near its start ([`GENERATOR`]). It never replaces an input (a CSV, a model, a
+//! config carries no mark), a folder, a device or a pipe, nor any file inside a report folder
+//! (those are `compare`'s and `report`'s, replaced whole or not at all).
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+/// The mark of a generated file: a PNG's `Software` text chunk, a GIF's comment, an HTML page's
+/// `generator` meta tag.
+pub const GENERATOR: &str = "fairgrasp";
+
+/// The file a report folder holds that lists what `compare` / `report` wrote into it.
+pub const REPORT_MARKER: &str = ".fairgrasp-report";
+
+/// How far into a file its mark is looked for [bytes].
+const HEAD_BYTES: u64 = 64 * 1024;
+
+/// PNG's signature.
+const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
+
+/// The start of a file, if it is a regular file (nothing else is opened).
+pub fn head(path: &Path) -> Option<Vec<u8>> {
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return None;
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .ok()?
+        .take(HEAD_BYTES)
+        .read_to_end(&mut bytes)
+        .ok()?;
+    Some(bytes)
+}
+
+fn contains(haystack: &[u8], needle: &[u8]) -> bool {
+    haystack.windows(needle.len()).any(|w| w == needle)
+}
+
+/// Whether `head` starts a PNG fairgrasp wrote (its `tEXt` chunk `Software` = [`GENERATOR`]).
+pub fn png_is_ours(head: &[u8]) -> bool {
+    head.starts_with(PNG_SIGNATURE) && contains(head, b"tEXtSoftware\0fairgrasp")
+}
+
+/// Whether `head` starts a GIF fairgrasp wrote (a comment extension holding [`GENERATOR`]).
+pub fn gif_is_ours(head: &[u8]) -> bool {
+    head.starts_with(b"GIF89a") && contains(head, b"\x21\xfe\x09fairgrasp")
+}
+
+/// The report folder (holding [`REPORT_MARKER`]) that `path` lies inside, if any.
+pub fn report_folder_around(path: &Path) -> Option<PathBuf> {
+    let absolute = std::path::absolute(path).ok()?;
+    absolute
+        .ancestors()
+        .skip(1)
+        .find(|dir| dir.join(REPORT_MARKER).exists())
+        .map(Path::to_path_buf)
+}
+
+/// Checks that `path` may be written by a command whose files of this kind `is_ours`
+/// recognises (`what` names the kind, e.g. "chart"). Missing paths are fine; an existing one
+/// must be a regular file that `is_ours`; nothing inside a report folder is. The message names
+/// the path and says what to do.
+pub fn check_replaceable(
+    path: &Path,
+    what: &str,
+    is_ours: impl Fn(&[u8]) -> bool,
+) -> Result<(), String> {
+    let shown = path.display();
+    if let Some(report) = report_folder_around(path) {
+        return Err(format!(
+            "{shown} is inside the report folder {}, which only `fairgrasp compare` and \
+             `fairgrasp report` write (replaced whole, with --force): choose a path outside it",
+            report.display()
+        ));
+    }
+    match std::fs::symlink_metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(format!("{shown}: {e}")),
+        Ok(_) => {}
+    }
+    match head(path) {
+        None => Err(format!(
+            "{shown} exists and is not a regular file (a folder, a device or a pipe): it is never \
+             written over; choose a file name"
+        )),
+        Some(bytes) if is_ours(&bytes) => Ok(()),
+        Some(_) => Err(format!(
+            "{shown} exists and is not a {what} fairgrasp wrote: it is never replaced; choose \
+             another name, or move the file away first"
+        )),
+    }
+}
+
+/// Whether `name` is a file an episode recording writes (`episode_NNNN.csv` / `.json`, and the
+/// `.png`, `.gif` and `_stepN.png` that `plot` draws beside it).
+pub fn is_episode_file(name: &str) -> bool {
+    let Some(rest) = name.strip_prefix("episode_") else {
+        return false;
+    };
+    let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
+    let tail = &rest[digits..];
+    let step_png = tail
+        .strip_prefix("_step")
+        .and_then(|t| t.strip_suffix(".png"))
+        .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+    digits > 0 && ([".csv", ".json", ".png", ".gif"].contains(&tail) || step_png)
+}
+
+/// Checks a folder episodes are recorded into (`--record DIR`): new, or holding only earlier
+/// recordings ([`is_episode_file`]), and not inside a report folder.
+pub fn check_record_folder(dir: &Path) -> Result<(), String> {
+    let shown = dir.display();
+    if let Some(report) = report_folder_around(&dir.join("episode_0000.json")) {
+        return Err(format!(
+            "{shown} is inside the report folder {}, which only `fairgrasp compare` and \
+             `fairgrasp report` write: record elsewhere",
+            report.display()
+        ));
+    }
+    let entries = match std::fs::read_dir(dir) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(_) if dir.exists() => {
+            return Err(format!(
+                "{shown} exists and is not a folder: record into a folder"
+            ));
+        }
+        Err(e) => return Err(format!("{shown}: {e}")),
+        Ok(entries) => entries,
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if !is_episode_file(&name) {
+            return Err(format!(
+                "{shown} holds {name}, which is not an episode recording: episodes are recorded \
+                 only into a new folder or one holding earlier recordings; choose another folder"
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_marked_regular_files_outside_report_folders_are_replaced() {
+        let dir = std::env::temp_dir().join(format!("fairgrasp-output-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("report")).unwrap();
+        let ours = dir.join("chart.png");
+        std::fs::write(&ours, b"\x89PNG\r\n\x1a\n....tEXtSoftware\0fairgrasp").unwrap();
+        let theirs = dir.join("photo.png");
+        std::fs::write(&theirs, b"\x89PNG\r\n\x1a\n....tEXtSoftware\0GIMP").unwrap();
+        let csv = dir.join("metrics.csv");
+        std::fs::write(&csv, b"update,success\n1,0.5\n").unwrap();
+        assert_eq!(check_replaceable(&ours, "chart", png_is_ours), Ok(()));
+        assert_eq!(
+            check_replaceable(&dir.join("new.png"), "chart", png_is_ours),
+            Ok(())
+        );
+        for (path, words) in [
+            (&theirs, "not a chart fairgrasp wrote"),
+            (&csv, "not a chart fairgrasp wrote"),
+            (&dir, "not a regular file"),
+            (&PathBuf::from("/dev/null"), "not a regular file"),
+        ] {
+            let e = check_replaceable(path, "chart", png_is_ours).unwrap_err();
+            assert!(e.contains(words), "{}: {e}", path.display());
+        }
+        std::fs::write(dir.join("report").join(REPORT_MARKER), "").unwrap();
+        let inside = dir.join("report/sub/new.png");
+        let e = check_replaceable(&inside, "chart", png_is_ours).unwrap_err();
+        assert!(e.contains("inside the report folder"), "{e}");
+        assert!(gif_is_ours(b"GIF89a......\x21\xfe\x09fairgrasp\x00"));
+        assert!(!gif_is_ours(b"GIF89a......\x21\xfe\x05hello\x00"));
+        for name in [
+            "episode_0001.csv",
+            "episode_12.json",
+            "episode_0003_step40.png",
+        ] {
+            assert!(is_episode_file(name), "{name}");
+        }
+        for name in [
+            "episode_.csv",
+            "episode_0001.toml",
+            "episode_1_step.png",
+            "notes.md",
+        ] {
+            assert!(!is_episode_file(name), "{name}");
+        }
+        std::fs::write(dir.join("report/episode_0001.csv"), "").unwrap();
+        assert!(check_record_folder(&dir.join("report")).is_err());
+        let record = dir.join("record");
+        assert_eq!(check_record_folder(&record), Ok(()));
+        std::fs::create_dir_all(&record).unwrap();
+        std::fs::write(record.join("episode_0001.csv"), "").unwrap();
+        assert_eq!(check_record_folder(&record), Ok(()));
+        std::fs::write(record.join("thesis.tex"), "").unwrap();
+        assert!(
+            check_record_folder(&record)
+                .unwrap_err()
+                .contains("thesis.tex")
+        );
+        assert!(
+            check_record_folder(&csv)
+                .unwrap_err()
+                .contains("not a folder")
+        );
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
