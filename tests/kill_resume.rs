@@ -164,12 +164,15 @@ fn resume_keeps_a_best_that_scored_higher_than_the_last_evaluation() {
     // Pretend the best checkpoint scored 1.0 and `latest` records no evaluation (as a
     // checkpoint written before the best score was recorded in it): a resume that started
     // `best` from `latest`'s own score would let the first evaluation overwrite it.
+    // Both as format version 1, which had no folder checksum to refuse the edit.
     let edit = |file: &str, f: &dyn Fn(&mut serde_json::Value)| {
         let path = run.join(file);
         let mut meta: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
         f(&mut meta);
+        meta["version"] = serde_json::json!(1);
         std::fs::write(&path, serde_json::to_vec_pretty(&meta).unwrap()).unwrap();
+        std::fs::remove_file(path.with_file_name("checksum")).unwrap();
     };
     edit("checkpoints/best/meta.json", &|m| {
         m["eval_success_rate"] = serde_json::json!(1.0)

@@ -245,17 +245,24 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
         "plot drew despite the refusal"
     );
 
-    // Charts drawn into the folder later are files --force would lose: named, kept.
-    ok(&fairgrasp(&dir, &["plot", &episode, "--still", "3"]));
+    // plot never draws into a report folder; a file put there by other means is one --force
+    // would lose: named, kept.
+    let stderr = refused(&fairgrasp(&dir, &["plot", &episode, "--still", "3"]));
+    assert!(stderr.contains("inside the report folder"), "{stderr}");
+    assert_eq!(
+        snapshot(&dir.join("cmp")),
+        first,
+        "plot drew into the report"
+    );
+    let added = dir.join(episode.replace(".json", "_step3.png"));
+    std::fs::write(&added, b"a still copied in by hand").unwrap();
     let stderr = refused(&compare(&["--force"]));
     assert!(stderr.contains("_step3.png (added since"), "{stderr}");
-    assert!(dir.join(episode.replace(".json", "_step3.png")).is_file());
+    assert!(added.is_file());
 
     // A kill while the episodes run leaves the folder as it was (and the staging folder,
     // named after the process, visible next to it).
-    for drawn in [".png", ".gif", "_step3.png"] {
-        std::fs::remove_file(dir.join(episode.replace(".json", drawn))).unwrap();
-    }
+    std::fs::remove_file(&added).unwrap();
     assert_eq!(snapshot(&dir.join("cmp")), first);
     let mut child = Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
         .args(["compare", "--preset", "fixed", "--episodes", "400"])

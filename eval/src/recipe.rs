@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use fairgrasp_env::config::presets;
+use fairgrasp_env::config::{presets, toml_lines};
 use fairgrasp_env::scenario::curriculum::CurriculumConfig;
 use fairgrasp_env::{ArmSimulation, ConfigError, EnvConfig};
 use serde::Deserialize;
@@ -139,6 +139,10 @@ pub fn env_config(preset: &str, arm: ArmSimulation) -> Result<EnvConfig, ConfigE
     Ok(env)
 }
 
+/// What an error of a training config's `[env]` table names as its place (the message goes on
+/// with `: env.<field>`).
+pub const ENV_OVERRIDES: &str = "[env] of the training config";
+
 /// [`env_config`] with `overrides` (a training config's `[env]` table) laid over it, validated.
 pub fn training_env_config(
     preset: &str,
@@ -150,11 +154,29 @@ pub fn training_env_config(
         return Ok(env);
     };
     let invalid = |message: String| ConfigError::File {
-        path: "[env] of the training config".into(),
+        path: ENV_OVERRIDES.into(),
         message,
     };
     let mut table = toml::Table::try_from(&env).map_err(|e| invalid(e.to_string()))?;
     overlay(&mut table, overrides);
     let text = toml::to_string(&table).map_err(|e| invalid(e.to_string()))?;
-    EnvConfig::from_toml_str(&text).map_err(|e| invalid(e.to_string()))
+    // Errors name the field as `env.<path>` (the merged text's lines are nobody's): the loader
+    // of the training config finds the line the user wrote it on.
+    let config: EnvConfig = toml::from_str(&text).map_err(|e| {
+        let line = e
+            .span()
+            .map(|s| text[..s.start.min(text.len())].matches('\n').count() + 1);
+        let path = line.and_then(|l| toml_lines::path_at_line(&text, l));
+        invalid(match path {
+            Some(p) => format!("env.{p}: {}", e.message()),
+            None => format!("env: {}", e.message()),
+        })
+    })?;
+    config.validate().map_err(|e| match e {
+        ConfigError::Invalid { field, value, rule } => {
+            invalid(format!("env.{field} = {value}: {rule}"))
+        }
+        other => invalid(other.to_string()),
+    })?;
+    Ok(config)
 }

@@ -56,6 +56,14 @@ macro_rules! policy_files {
                 )),
             ),
             (
+                "checkpoint/checksum",
+                include_bytes!(concat!(
+                    "../../assets/policies/",
+                    $name,
+                    "/checkpoint/checksum"
+                )),
+            ),
+            (
                 "metrics.csv",
                 include_bytes!(concat!("../../assets/policies/", $name, "/metrics.csv")),
             ),

@@ -90,8 +90,10 @@ fn a_checkpoint_round_trip_gives_identical_actions() {
     );
     let without_checksum = CheckpointMeta {
         model_checksum: None,
+        version: meta.version,
         ..loaded_meta.clone()
     };
+    assert_eq!(loaded_meta.version, checkpoint::CHECKPOINT_VERSION);
     assert_eq!(without_checksum, meta);
     let config = presets::load("seed").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();

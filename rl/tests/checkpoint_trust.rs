@@ -160,7 +160,10 @@ fn the_curriculum_stage_is_carried_over_a_resume() {
         serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
     assert_eq!(meta["curriculum_stage"], 0);
     meta["curriculum_stage"] = 2.into();
+    // As format version 1, which had no folder checksum to refuse the edit.
+    meta["version"] = 1.into();
     std::fs::write(&path, serde_json::to_vec(&meta).unwrap()).unwrap();
+    std::fs::remove_file(path.with_file_name("checksum")).unwrap();
     let mut longer = config.clone();
     longer.total_timesteps = 128;
     let mut stages = Vec::new();

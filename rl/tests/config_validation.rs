@@ -123,6 +123,45 @@ const HOSTILE: [&str; 16] = [
 
 /// Every `key = value` line of a TOML text whose value is a number or an array of numbers, as
 /// (line index, key).
+/// An error in a training config's `[env]` table cites the line it is written on in that file
+/// (it used to cite a line of the preset merged with the overrides, which nobody wrote).
+#[test]
+fn an_env_table_error_cites_its_own_line() {
+    let head = "preset = \"seed\"\n# a comment\nseed = 3\n\n[ppo]\nn_steps = 64\n\n";
+    let cases = [
+        ("[env.task]\nreward = \"stagd\"\n", 9, "unknown variant"),
+        (
+            "[env.task]\nmax_steps = 100\nfoo = 1\n",
+            10,
+            "unknown field",
+        ),
+        (
+            "[env.task]\nlift_height = 7.0\n",
+            9,
+            "env.task.lift_height = 7",
+        ),
+        (
+            "[env.task.staged]\nlift = 1e308\n",
+            9,
+            "env.task.staged.lift",
+        ),
+        ("[env]\nphysics.substeps = 0\n", 9, "env.physics.substeps"),
+        (
+            "[env]\nscene = { cube_mass = -1.0 }\n",
+            9,
+            "env.scene.cube_mass",
+        ),
+    ];
+    for (env, line, words) in cases {
+        let message = train_refusal("line", &format!("{head}{env}"))
+            .unwrap_or_else(|| panic!("accepted: {env}"));
+        assert!(
+            message.contains(&format!(": line {line}: ")) && message.contains(words),
+            "{env}: {message}"
+        );
+    }
+}
+
 fn numeric_lines(text: &str) -> Vec<(usize, String)> {
     text.lines()
         .enumerate()

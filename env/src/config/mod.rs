@@ -2,7 +2,7 @@
 //! families' settings in [`families`], the staged reward's weights in [`reward`]), loaded from
 //! TOML and checked with messages that name the field ([`validate`] and the families' rules in
 //! `validate_families`, both written with `check`; [`numbers`], [`error`]),
-//! and the named presets ([`presets`]).
+//! the named presets ([`presets`]), and where a key is written in a TOML text ([`toml_lines`]).
 //!
 //! A leaf: nothing here imports the env's behaviour (only the frame arithmetic of
 //! `crate::cell`, which needs no config), so every other room may import it.
@@ -18,6 +18,7 @@ pub mod numbers;
 pub mod presets;
 pub mod range;
 pub mod reward;
+pub mod toml_lines;
 pub mod validate;
 mod validate_families;
 

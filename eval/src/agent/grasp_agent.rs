@@ -96,6 +96,22 @@ pub const OBS_DIM: usize = fairgrasp_env::env::obs::OBS_DIM;
 pub use fairgrasp_env::env::spaces::ACT_DIM;
 
 impl AgentConfig {
+    /// Checks the numbers (the residual's scale in (0, 10]); the message names the field.
+    pub fn check(&self) -> Result<(), String> {
+        if !(self.residual_scale > 0.0 && self.residual_scale <= 10.0) {
+            let v = self.residual_scale;
+            let shown = if v.abs() >= 1e6 {
+                format!("{v:e}")
+            } else {
+                v.to_string()
+            };
+            return Err(format!(
+                "agent.residual_scale = {shown}: must be in (0, 10]"
+            ));
+        }
+        Ok(())
+    }
+
     /// The policy's input size.
     pub fn input_dim(&self) -> usize {
         match (self.mode, self.action_space) {

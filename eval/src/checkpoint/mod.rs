@@ -11,10 +11,12 @@
 //! `optimizer.bpk`) taken together with the network's shape (mode, input size, hidden sizes), so
 //! a flipped byte in the weights or an edited shape in the metadata is refused by name.
 //!
-//! - [`network`]: the network's shape and its rule; [`normalizer`]: the observation statistics.
+//! - [`network`]: the network's shape and its rule; [`normalizer`]: the observation statistics;
+//!   [`verify`]: the ranges of `meta.json`'s numbers and the checksum over the folder's files.
 
 pub mod network;
 pub mod normalizer;
+pub mod verify;
 
 use std::path::{Path, PathBuf};
 
@@ -26,6 +28,10 @@ use crate::agent::{ACT_DIM, AgentConfig, GraspAgent};
 use crate::burnpack::read_tensors;
 use network::ModelConfig;
 use normalizer::RunningNorm;
+
+/// The format version checkpoints are written in: 2 adds the folder checksum
+/// ([`verify::FOLDER_CHECKSUM`]); version 1 folders still load, without it.
+pub const CHECKPOINT_VERSION: u32 = 2;
 
 /// Everything in `meta.json`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -131,11 +137,11 @@ pub fn load_meta(dir: &Path) -> Result<CheckpointMeta, CheckpointError> {
         .map_err(|e| err(&path, e))?;
     let meta: CheckpointMeta = serde_json::from_str(&text)
         .map_err(|e| err(&path, format!("not a valid checkpoint description: {e}")))?;
-    if meta.version != 1 {
+    if !(1..=CHECKPOINT_VERSION).contains(&meta.version) {
         return Err(err(
             &path,
             format!(
-                "format version {} is not supported (expected 1)",
+                "format version {} is not supported (1 to {CHECKPOINT_VERSION})",
                 meta.version
             ),
         ));
@@ -158,6 +164,7 @@ pub fn load_meta(dir: &Path) -> Result<CheckpointMeta, CheckpointError> {
             "the observation statistics do not match input_dim",
         ));
     }
+    verify::check_numbers(&meta).map_err(|e| err(&path, e))?;
     Ok(meta)
 }
 
@@ -169,8 +176,22 @@ pub fn verified_model_bytes(
 ) -> Result<(PathBuf, Vec<u8>), CheckpointError> {
     let dir = existing(dir)?;
     let path = dir.join("model.bpk");
-    let bytes = fairgrasp_types::fs::read_bounded(&path, fairgrasp_types::fs::MAX_DATA_BYTES)
-        .map_err(|e| err(&path, e))?;
+    let required = meta.version >= verify::FOLDER_CHECKSUM_VERSION;
+    let bytes = match verify::verify_folder(&dir, required)? {
+        Some(checked_files) => {
+            // The meta given must be the one the checksum covers (not one of another save).
+            let checked: Option<CheckpointMeta> = serde_json::from_slice(&checked_files.meta).ok();
+            if checked.as_ref() != Some(meta) {
+                return Err(err(
+                    &dir.join("meta.json"),
+                    "changed while it was being read (a save in progress?): read it again",
+                ));
+            }
+            checked_files.model
+        }
+        None => fairgrasp_types::fs::read_bounded(&path, fairgrasp_types::fs::MAX_DATA_BYTES)
+            .map_err(|e| err(&path, e))?,
+    };
     if let Some(expected) = &meta.model_checksum {
         let found = meta.model_checksum_of(&bytes);
         if &found != expected {

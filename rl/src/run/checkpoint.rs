@@ -19,8 +19,10 @@ use burn::module::Module;
 use burn::optim::ModuleOptimizer;
 use burn::tensor::Device;
 
+use fairgrasp_eval::checkpoint::verify::{FOLDER_CHECKSUM, folder_checksum_text};
 pub use fairgrasp_eval::checkpoint::{
-    CheckpointError, CheckpointMeta, checksum, err, existing, load_meta, verified_model_bytes,
+    CHECKPOINT_VERSION, CheckpointError, CheckpointMeta, checksum, err, existing, load_meta,
+    verified_model_bytes,
 };
 
 use crate::ppo::model::ActorCritic;
@@ -46,13 +48,26 @@ pub fn save(
     }
     let read = |name: &str| std::fs::read(tmp.join(name)).map_err(|e| err(&tmp.join(name), e));
     let mut meta = meta.clone();
+    meta.version = CHECKPOINT_VERSION;
     meta.model_checksum = Some(meta.model_checksum_of(&read("model.bpk")?));
     meta.optimizer_checksum = match optimizer {
         Some(_) => Some(checksum(&[&read("optimizer.bpk")?])),
         None => None,
     };
     let json = serde_json::to_vec_pretty(&meta).map_err(|e| err(&tmp, e))?;
-    std::fs::write(tmp.join("meta.json"), json).map_err(|e| err(&tmp, e))?;
+    std::fs::write(tmp.join("meta.json"), &json).map_err(|e| err(&tmp, e))?;
+    // One checksum over the files together: a reader never mixes two saves.
+    let model_bytes = read("model.bpk")?;
+    let optimizer_bytes = match optimizer {
+        Some(_) => Some(read("optimizer.bpk")?),
+        None => None,
+    };
+    let mut files: Vec<(&str, &[u8])> = vec![("meta.json", &json), ("model.bpk", &model_bytes)];
+    if let Some(o) = &optimizer_bytes {
+        files.push(("optimizer.bpk", o));
+    }
+    std::fs::write(tmp.join(FOLDER_CHECKSUM), folder_checksum_text(&files))
+        .map_err(|e| err(&tmp, e))?;
     sync_dir_files(&tmp);
     let name = dir
         .file_name()

@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use fairgrasp_env::config::toml_lines;
 use fairgrasp_env::scenario::curriculum::CurriculumConfig;
 use fairgrasp_env::{ArmSimulation, EnvConfig};
 use serde::{Deserialize, Serialize};
@@ -16,8 +17,8 @@ use fairgrasp_eval::recipe;
 pub const MAX_ENVS: usize = 4096;
 /// The most threads a run may step them on.
 pub const MAX_THREADS: usize = 256;
-/// The longest run in environment steps (10¹⁰: years on a laptop).
-pub const MAX_TIMESTEPS: u64 = 10_000_000_000;
+/// The longest run in environment steps (checkpoints' counters have the same cap).
+pub use fairgrasp_eval::checkpoint::verify::MAX_TIMESTEPS;
 /// The most scenarios per evaluation.
 pub const MAX_EVAL_EPISODES: usize = 100_000;
 
@@ -57,7 +58,7 @@ pub struct TrainConfig {
     /// Evaluations use the preset as it is: the success criterion never changes.
     pub env: Option<toml::Table>,
     /// The run folder's copy of a preset file (`RUN/env.toml`), which a resumed run trains on
-    /// instead of `preset` (see [`crate::run::resume::with_env_snapshot`]); not saved.
+    /// instead of `preset` (see [`crate::run::snapshot`]); not saved.
     #[serde(skip)]
     pub env_snapshot: Option<std::path::PathBuf>,
 }
@@ -109,11 +110,20 @@ impl TrainConfig {
             TrainError::Config(format!("{}: {message}", path.display()))
         })?;
         if let Some(dir) = run_dir {
-            config.env_snapshot = crate::run::resume::env_snapshot_of(&config, dir);
+            config.env_snapshot = crate::run::snapshot::env_snapshot_of(&config.preset, dir);
         }
-        config
-            .validate()
-            .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
+        config.validate().map_err(|e| {
+            // An error in the `[env]` overrides names its field as `env.<path>`: cite its line.
+            let line = e
+                .strip_prefix(recipe::ENV_OVERRIDES)
+                .and_then(|rest| rest.strip_prefix(": "))
+                .and_then(|rest| rest.split([' ', ':']).next())
+                .and_then(|field| toml_lines::line_of_path(&text, field));
+            match line {
+                Some(l) => TrainError::Config(format!("{}: line {l}: {e}", path.display())),
+                None => TrainError::Config(format!("{}: {e}", path.display())),
+            }
+        })?;
         Ok(config)
     }
 
@@ -155,12 +165,7 @@ impl TrainConfig {
             ));
         }
         self.model.check()?;
-        if !(self.agent.residual_scale > 0.0 && self.agent.residual_scale <= 10.0) {
-            return Err(format!(
-                "agent.residual_scale = {}: must be in (0, 10]",
-                self.agent.residual_scale
-            ));
-        }
+        self.agent.check()?;
         self.ppo
             .validate(self.n_envs)
             .map_err(|e| format!("ppo: {e}"))?;

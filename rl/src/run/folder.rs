@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use crate::run::checkpoint;
 use crate::run::error::{TrainError, io};
-use crate::run::resume;
+use crate::run::snapshot::ENV_SNAPSHOT;
 
 /// The lock file inside a run folder (holds the training process's pid while it runs).
 pub const LOCK_FILE: &str = ".lock";
@@ -24,7 +24,7 @@ const RUN_FILES: [&str; 8] = [
     "metrics.csv",
     "checkpoints",
     "eval.json",
-    "env.toml",
+    ENV_SNAPSHOT,
     "config_changes.log",
     "metrics.rejected.csv",
     LOCK_FILE,
@@ -73,7 +73,7 @@ pub fn inspect(run_dir: &Path) -> FolderState {
         .collect();
     names.sort();
     // A fresh start that stopped after copying its preset file and before config.toml.
-    if names.is_empty() || names == [resume::ENV_SNAPSHOT] {
+    if names.is_empty() || names == [ENV_SNAPSHOT] {
         return FolderState::Empty;
     }
     if !run_dir.join("config.toml").is_file() {

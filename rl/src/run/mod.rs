@@ -7,7 +7,7 @@
 //!   [`tensorboard`]: the same values as TensorBoard event files.
 //! - [`checkpoint`]: saving and loading a network with its metadata, atomically and checked.
 //! - [`folder`]: what a run folder holds and who may train in it; [`resume`]: continuing a run
-//!   safely; [`crash`]: the kill tests' fault injection.
+//!   safely; [`snapshot`]: the run's copy of its preset file; [`crash`]: the kill tests' fault injection.
 //! - [`evaluate`]: a checkpoint as a policy, evaluated on a preset.
 //! - [`shipped`]: the policies built into the binary (`fairgrasp_eval::shipped`, re-exported).
 
@@ -19,6 +19,7 @@ pub mod evaluate;
 pub mod folder;
 pub mod metrics;
 pub mod resume;
+pub mod snapshot;
 pub use fairgrasp_eval::shipped;
 pub mod tensorboard;
 pub mod train;

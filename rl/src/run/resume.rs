@@ -14,6 +14,7 @@ use fairgrasp_types::write_atomic;
 use crate::run::checkpoint::{self, CheckpointMeta};
 use crate::run::config::TrainConfig;
 use crate::run::error::{TrainError, io};
+use crate::run::snapshot::{ENV_SNAPSHOT, env_snapshot_of};
 
 /// Fields a resume may change without `--accept-config-changes`: how long to run and on how many
 /// threads (results do not depend on the thread count).
@@ -36,15 +37,6 @@ pub struct ResumeOptions {
     pub force: bool,
 }
 
-/// A run's copy of the preset file it was started with, in its folder.
-pub const ENV_SNAPSHOT: &str = "env.toml";
-
-/// The run's copy of its preset file, if the run was started from one and kept it.
-pub fn env_snapshot_of(config: &TrainConfig, run_dir: &Path) -> Option<std::path::PathBuf> {
-    let snapshot = run_dir.join(ENV_SNAPSHOT);
-    (config.preset.ends_with(".toml") && snapshot.is_file()).then_some(snapshot)
-}
-
 /// The config a run trains with. A run started from a preset file (`preset = "….toml"`) keeps
 /// a copy of it as `RUN/env.toml`, and a resume trains on that copy, from whatever folder it is
 /// started (a relative `preset` would otherwise name another file there); a preset file there
@@ -64,7 +56,7 @@ pub fn with_env_snapshot(
         fairgrasp_types::fs::read_bounded(p, fairgrasp_types::fs::MAX_CONFIG_BYTES).map_err(io(p))
     };
     let snapshot = run_dir.join(ENV_SNAPSHOT);
-    if resume && let Some(kept) = env_snapshot_of(&config, run_dir) {
+    if resume && let Some(kept) = env_snapshot_of(&config.preset, run_dir) {
         if read(Path::new(&config.preset)).ok() != read(&kept).ok() {
             eprintln!(
                 "note: the run trains on its own copy of its preset ({}, saved when it started); {} here differs or is missing and is not used",

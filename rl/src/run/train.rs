@@ -207,7 +207,7 @@ fn start_from(
     )
     .map_err(io(run_dir))?;
     let meta = CheckpointMeta {
-        version: 1,
+        version: checkpoint::CHECKPOINT_VERSION,
         input_dim,
         act_dim: ACT_DIM,
         model: config.model.clone(),
