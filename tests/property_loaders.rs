@@ -1,0 +1,373 @@
+//! Property tests of every parser and loader: thousands of mutated inputs each (bits flipped,
+//! ranges cut or repeated, structural characters, invalid UTF-8 and hostile numbers inserted,
+//! files truncated), generated from a seeded RNG from valid files (the shipped configs, a shipped
+//! checkpoint, a run's and a comparison's files). For every input: no panic, no allocation beyond
+//! a fixed bound, and either a result or a refusal that names the file. For `metrics.csv`'s
+//! repair one more property: no line is lost (every line is kept as a row or set aside).
+//!
+//! Allocation is measured per thread by a counting global allocator: the peak of live bytes
+//! while one input is loaded, over the bytes live before it.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+struct Counting;
+
+thread_local! {
+    static LIVE: Cell<isize> = const { Cell::new(0) };
+    static PEAK: Cell<isize> = const { Cell::new(0) };
+}
+
+fn track(delta: isize) {
+    // `try_with`: the thread's slots may be gone while it exits.
+    let _ = LIVE.try_with(|live| {
+        let now = live.get() + delta;
+        live.set(now);
+        let _ = PEAK.try_with(|peak| peak.set(peak.get().max(now)));
+    });
+}
+
+// SAFETY: every call is forwarded unchanged to the system allocator; only counters are kept.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        track(layout.size() as isize);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        track(layout.size() as isize);
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        track(new_size as isize - layout.size() as isize);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        track(-(layout.size() as isize));
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// The most a load may allocate above what was live before it [bytes]: inputs here are at most
+/// a few hundred kilobytes, so anything near this is an allocation sized by a claim in the file.
+const ALLOCATION_BOUND: isize = 64 << 20;
+
+/// Runs `load` and returns its result with the peak of bytes it allocated.
+fn measured<T>(load: impl FnOnce() -> T) -> (T, isize) {
+    let before = LIVE.with(Cell::get);
+    PEAK.with(|p| p.set(before));
+    let out = load();
+    (out, PEAK.with(Cell::get) - before)
+}
+
+/// Fragments that break structure or numbers.
+const FRAGMENTS: [&[u8]; 18] = [
+    b"\"",
+    b"[",
+    b"]",
+    b"{",
+    b"}",
+    b"=",
+    b",",
+    b"\n",
+    b"\xff\xfe",
+    b"1e308",
+    b"-1",
+    b"nan",
+    b"18446744073709551615",
+    b"99999999999999999999999999",
+    b"null",
+    b"[[",
+    b"\0",
+    b"\r\n",
+];
+
+/// One input derived from `seed` by one to four random edits.
+fn mutate(seed: &[u8], rng: &mut ChaCha8Rng) -> Vec<u8> {
+    let mut bytes = seed.to_vec();
+    for _ in 0..rng.random_range(1..=4) {
+        let at = rng.random_range(0..=bytes.len());
+        match rng.random_range(0..6) {
+            0 if !bytes.is_empty() => {
+                let i = rng.random_range(0..bytes.len());
+                bytes[i] ^= 1 << rng.random_range(0..8);
+            }
+            1 => {
+                let end = (at + rng.random_range(1..=16)).min(bytes.len());
+                bytes.drain(at..end);
+            }
+            2 => {
+                let f = FRAGMENTS[rng.random_range(0..FRAGMENTS.len())];
+                bytes.splice(at..at, f.iter().copied());
+            }
+            3 => {
+                let end = (at + rng.random_range(1..=64)).min(bytes.len());
+                let piece = bytes[at..end].to_vec();
+                let to = rng.random_range(0..=bytes.len());
+                bytes.splice(to..to, piece);
+            }
+            4 => {
+                // A number replaced by a hostile one.
+                let digits: Vec<usize> = (0..bytes.len())
+                    .filter(|&i| bytes[i].is_ascii_digit())
+                    .collect();
+                if let Some(&i) = digits.get(rng.random_range(0..digits.len().max(1))) {
+                    let f = FRAGMENTS[rng.random_range(9..14)];
+                    bytes.splice(i..=i, f.iter().copied());
+                }
+            }
+            _ => bytes.truncate(at),
+        }
+    }
+    bytes
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fairgrasp-props-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Writes `cases` mutations of `seed` to `file` one by one and loads each with `load`: no
+/// panic, allocation within the bound, and a refusal naming `named` (when given).
+fn check_loader(
+    what: &str,
+    seed: &[u8],
+    cases: usize,
+    file: &Path,
+    named: Option<&Path>,
+    load: &dyn Fn() -> Result<(), String>,
+) {
+    let mut rng = ChaCha8Rng::seed_from_u64(what.len() as u64 * 7_919);
+    let (mut loaded, mut refused) = (0, 0);
+    for case in 0..cases {
+        let input = mutate(seed, &mut rng);
+        std::fs::write(file, &input).unwrap();
+        let (result, peak) =
+            measured(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(load)));
+        let shown = || String::from_utf8_lossy(&input[..input.len().min(2_000)]).into_owned();
+        let result =
+            result.unwrap_or_else(|_| panic!("{what}: case {case} panicked on:\n{}", shown()));
+        assert!(
+            peak < ALLOCATION_BOUND,
+            "{what}: case {case} allocated {peak} bytes on:\n{}",
+            shown()
+        );
+        match result {
+            Ok(()) => loaded += 1,
+            Err(message) => {
+                refused += 1;
+                if let Some(path) = named {
+                    let name = path.display().to_string();
+                    assert!(
+                        message.contains(&name),
+                        "{what}: case {case}: `{message}` does not name {name}"
+                    );
+                }
+            }
+        }
+    }
+    println!("{what}: {cases} mutated inputs, {loaded} loaded, {refused} refused");
+    assert!(
+        refused > 0,
+        "{what}: no mutation was refused: the mutations test nothing"
+    );
+}
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+#[test]
+fn training_and_env_configs() {
+    let dir = scratch("toml");
+    let file = dir.join("config.toml");
+    let seed =
+        std::fs::read(Path::new(ROOT).join("assets/policies/residual_nudged/train.toml")).unwrap();
+    check_loader("training config", &seed, 3000, &file, Some(&file), &|| {
+        fairgrasp_rl::run::TrainConfig::from_toml_file(&file)
+            .map(drop)
+            .map_err(|e| e.to_string())
+    });
+    let seed = std::fs::read(Path::new(ROOT).join("assets/configs/wrist_camera.toml")).unwrap();
+    check_loader("env config", &seed, 3000, &file, Some(&file), &|| {
+        fairgrasp_env::EnvConfig::from_toml_file(&file)
+            .map(drop)
+            .map_err(|e| e.to_string())
+    });
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn checkpoints_meta_and_weights() {
+    let dir = scratch("checkpoint");
+    let shipped = Path::new(ROOT).join("assets/policies/residual_nudged/checkpoint");
+    for name in ["meta.json", "model.bpk", "checksum"] {
+        std::fs::copy(shipped.join(name), dir.join(name)).unwrap();
+    }
+    let meta = dir.join("meta.json");
+    let seed = std::fs::read(&meta).unwrap();
+    check_loader("meta.json", &seed, 3000, &meta, Some(&meta), &|| {
+        fairgrasp_eval::checkpoint::load_meta(&dir)
+            .map(drop)
+            .map_err(|e| e.to_string())
+    });
+    std::fs::write(&meta, &seed).unwrap();
+    // The weights' parser itself (a load stops at the checksum before it).
+    let model = dir.join("model.bpk");
+    let weights = std::fs::read(&model).unwrap();
+    check_loader("model.bpk", &weights, 1500, &model, None, &|| {
+        let bytes = std::fs::read(&model).unwrap();
+        fairgrasp_eval::burnpack::read_tensors(&bytes)
+            .map(drop)
+            .map_err(|e| e.to_string())
+    });
+    check_loader(
+        "checkpoint folder",
+        &weights,
+        500,
+        &model,
+        Some(&dir),
+        &|| {
+            fairgrasp_eval::checkpoint::load_actor(&dir)
+                .map(drop)
+                .map_err(|e| e.to_string())
+        },
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A comparison folder with recorded episodes, written by the command itself.
+fn comparison(dir: &Path) -> PathBuf {
+    let out = dir.join("cmp");
+    let status = Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+        .args([
+            "compare",
+            "--preset",
+            "fixed",
+            "--episodes",
+            "3",
+            "--threads",
+            "1",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    out
+}
+
+#[test]
+fn comparisons_episodes_and_run_metrics() {
+    let dir = scratch("report");
+    let cmp = comparison(&dir);
+    let compare_json = cmp.join("compare.json");
+    let seed = std::fs::read(&compare_json).unwrap();
+    let file = dir.join("compare.json");
+    check_loader("compare.json", &seed, 2000, &file, Some(&file), &|| {
+        fairgrasp_report::compare::load(&file)
+            .map(drop)
+            .map_err(|e| e.to_string())
+    });
+    let episode = std::fs::read_dir(cmp.join("episodes"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "json"))
+        .unwrap();
+    let seed = std::fs::read(&episode).unwrap();
+    let file = dir.join("episode.json");
+    check_loader("episode", &seed, 1000, &file, Some(&file), &|| {
+        fairgrasp_report::trajectory::load(&file)
+            .map(drop)
+            .map_err(|e| e.to_string())
+    });
+    // A run's metrics.csv, read by plot and report.
+    let run = dir.join("run");
+    std::fs::create_dir_all(&run).unwrap();
+    let shipped = Path::new(ROOT).join("assets/policies/residual_nudged");
+    std::fs::copy(shipped.join("config.toml"), run.join("config.toml")).unwrap();
+    let seed = std::fs::read(shipped.join("metrics.csv")).unwrap();
+    let metrics = run.join("metrics.csv");
+    check_loader(
+        "metrics.csv",
+        &seed,
+        2000,
+        &metrics,
+        Some(&metrics),
+        &|| {
+            fairgrasp_report::RunFolder::load(&run)
+                .map(drop)
+                .map_err(|e| e.to_string())
+        },
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `--resume`'s repair of `metrics.csv`: whatever the file holds, every line ends up either as
+/// a row of the repaired file or in `metrics.rejected.csv`.
+#[test]
+fn the_metrics_repair_never_loses_a_line() {
+    use fairgrasp_rl::run::{checkpoint, metrics::metrics_header, resume::repair_metrics};
+    let dir = scratch("repair");
+    let shipped = Path::new(ROOT).join("assets/policies/residual_nudged");
+    let mut meta = checkpoint::load_meta(&shipped.join("checkpoint")).unwrap();
+    meta.metrics_row = None;
+    let header = metrics_header();
+    let seed = std::fs::read(shipped.join("metrics.csv")).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(31);
+    let metrics = dir.join("metrics.csv");
+    let rejected = dir.join("metrics.rejected.csv");
+    let count = |bytes: &[u8]| {
+        bytes
+            .split(|b| *b == b'\n')
+            .filter(|l| !l.is_empty())
+            .count()
+    };
+    for case in 0..1500 {
+        let input = mutate(&seed, &mut rng);
+        std::fs::write(&metrics, &input).unwrap();
+        let _ = std::fs::remove_file(&rejected);
+        let (result, peak) = measured(|| repair_metrics(&dir, &meta, &header));
+        result.unwrap_or_else(|e| panic!("case {case}: {e}"));
+        assert!(
+            peak < ALLOCATION_BOUND,
+            "case {case}: allocated {peak} bytes"
+        );
+        let headers = input
+            .split(|b| *b == b'\n')
+            .filter(|l| {
+                !l.is_empty()
+                    && header.as_bytes().starts_with(l)
+                    && (l.len() == header.len() || header.as_bytes()[l.len()] == b',')
+            })
+            .count();
+        let after = std::fs::read(&metrics).unwrap();
+        let kept = count(&after) - 1;
+        let aside = std::fs::read(&rejected).map_or(0, |b| count(&b));
+        assert!(
+            kept + aside + headers >= count(&input),
+            "case {case}: {} lines in, {kept} kept, {aside} set aside, {headers} headers",
+            count(&input)
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The allocation bound above means something only if the counter sees allocations.
+#[test]
+fn the_allocation_counter_sees_a_large_allocation() {
+    let (buffer, peak) = measured(|| vec![1u8; 80 << 20]);
+    assert!(peak >= 80 << 20, "{peak}");
+    drop(buffer);
+}
