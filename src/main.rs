@@ -11,14 +11,53 @@ use clap::Parser;
 
 fn main() -> ExitCode {
     streams_as_unix_tools();
-    let args = cli::Cli::parse();
+    let args = match cli::Cli::try_parse() {
+        Ok(args) => args,
+        // Help and version print as clap prints them; usage errors with long values cut.
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            eprint!("{}", excerpt_long_words(&e.render().to_string()));
+            return ExitCode::from(2);
+        }
+    };
     match cli::run(args) {
         Ok(code) => code,
         Err(err) => {
-            eprintln!("error: {err:#}");
+            eprintln!("error: {}", excerpt_long_words(&format!("{err:#}")));
             ExitCode::FAILURE
         }
     }
+}
+
+/// The longest word an error message quotes whole [characters]: a longer one (a pasted value
+/// of megabytes, a TOML line quoted by the parser) is cut to its start and its length.
+const MAX_QUOTED_WORD: usize = 120;
+
+/// `message` with every word longer than [`MAX_QUOTED_WORD`] cut to its first 60 characters
+/// and a note of its length, so a bad value never floods the terminal.
+fn excerpt_long_words(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(1 << 16));
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        let n = word.chars().count();
+        if n > MAX_QUOTED_WORD {
+            out.extend(word.chars().take(60));
+            out.push_str(&format!("… ({n} characters)"));
+        } else {
+            out.push_str(word);
+        }
+        word.clear();
+    };
+    for c in message.chars() {
+        if c.is_whitespace() {
+            flush(&mut word, &mut out);
+            out.push(c);
+        } else {
+            word.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
 }
 
 /// Streams as Unix tools treat them: a closed pipe (`fairgrasp … | head -1`) ends the command

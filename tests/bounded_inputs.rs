@@ -137,3 +137,36 @@ fn an_empty_tmpdir_never_puts_files_in_the_working_directory() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A bad value of 100 000 characters is quoted as a short excerpt and its length, wherever it
+/// comes from: a flag (clap's message), a preset name, a TOML line the parser quotes.
+#[test]
+fn a_huge_bad_value_is_quoted_as_an_excerpt() {
+    let dir = scratch("excerpt");
+    let digits = "9".repeat(100_000);
+    let name = "y".repeat(100_000);
+    let toml = dir.join("huge.toml");
+    std::fs::write(&toml, format!("[scene]\ncube_mass = {digits}\n")).unwrap();
+    let toml = toml.to_str().unwrap();
+    for (args, code) in [
+        (vec!["baseline", "--episodes", &digits], 2),
+        (vec!["fk", "--joints", "0", "0", "0", "0", "0", &digits], 2),
+        (vec!["compare", "--preset", &name], 1),
+        (vec!["baseline", "--preset", toml], 1),
+    ] {
+        let out = fairgrasp(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(
+            out.status.code(),
+            Some(code),
+            "{}",
+            &stderr[..stderr.len().min(400)]
+        );
+        assert!(
+            stderr.len() < 2_000 && stderr.contains("characters)"),
+            "{} bytes: {}",
+            stderr.len(),
+            &stderr[..stderr.len().min(400)]
+        );
+    }
+}
