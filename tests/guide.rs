@@ -353,7 +353,13 @@ fn python_commands_run_as_written() {
 
 #[test]
 fn reliability_commands_run_as_written() {
-    run_page("docs/reliability.md");
+    run_page("docs/reliability.md").has(
+        "docs/reliability.md",
+        &[
+            "runs/r/checkpoints/latest/checksum",
+            "runs/r.replaced-1/metrics.csv",
+        ],
+    );
 }
 
 #[test]
