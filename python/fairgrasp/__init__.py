@@ -13,13 +13,16 @@ world_to_base), ``fairgrasp.Baseline`` (the scripted grasp as a policy), and
 input and whose action is the correction, computed by the Rust agent code). The first,
 joint-space residual (the documented negative result) is
 ``fairgrasp.make("residual_miscalibrated", agent={"action_space": "joint"})``.
-``fairgrasp.train`` runs the Rust PPO trainer (``fairgrasp train``) in this process.
+``fairgrasp.train`` runs the Rust PPO trainer (``fairgrasp train``) in this process;
+``fairgrasp.load_policy`` loads a trained policy (shipped or a run's) with SB3's ``predict``, and
+``fairgrasp.evaluate`` plays ``fairgrasp eval``'s scenarios with any policy.
 """
 
 from . import _native, kinematics
 from ._native import ACT_DIM, OBS_DIM, preset_names
 from .baseline import Baseline
 from .env import FairGraspEnv
+from .policy import PolicyError, RustPolicy, evaluate, load_policy
 from .recipes import make, make_vec, recipe_keys, recipe_names
 from .registration import register_all
 from .train import train
@@ -30,8 +33,12 @@ __all__ = [
     "OBS_DIM",
     "Baseline",
     "FairGraspEnv",
+    "PolicyError",
+    "RustPolicy",
     "VectorEnv",
+    "evaluate",
     "kinematics",
+    "load_policy",
     "make",
     "make_vec",
     "preset_names",

@@ -19,6 +19,7 @@ mod calibrate;
 mod env;
 mod info;
 mod kinematics;
+mod policy;
 mod setup;
 #[cfg(feature = "train")]
 mod train;
@@ -93,6 +94,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     kinematics::register(m)?;
     m.add_function(wrap_pyfunction!(calibrate::calibrate_points, m)?)?;
     m.add_function(wrap_pyfunction!(calibrate::calibrate_hand_eye, m)?)?;
+    m.add_class::<policy::NativePolicy>()?;
+    m.add_function(wrap_pyfunction!(policy::scenario_seeds, m)?)?;
+    m.add_function(wrap_pyfunction!(policy::wilson_interval, m)?)?;
     m.add("OBS_DIM", fairgrasp_env::env::obs::OBS_DIM)?;
     m.add("ACT_DIM", ACT_DIM)?;
     Ok(())
