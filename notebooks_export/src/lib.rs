@@ -11,7 +11,8 @@
 //! - [`charts`]: success bars, learning curves, workspace maps, episode charts, GIF replays.
 //! - [`replay3d`]: the interactive 3D replay, one self-contained `replay.html`.
 //! - [`document`], [`notebook`]: the report as Markdown and as nbformat 4.5.
-//! - [`report`]: all of it from a list of folders.
+//! - [`report`]: all of it from a list of folders; [`comparison_folder`]: a comparison's folder
+//!   (its data, episodes and report) written whole.
 //! - [`output_folder`], [`folder_marker`]: the output folder, written whole or not at all, and
 //!   never over files fairgrasp did not write.
 //!
@@ -20,6 +21,7 @@
 
 pub mod charts;
 pub mod compare;
+pub mod comparison_folder;
 pub mod document;
 pub mod error;
 pub mod folder_marker;

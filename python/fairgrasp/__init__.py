@@ -15,12 +15,14 @@ joint-space residual (the documented negative result) is
 ``fairgrasp.make("residual_miscalibrated", agent={"action_space": "joint"})``.
 ``fairgrasp.train`` runs the Rust PPO trainer (``fairgrasp train``) in this process;
 ``fairgrasp.load_policy`` loads a trained policy (shipped or a run's) with SB3's ``predict``, and
-``fairgrasp.evaluate`` plays ``fairgrasp eval``'s scenarios with any policy.
+``fairgrasp.evaluate`` plays ``fairgrasp eval``'s scenarios with any policy, and
+``fairgrasp.compare`` writes ``fairgrasp compare``'s report with Python policies in it.
 """
 
 from . import _native, kinematics
 from ._native import ACT_DIM, OBS_DIM, preset_names
 from .baseline import Baseline
+from .compare import compare
 from .env import FairGraspEnv
 from .policy import PolicyError, RustPolicy, evaluate, load_policy
 from .recipes import make, make_vec, recipe_keys, recipe_names
@@ -36,6 +38,7 @@ __all__ = [
     "PolicyError",
     "RustPolicy",
     "VectorEnv",
+    "compare",
     "evaluate",
     "kinematics",
     "load_policy",

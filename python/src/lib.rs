@@ -16,6 +16,7 @@ mod agent_env;
 mod agent_vec;
 mod bench;
 mod calibrate;
+mod compare;
 mod env;
 mod info;
 mod kinematics;
@@ -97,6 +98,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<policy::NativePolicy>()?;
     m.add_function(wrap_pyfunction!(policy::scenario_seeds, m)?)?;
     m.add_function(wrap_pyfunction!(policy::wilson_interval, m)?)?;
+    m.add_function(wrap_pyfunction!(compare::default_compare_presets, m)?)?;
+    m.add_function(wrap_pyfunction!(compare::check_compare, m)?)?;
+    m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
     m.add("OBS_DIM", fairgrasp_env::env::obs::OBS_DIM)?;
     m.add("ACT_DIM", ACT_DIM)?;
     Ok(())

@@ -8,9 +8,10 @@ use anyhow::Context;
 use clap::Args;
 use fairgrasp_eval::compare::{ComparePreset, CompareSpec, LearnedPolicy, run_comparison};
 use fairgrasp_eval::shipped;
+use fairgrasp_report::StagedFolder;
 use fairgrasp_report::compare;
-use fairgrasp_report::{Input, StagedFolder, write_report};
-use fairgrasp_types::{ArmSimulation, write_atomic};
+use fairgrasp_report::comparison_folder::write_comparison_folder;
+use fairgrasp_types::ArmSimulation;
 
 use super::baseline::preset_config;
 use super::report::existing_rule;
@@ -109,7 +110,6 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
         .context("loading the policy (pass --policy DIR to choose one)")?;
     // The output folder is checked and its staging folder created before the episodes run.
     let staged = StagedFolder::create(&a.out, existing_rule(a.force), "fairgrasp compare")?;
-    let dir = staged.path();
     let bars = std::sync::Mutex::new(super::progress::CompareBars::new(
         u64::from(a.episodes),
         a.json,
@@ -120,23 +120,16 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
         }
     })?;
 
-    output.save_episodes(dir)?;
     let comparison = &output.comparison;
-    write_atomic(&dir.join("compare.json"), comparison.to_json().as_bytes())
-        .with_context(|| format!("writing {}", dir.join("compare.json").display()))?;
-    write_atomic(
-        &dir.join("compare.csv"),
-        compare::to_csv(comparison).as_bytes(),
-    )
-    .with_context(|| format!("writing {}", dir.join("compare.csv").display()))?;
-    let written = write_report(&[Input::load(dir)?], dir, &a.out)?;
+    let written = write_comparison_folder(staged, comparison, &a.out, |dir| {
+        output.save_episodes(dir).map_err(|e| e.to_string())
+    })?;
     if fairgrasp_report::replay3d::three_version().is_none() {
         eprintln!(
             "note: replay.html was not written: this fairgrasp was built without three.js \
              (run scripts/install-browser.sh, then build again)"
         );
     }
-    staged.commit()?;
     if a.json {
         println!("{}", comparison.to_json());
     } else {
@@ -151,11 +144,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
             a.episodes, a.seed, a.arm
         );
         println!("Written to {}:", a.out.display());
-        let names = ["compare.csv", "compare.json"]
-            .map(String::from)
-            .into_iter()
-            .chain(written);
-        for n in names {
+        for n in written {
             println!("  {n}");
         }
     }

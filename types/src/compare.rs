@@ -160,6 +160,67 @@ impl Comparison {
         Ok(())
     }
 
+    /// Adds a method evaluated outside the comparison (a Python policy) on each preset's very
+    /// scenario list: `results` holds one preset's episode records, whose seeds must be the
+    /// scripts' there, in order (so the paired tests pair the same scenarios). `policy` says
+    /// where the method came from (it marks the method as learned in the paired tests).
+    pub fn add_method(
+        &mut self,
+        method: &str,
+        policy: &str,
+        results: Vec<(String, Vec<crate::EpisodeRecord>)>,
+    ) -> Result<(), SchemaError> {
+        if method.trim().is_empty() || self.methods.iter().any(|m| m == method) {
+            return Err(SchemaError(format!(
+                "method `{method}`: the name is empty or already taken (methods: {})",
+                self.methods.join(", ")
+            )));
+        }
+        let mut added = Vec::new();
+        for (preset, records) in results {
+            let Some(script) = self
+                .results
+                .iter()
+                .find(|r| r.preset == preset && r.policy.is_none())
+            else {
+                return Err(SchemaError(format!(
+                    "method `{method}`: preset `{preset}` is not in this comparison ({})",
+                    self.presets.join(", ")
+                )));
+            };
+            let expected: Vec<u64> = script.report.results.iter().map(|r| r.seed).collect();
+            let found: Vec<u64> = records.iter().map(|r| r.seed).collect();
+            if expected != found {
+                return Err(SchemaError(format!(
+                    "method `{method}` on `{preset}`: its {} episodes are not the comparison's {} scenarios (seeds differ)",
+                    found.len(),
+                    expected.len()
+                )));
+            }
+            added.push(MethodResult {
+                method: method.to_string(),
+                preset,
+                arm: script.arm,
+                seed: script.seed,
+                policy: Some(policy.to_string()),
+                report: EvalReport::from_results(records),
+            });
+        }
+        let mut covered: Vec<&str> = added.iter().map(|r| r.preset.as_str()).collect();
+        covered.sort_unstable();
+        covered.dedup();
+        if covered.len() != added.len() || covered.len() != self.presets.len() {
+            return Err(SchemaError(format!(
+                "method `{method}`: needs one result per preset of the comparison ({}), got {}",
+                self.presets.join(", "),
+                added.len()
+            )));
+        }
+        self.methods.push(method.to_string());
+        self.results.extend(added);
+        self.check()
+    }
+
     /// The result of `method` on `preset`.
     pub fn get(&self, method: &str, preset: &str) -> Option<&MethodResult> {
         self.results

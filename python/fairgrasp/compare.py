@@ -1,0 +1,57 @@
+"""``fairgrasp.compare``: the report of ``fairgrasp compare`` with Python policies in it.
+
+    import fairgrasp
+    model = PPO.load("my_residual.zip")                          # trained on fairgrasp.make("residual_miscalibrated", preset="nudged")
+    fairgrasp.compare(
+        policies={"my SB3 residual": {"policy": model, "recipe": "residual_miscalibrated"},
+                  "mine, from Rust": fairgrasp.load_policy("runs/res/checkpoints/best")},
+        presets=["nudged", "full"], episodes=300, seed=7, out="my_report")
+
+The scripts and (unless ``shipped=False``) the shipped policies run in Rust on each preset's
+seeded scenarios; each Python policy plays the very same scenarios through
+``fairgrasp.evaluate``; the folder ``out`` then holds what ``fairgrasp compare`` writes (tables,
+``compare.json``/``.csv``, paired tests of every learned method against each script, charts,
+the notebook, replays of the Rust methods), written whole or not at all.
+"""
+
+import json
+
+from . import _native
+from .policy import evaluate
+
+
+def _method(value):
+    if isinstance(value, dict):
+        unknown = set(value) - {"policy", "recipe", "agent"}
+        if unknown or "policy" not in value:
+            raise ValueError(f"a method given as a dict has the keys policy, recipe, agent; got {sorted(value)}")
+        return value["policy"], value.get("recipe"), value.get("agent")
+    return value, None, None
+
+
+def compare(policies=None, presets=None, episodes=100, seed=0, out="report", *, force=False,
+            arm="servo", threads=None, shipped=True):
+    """Writes the comparison report folder ``out`` with ``policies`` (``{"name": policy}``, a
+    policy being anything ``fairgrasp.evaluate`` takes, or ``{"policy": p, "recipe": r,
+    "agent": a}`` for a model trained on a recipe's env) beside the scripts and the shipped
+    policies. ``presets``: default ``fairgrasp compare``'s. ``out`` must be new, empty, or (with
+    ``force=True``) a report fairgrasp wrote. Returns the files written (relative to ``out``).
+
+    A policy that raises or returns a bad action raises ``fairgrasp.PolicyError`` naming it, the
+    preset and the step, and nothing is written to ``out``."""
+    presets = list(presets) if presets is not None else _native.default_compare_presets()
+    policies = dict(policies or {})
+    out = str(out)
+    _native.check_compare(presets, int(episodes), int(seed), out, bool(force), arm)
+    methods = []
+    for name, value in policies.items():
+        policy, recipe, agent = _method(value)
+        results = []
+        for preset in presets:
+            r = evaluate(policy, preset, episodes, seed, arm=arm, recipe=recipe, agent=agent, name=name)
+            results.append([preset, r["records"]])
+        origin = getattr(policy, "name", None) or type(policy).__name__
+        methods.append({"name": str(name), "policy": f"python: {origin}", "results": results})
+    command = f"fairgrasp.compare(policies={list(policies)}, presets={presets}, episodes={episodes}, seed={seed})"
+    return list(_native.compare(presets, int(episodes), int(seed), out, json.dumps(methods),
+                                bool(force), arm, threads, bool(shipped), command))
