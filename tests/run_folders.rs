@@ -180,21 +180,34 @@ fn an_unreadable_metrics_line_is_set_aside_and_every_other_row_kept() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A child process that is killed when the test lets go of it (a failed assertion included).
+struct KillOnDrop(std::process::Child);
+
+impl Drop for KillOnDrop {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
 #[test]
 fn one_process_per_run_folder_and_a_killed_one_leaves_no_lock_behind() {
     let dir = temp_dir("lock");
     let config = write_config(&dir, "long.toml", "fixed", 1_000_000);
     let run = dir.join("run");
-    let mut first = Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .args(["train", "--config"])
-        .arg(&config)
-        .arg("--run-dir")
-        .arg(&run)
-        .env_remove("FAIRGRASP_CRASH_AT")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
+    // At most two minutes, and killed when the test ends, whether it passes or not.
+    let mut first = KillOnDrop(
+        Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+            .args(["train", "--max-wall-time", "120", "--config"])
+            .arg(&config)
+            .arg("--run-dir")
+            .arg(&run)
+            .env_remove("FAIRGRASP_CRASH_AT")
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap(),
+    );
     let started = Instant::now();
     while !run.join("checkpoints/latest/meta.json").is_file() {
         assert!(
@@ -203,7 +216,7 @@ fn one_process_per_run_folder_and_a_killed_one_leaves_no_lock_behind() {
         );
         std::thread::sleep(Duration::from_millis(50));
     }
-    let pid = first.id().to_string();
+    let pid = first.0.id().to_string();
     for flags in [&["--resume"][..], &["--force"][..]] {
         let refused = train(&config, &run, flags);
         assert!(!refused.status.success(), "{flags:?} was accepted");
@@ -214,8 +227,8 @@ fn one_process_per_run_folder_and_a_killed_one_leaves_no_lock_behind() {
         );
     }
     assert!(!dir.join("run.replaced-1").exists());
-    first.kill().unwrap();
-    first.wait().unwrap();
+    first.0.kill().unwrap();
+    first.0.wait().unwrap();
     // The lock file still names the killed process; its lock died with it.
     let resumed = train(&config, &run, &["--resume", "--max-wall-time", "1"]);
     ok(&resumed);
