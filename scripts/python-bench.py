@@ -2,7 +2,9 @@
 `FairGraspEnv` stepped from Python against the same steps of the Rust `GraspEnv` in a Rust loop
 (same process, same build, same actions and seeds), and the native vector env's throughput
 against one env's. Random actions on `seed` from the home pose, so almost every step is a
-free-space step (the share that ran physics is printed). Each measurement runs ROUNDS times,
+free-space step (the share that ran physics is printed); then the open-loop script's own
+episodes (the residual recipe's env with zero corrections: approach, close, lift), one env and
+8 envs on 2 threads. Each measurement runs ROUNDS times,
 alternating, and the ratios are taken within a round (the machine may be shared).
 
     target/python-package-venv/bin/python scripts/python-bench.py [STEPS] [ROUNDS]
@@ -55,6 +57,35 @@ def python_vector(n, threads):
     return batch.shape[0] * n / (time.perf_counter() - w0)
 
 
+def scripted_single(n_steps):
+    """The open-loop script's own episodes (approach, close, lift: contact-rich steps): the
+    residual recipe's env on `seed` with zero corrections, one env from Python."""
+    env = fairgrasp.make("residual_miscalibrated", preset="seed", evaluation=True)
+    zero = np.zeros(7)
+    seed = 0
+    env.reset(seed=seed)
+    w0 = time.perf_counter()
+    for _ in range(n_steps):
+        _, _, te, tr, _ = env.step(zero)
+        if te or tr:
+            seed += 1
+            env.reset(seed=seed)
+    return n_steps / (time.perf_counter() - w0)
+
+
+def scripted_vector(n, threads, n_steps):
+    """The same episodes, `n` envs of the native vector env on `threads` threads."""
+    env = fairgrasp.make_vec("residual_miscalibrated", num_envs=n, threads=threads, preset="seed",
+                             evaluation=True)
+    env.reset()
+    zero = np.zeros((n, 7))
+    calls = n_steps // n
+    w0 = time.perf_counter()
+    for _ in range(calls):
+        env.step(zero)
+    return calls * n / (time.perf_counter() - w0)
+
+
 def rust_vector(n, threads):
     batch = actions[: (steps // n) * n].reshape(-1, n, 7)
     return batch.shape[0] * n / _native.bench_rust_vec("seed", threads, batch, 0)
@@ -92,6 +123,12 @@ for r in range(rounds):
     add("VectorEnv, 8 envs / 1 thread, from Python", python_vector(8, 1))
     add("  ratio: 2 threads / 1 thread (8 envs)", v8 / rows["VectorEnv, 8 envs / 1 thread, from Python"][-1])
     add("Rust VecEnv, 8 envs / 2 threads, Rust loop", rust_vector(8, 2))
+    scripted_steps = max(steps // 5, 400)
+    s1 = scripted_single(scripted_steps)
+    add("script's episodes, one env, from Python", s1)
+    s8 = scripted_vector(8, 2, scripted_steps)
+    add("script's episodes, 8 envs / 2 threads", s8)
+    add("  ratio: script's episodes, 8 envs on 2 threads / one env", s8 / s1)
     if os.environ.get("FAIRGRASP_BENCH_PEER"):
         add("PyBullet seed env (per CPU-second)", peer())
     print(f"round {r + 1}/{rounds} done", file=sys.stderr)

@@ -158,10 +158,7 @@ impl VecEnv {
 impl Drop for VecEnv {
     fn drop(&mut self) {
         for w in &mut self.workers {
-            if let Ok(mut shared) = w.mailbox.0.lock() {
-                shared.job = Job::Quit;
-                w.mailbox.1.notify_all();
-            }
+            w.quit();
             if let Some(t) = w.thread.take() {
                 let _ = t.join();
             }
