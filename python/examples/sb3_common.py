@@ -1,14 +1,11 @@
-"""What the SB3 examples share: SB3 PPO with a recipe's hyperparameters, and deterministic
-evaluation on held-out scenarios (seeds ``seed · 1 000 003 + i``, the scenario sets of
-``fairgrasp eval --seed``) with 95 % Wilson intervals."""
+"""What the SB3 examples share: SB3 PPO with a recipe's hyperparameters, the trained model as a
+policy ``fairgrasp.evaluate`` and ``fairgrasp.compare`` take (held-out scenarios: the sets of
+``fairgrasp eval --seed``, with Rust's 95 % Wilson intervals), and one line of a result."""
 
-import math
 import os
 import tomllib
 
 import numpy as np
-
-import fairgrasp
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -62,31 +59,6 @@ def ppo_from_recipe(env, recipe, seed, zero_actor_output=None, **extra):
     return agent
 
 
-def wilson(k, n, z=1.96):
-    if n == 0:
-        return (0.0, 1.0)
-    p = k / n
-    d = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return (max(0.0, c - h), min(1.0, c + h))
-
-
-def evaluate(env, act, episodes, seed):
-    """Plays `episodes` held-out scenarios (seeds seed · 1 000 003 + i) with `act(obs) -> action`:
-    (successes, outcome counts)."""
-    successes, outcomes = 0, {}
-    for i in range(episodes):
-        obs, _ = env.reset(seed=seed * 1_000_003 + i)
-        while True:
-            obs, _, te, tr, info = env.step(act(obs))
-            if te or tr:
-                successes += int(info["outcome"] == "success")
-                outcomes[info["outcome"]] = outcomes.get(info["outcome"], 0) + 1
-                break
-    return successes, outcomes
-
-
 def policy_act(model, normalizer=None):
     """The SB3 model's deterministic action for one observation (through VecNormalize's
     statistics if given)."""
@@ -99,6 +71,7 @@ def policy_act(model, normalizer=None):
     return act
 
 
-def fmt(k, n):
-    lo, hi = wilson(k, n)
-    return f"{k}/{n} = {100 * k / n:.1f} % (95 % CI {100 * lo:.1f}–{100 * hi:.1f} %)"
+def fmt(result):
+    """``k/n = x % (95 % CI lo–hi %)`` of a ``fairgrasp.evaluate`` result."""
+    k, n = result["successes"], result["episodes"]
+    return f"{k}/{n} = {100 * k / n:.1f} % (95 % CI {100 * result['ci_low']:.1f}–{100 * result['ci_high']:.1f} %)"

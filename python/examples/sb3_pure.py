@@ -21,7 +21,7 @@ from stable_baselines3.common.vec_env import VecNormalize
 
 import fairgrasp
 from fairgrasp.sb3 import FairGraspVecEnv
-from sb3_common import evaluate, fmt, policy_act, ppo_from_recipe, recipe_file
+from sb3_common import fmt, policy_act, ppo_from_recipe, recipe_file
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--recipe", default="pure_full")
@@ -29,7 +29,7 @@ parser.add_argument("--timesteps", type=int, default=4_800_000)
 parser.add_argument("--seed", type=int, default=0)
 parser.add_argument("--eval-every", type=int, default=100_000)
 parser.add_argument("--eval-episodes", type=int, default=100)
-parser.add_argument("--eval-seed", type=int, default=7, help="held-out scenarios: seeds EVAL_SEED · 1 000 003 + i")
+parser.add_argument("--eval-seed", type=int, default=7, help="held-out scenarios: the set of fairgrasp eval --seed EVAL_SEED")
 parser.add_argument("--log", default=None)
 parser.add_argument("--save", default=None, help="save the model and VecNormalize statistics here at the end")
 args = parser.parse_args()
@@ -39,7 +39,6 @@ recipe = recipe_file(args.recipe)
 venv = FairGraspVecEnv(recipe["n_envs"], recipe=args.recipe, threads=recipe["threads"], seed=(1 << 62) + args.seed)
 env = VecNormalize(venv, norm_obs=recipe["ppo"].get("norm_obs", True), norm_reward=False, clip_obs=10.0)
 model = ppo_from_recipe(env, recipe, args.seed)
-held_out = {p: fairgrasp.make(args.recipe, preset=p, evaluation=True) for p in ("fixed", "seed")}
 log = open(args.log, "a") if args.log else None
 
 
@@ -70,10 +69,10 @@ class Progress(BaseCallback):
             "load_avg": os.getloadavg()[0],
         }
         act = policy_act(self.model, env)
-        for preset, e in held_out.items():
-            k, outcomes = evaluate(e, act, args.eval_episodes, args.eval_seed)
-            row[preset] = {"successes": k, "episodes": args.eval_episodes, "outcomes": outcomes}
-            row[preset + "_text"] = fmt(k, args.eval_episodes)
+        for preset in ("fixed", "seed"):
+            r = fairgrasp.evaluate(act, preset, args.eval_episodes, args.eval_seed, recipe=args.recipe)
+            row[preset] = {"successes": r["successes"], "episodes": r["episodes"], "outcomes": r["outcomes"]}
+            row[preset + "_text"] = fmt(r)
         print(json.dumps(row), flush=True)
         if log:
             log.write(json.dumps(row) + "\n")
