@@ -17,8 +17,13 @@ use crate::value_error;
 
 /// The training config of `config` (a shipped recipe's name or a training config's path) with
 /// `overrides` (JSON: any of the config's keys; tables merge key by key) laid over it, checked
-/// as `fairgrasp train` checks a file.
-fn train_config(config: &str, overrides_json: Option<&str>) -> PyResult<TrainConfig> {
+/// as `fairgrasp train` checks a file; for a resume of the run in `resuming`, a preset file is
+/// the run's copy of it (as the CLI takes it).
+fn train_config(
+    config: &str,
+    overrides_json: Option<&str>,
+    resuming: Option<&Path>,
+) -> PyResult<TrainConfig> {
     let (text, what) = recipes::text(config).map_err(value_error)?;
     let mut table: toml::Table =
         toml::from_str(&text).map_err(|e| value_error(format!("{what}: {e}")))?;
@@ -27,9 +32,12 @@ fn train_config(config: &str, overrides_json: Option<&str>) -> PyResult<TrainCon
             .map_err(|e| value_error(format!("overrides: {e} (None is not a value here)")))?;
         overlay(&mut table, &overrides);
     }
-    let config: TrainConfig = toml::Value::Table(table)
+    let mut config: TrainConfig = toml::Value::Table(table)
         .try_into()
         .map_err(|e: toml::de::Error| value_error(format!("{what} with the overrides: {e}")))?;
+    if let Some(dir) = resuming {
+        config.env_snapshot = fairgrasp_rl::run::snapshot::env_snapshot_of(&config.preset, dir);
+    }
     config
         .validate()
         .map_err(|e| value_error(format!("{what} with the overrides: {e}")))?;
@@ -78,8 +86,8 @@ pub(crate) fn train<'py>(
     progress: Option<Py<PyAny>>,
     force: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let mut config = train_config(config, overrides_json)?;
     let run_dir = Path::new(run_dir);
+    let mut config = train_config(config, overrides_json, resume.then_some(run_dir))?;
     let seed_given = overrides_json
         .and_then(|j| serde_json::from_str::<serde_json::Value>(j).ok())
         .is_some_and(|v| v.get("seed").is_some());

@@ -68,3 +68,22 @@ def test_train_refuses_a_misspelt_override(tmp):
     with pytest.raises(ValueError, match="n_envs = 0"):
         fairgrasp.train("residual_miscalibrated", os.path.join(tmp, "r"), n_envs=0)
     assert not os.path.exists(os.path.join(tmp, "r", "metrics.csv"))
+
+
+def test_a_resume_from_another_folder_trains_on_the_runs_copy_of_its_preset(tmp, monkeypatch):
+    started, elsewhere = os.path.join(tmp, "a"), os.path.join(tmp, "b")
+    os.makedirs(started)
+    os.makedirs(elsewhere)
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    shutil.copy(os.path.join(root, "assets", "configs", "seed.toml"), os.path.join(started, "cell.toml"))
+    run = os.path.join(tmp, "run")
+    tiny = dict(TINY, preset="cell.toml", total_timesteps=512)
+    monkeypatch.chdir(started)
+    fairgrasp.train("residual_miscalibrated", run, **tiny)
+    # Another folder's cell.toml is not even valid TOML: the resume must not read it.
+    with open(os.path.join(elsewhere, "cell.toml"), "w") as f:
+        f.write("[scene\n")
+    monkeypatch.chdir(elsewhere)
+    fairgrasp.train("residual_miscalibrated", run, resume=True, **dict(tiny, total_timesteps=1024))
+    with open(os.path.join(run, "metrics.csv")) as f:
+        assert len(f.read().strip().splitlines()) == 1 + 4
