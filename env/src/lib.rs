@@ -26,4 +26,4 @@ pub mod vec;
 pub use cell::mount::Mount;
 pub use config::{ArmSimulation, ConfigError, EnvConfig, HOME_JOINTS};
 pub use env::obs::Observation;
-pub use env::{Action, EnvError, GraspEnv, Info, Step};
+pub use env::{Action, EnvError, GraspEnv, Info, ServoSetpoint, Step};

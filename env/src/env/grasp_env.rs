@@ -11,7 +11,7 @@ use crate::cell::mount::Mount;
 use crate::config::{ActionSpace, EnvConfig};
 use crate::env::free_space::FreeSpace;
 use crate::env::obs::Observation;
-pub use crate::env::step::{Action, EnvError, Info, Step};
+pub use crate::env::step::{Action, EnvError, Info, ServoSetpoint, Step};
 use crate::robot::Robot;
 use crate::robot::tcp_action::TaskSpaceAction;
 use crate::scenario::Scenario;
@@ -30,6 +30,7 @@ use crate::sim::scene::SceneHandles;
 const SETTLE_SUBSTEPS: usize = 24;
 
 mod step_parts;
+use step_parts::Drive;
 
 /// The FR3 grasping environment: the robot, the task and the episode's scenario, composed over
 /// the simulator facade.
@@ -221,12 +222,26 @@ impl GraspEnv {
         if self.done {
             return Err(EnvError::EpisodeOver);
         }
+        self.push_if_due();
+        let command = self.apply_action(action)?;
+        self.advance(Drive::Velocity(command))
+    }
+
+    /// The nudge of the `nudged` family, if this step is the one it pushes before.
+    fn push_if_due(&mut self) {
         let tcp = self.robot.tcp_in_world().xyz();
         let (scenario, mount) = (self.scenario.as_ref(), &self.cell.mount);
         (self.nudge).before_step(self.steps, scenario, mount, &mut self.sim, tcp);
-        let command = self.apply_action(action)?;
+    }
+
+    /// Moves the robot for one env step (`physics.substeps` physics steps) as `drive` says, then
+    /// judges, observes and records the step.
+    fn advance(&mut self, drive: Drive<'_>) -> Result<Step, EnvError> {
         let q_before = self.robot.q;
-        let free = self.free_step(&command);
+        let free = match drive {
+            Drive::Velocity(command) => self.free_step(&command),
+            Drive::Servo(_) => None,
+        };
         let simulated = free.is_none();
         let mut stop = None;
         if simulated {
@@ -235,7 +250,13 @@ impl GraspEnv {
                 self.sim_in_sync = true;
             }
             // The protective stop is watched every substep and halts the arm at once.
-            stop = (0..self.config.physics.substeps).find_map(|_| self.physics_substep(&command));
+            stop = (0..self.config.physics.substeps).find_map(|j| {
+                let command = drive.command(j, &self.robot.q_ref);
+                if let Some(gripper) = drive.gripper(j) {
+                    self.robot.gripper_command = gripper.clamp(-1.0, 1.0);
+                }
+                self.physics_substep(&command)
+            });
         }
         self.steps += 1;
         let env_dt = self.config.physics.dt * self.config.physics.substeps as f64;
@@ -292,6 +313,17 @@ impl GraspEnv {
         Pose {
             iso: self.cell.mount.base_in_world.iso.inverse() * self.sim.object_pose(),
         }
+    }
+
+    /// The joints' velocity [rad/s] at the end of the latest step: the rate-limited command
+    /// the servo arm moves at (zero after a reset).
+    pub fn joint_velocities(&self) -> [f64; 6] {
+        self.robot.qd
+    }
+
+    /// The gripper command in effect, −1 open … +1 closed.
+    pub fn gripper_command(&self) -> f64 {
+        self.robot.gripper_command
     }
 
     /// The TCP pose in `base_link` at the current joints.

@@ -29,6 +29,18 @@ impl Action {
     }
 }
 
+/// What a servo controller holds for one physics substep: where the joints should be at its
+/// start, how fast they should move through it, and the gripper command during it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ServoSetpoint {
+    /// Joint angles [rad] at the start of the substep.
+    pub position: [f64; 6],
+    /// Joint velocities [rad/s] through the substep.
+    pub velocity: [f64; 6],
+    /// Gripper command in [-1, 1] (-1 open, +1 closed).
+    pub gripper: f64,
+}
+
 /// What else happened in a step.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Info {
@@ -69,6 +81,10 @@ pub enum EnvError {
     NonFiniteAction { index: usize, value: f64 },
     #[error("an action has 7 values (6 joints + gripper), got {0}")]
     ActionLength(usize),
+    #[error("a servo step takes one setpoint per physics substep: {expected} expected, got {got}")]
+    SetpointCount { expected: usize, got: usize },
+    #[error("servo setpoint {substep}: {what} is not finite")]
+    NonFiniteSetpoint { substep: usize, what: String },
     #[error("the episode has ended (terminated or truncated): call reset first")]
     EpisodeOver,
     #[error("a vectorised step takes one action per environment: {expected} expected, got {got}")]

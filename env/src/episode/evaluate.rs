@@ -2,7 +2,7 @@
 //! evaluation loop that runs any policy on a list of scenarios the same way.
 
 use crate::env::obs::Observation;
-use crate::env::{Action, EnvError, GraspEnv};
+use crate::env::{Action, EnvError, GraspEnv, Step};
 use crate::episode::trajectory::{Recorder, Trajectory};
 use crate::scenario::Scenario;
 use crate::scenario::perception::{ObservedObject, true_object};
@@ -37,20 +37,37 @@ pub fn run_episode(
     env: &mut GraspEnv,
     policy: &mut dyn Policy,
     scenario: &Scenario,
-    mut trajectory: Option<&mut Trajectory>,
+    trajectory: Option<&mut Trajectory>,
+) -> Result<EpisodeRecord, EnvError> {
+    match trajectory {
+        Some(t) => run_recorded(env, policy, scenario, t),
+        None => run_recorded(env, policy, scenario, &mut NoRecord),
+    }
+}
+
+/// A [`Recorder`] that keeps nothing.
+struct NoRecord;
+
+impl Recorder for NoRecord {
+    fn record_reset(&mut self, _: &GraspEnv, _: f64) {}
+    fn record_step(&mut self, _: &GraspEnv, _: &Action, _: &Step, _: Option<&str>) {}
+}
+
+/// Runs one episode of `policy` from `scenario`, handing the reset and every step to `recorder`.
+pub fn run_recorded(
+    env: &mut GraspEnv,
+    policy: &mut dyn Policy,
+    scenario: &Scenario,
+    recorder: &mut dyn Recorder,
 ) -> Result<EpisodeRecord, EnvError> {
     let (mut obs, _) = env.reset_to(scenario);
     policy.reset(scenario.seed);
-    if let Some(t) = trajectory.as_deref_mut() {
-        t.record_reset(env, obs.gripper_opening);
-    }
+    recorder.record_reset(env, obs.gripper_opening);
     loop {
         policy.observe_truth(&true_object(env.mount(), &env.object_in_base()));
         let action = policy.act(&obs);
         let step = env.step(&action)?;
-        if let Some(t) = trajectory.as_deref_mut() {
-            t.record_step(env, &action, &step, policy.phase());
-        }
+        recorder.record_step(env, &action, &step, policy.phase());
         obs = step.obs;
         if let Some(record) = step.info.episode {
             return Ok(record.with_policy_verdict(policy.gave_up()));

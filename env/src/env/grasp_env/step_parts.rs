@@ -5,13 +5,79 @@ use crate::config::ArmSimulation;
 use crate::env::free_space::{REST_SPEED, REST_TURN_RATE};
 use crate::env::grasp_env::GraspEnv;
 use crate::env::obs::Observation;
-use crate::env::step::{Action, EnvError, Info};
+use crate::env::step::{Action, EnvError, Info, ServoSetpoint, Step};
 use crate::scenario::perception::{observe_object, wrist_view};
 use crate::sim::contacts::ContactReport;
 use crate::task::episode::{Ending, StepFacts};
 use crate::task::state::TaskState;
 
+/// Gain of a servo step's feedback on the joints' distance from the setpoint [1/s]: a tenth of
+/// the error corrected per 1/240 s substep, the feedforward velocity doing the rest.
+const SERVO_GAIN: f64 = 24.0;
+
+/// How the arm moves during one env step.
+#[derive(Clone, Copy)]
+pub(super) enum Drive<'a> {
+    /// One joint-velocity command [rad/s] for every substep (an [`Action`]).
+    Velocity([f64; 6]),
+    /// A setpoint per substep (a servo stream).
+    Servo(&'a [ServoSetpoint]),
+}
+
+impl Drive<'_> {
+    /// The joint-velocity command [rad/s] of substep `j`, from the reference `q_ref` [rad]:
+    /// the action's, or the setpoint's velocity plus [`SERVO_GAIN`] times the distance to its
+    /// position. The robot's rate limiter still applies.
+    pub(super) fn command(&self, j: usize, q_ref: &[f64; 6]) -> [f64; 6] {
+        match self {
+            Drive::Velocity(command) => *command,
+            Drive::Servo(setpoints) => {
+                let s = &setpoints[j];
+                std::array::from_fn(|i| s.velocity[i] + SERVO_GAIN * (s.position[i] - q_ref[i]))
+            }
+        }
+    }
+
+    /// The gripper command of substep `j`, if this drive sets one per substep.
+    pub(super) fn gripper(&self, j: usize) -> Option<f64> {
+        match self {
+            Drive::Velocity(_) => None,
+            Drive::Servo(setpoints) => Some(setpoints[j].gripper),
+        }
+    }
+}
+
 impl GraspEnv {
+    /// One env step that tracks a joint stream, as a controller's servo mode does: one
+    /// [`ServoSetpoint`] per physics substep (`physics.substeps` of them). The arm's rate limiter
+    /// (FR3 velocity limits, `arm.max_acceleration`) still applies, so a setpoint it cannot
+    /// follow is reached late, never jumped to. Every such step runs physics (no free-space
+    /// shortcut). Judged, observed and recorded like [`GraspEnv::step`].
+    pub fn step_servo(&mut self, setpoints: &[ServoSetpoint]) -> Result<Step, EnvError> {
+        if self.done {
+            return Err(EnvError::EpisodeOver);
+        }
+        let expected = self.config.physics.substeps;
+        if setpoints.len() != expected {
+            let got = setpoints.len();
+            return Err(EnvError::SetpointCount { expected, got });
+        }
+        for (substep, s) in setpoints.iter().enumerate() {
+            let what = if s.position.iter().any(|v| !v.is_finite()) {
+                format!("position {:?}", s.position)
+            } else if s.velocity.iter().any(|v| !v.is_finite()) {
+                format!("velocity {:?}", s.velocity)
+            } else if !s.gripper.is_finite() {
+                format!("gripper {}", s.gripper)
+            } else {
+                continue;
+            };
+            return Err(EnvError::NonFiniteSetpoint { substep, what });
+        }
+        self.push_if_due();
+        self.advance(Drive::Servo(setpoints))
+    }
+
     /// Takes the step into the episode's tracker; on the terminal step (`self.done`), puts the
     /// episode's record into `info`.
     pub(super) fn track(&mut self, obs: &Observation, reward: f64, info: &mut Info) {
