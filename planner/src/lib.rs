@@ -13,6 +13,8 @@
 //! - [`correction`]: a task-space correction of the grasp and its map to joints (Jacobian).
 //! - [`residual`]: [`ResidualScript`], what a residual policy corrects the script through, and
 //!   [`OracleResidual`], the hand-written residual that uses the true pose through it.
+//! - [`stream`]: an episode's joints as a real controller's servo stream (resampled with
+//!   Ruckig, checked against the FR3's limits, JSON / CSV / `.npy`), and its playback in the env.
 
 pub mod baseline;
 pub mod calibrated;
@@ -22,6 +24,7 @@ pub mod grasp;
 pub mod motion;
 pub mod phase;
 pub mod residual;
+pub mod stream;
 
 pub use baseline::{BaselineConfig, CloseTiming, Phase, PlannedObject, ScriptedGrasp};
 pub use calibrated::{CalibratedScript, CameraCalibration};
