@@ -9,12 +9,14 @@
 //! - [`checkpoint`]: a checkpoint's `meta.json` and verified weights, as a policy.
 //! - [`shipped`]: the trained policies built into the binary.
 //! - [`compare`]: every method on the same scenario sets (the `compare` experiment).
+//! - [`export`]: one episode as a servo stream for a real FR3 (`fairgrasp export`).
 
 pub mod actor;
 pub mod agent;
 pub mod burnpack;
 pub mod checkpoint;
 pub mod compare;
+pub mod export;
 pub mod recipe;
 pub mod recipes;
 pub mod shipped;

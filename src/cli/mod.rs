@@ -8,11 +8,13 @@ mod bench_ppo;
 mod calibrate;
 mod compare;
 mod eval;
+mod export;
 mod fk;
 mod frames;
 mod ik;
 mod joints;
 mod measurements;
+mod playback;
 mod progress;
 mod replay;
 mod report;
@@ -64,6 +66,13 @@ enum Command {
     Plot(report::PlotArgs),
     /// report.md and a Jupyter notebook (report.ipynb) from comparison and run folders.
     Report(report::ReportArgs),
+    /// One episode (a script or policy on a preset's scenario, or a cube placed by hand) as a
+    /// servo stream for a real FR3: resampled to the controller's period, checked against its
+    /// limits, written as JSON (the ROS 2 driver's stream_servo_j goal), CSV or .npy.
+    Export(export::ExportArgs),
+    /// Play an exported stream in the env (the servo arm tracking its samples) and report
+    /// whether it still grasps.
+    Playback(playback::PlaybackArgs),
     /// An interactive 3D replay (one HTML file, no network) of a scenario run by one or more
     /// policies or scripts.
     Replay(replay::ReplayArgs),
@@ -88,5 +97,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Plot(a) => report::run_plot(&a),
         Command::Report(a) => report::run_report(&a),
         Command::Replay(a) => replay::run(&a),
+        Command::Export(a) => export::run(&a),
+        Command::Playback(a) => playback::run(&a),
     }
 }
