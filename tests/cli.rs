@@ -259,6 +259,30 @@ fn an_unknown_preset_is_refused_with_the_choices() {
 }
 
 #[test]
+fn compare_refuses_a_thread_count_outside_1_to_256_before_writing() {
+    let out_dir =
+        std::env::temp_dir().join(format!("fairgrasp-cli-threads-{}", std::process::id()));
+    for threads in ["0", "257"] {
+        let out = fairgrasp(&[
+            "compare",
+            "--episodes",
+            "1",
+            "--threads",
+            threads,
+            "--out",
+            out_dir.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert!(
+            stderr.contains(&format!("threads = {threads}: 1–256")),
+            "{stderr}"
+        );
+        assert!(!out_dir.exists());
+    }
+}
+
+#[test]
 fn train_writes_a_run_folder_and_eval_reads_its_checkpoint() {
     let dir = std::env::temp_dir().join(format!("fairgrasp-cli-train-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);

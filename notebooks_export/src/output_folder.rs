@@ -33,6 +33,18 @@ pub enum Existing {
     Replace,
 }
 
+impl Existing {
+    /// [`Existing::Replace`] with `--force` (`force = True` in Python), else
+    /// [`Existing::Refuse`].
+    pub fn from_force(force: bool) -> Self {
+        if force {
+            Existing::Replace
+        } else {
+            Existing::Refuse
+        }
+    }
+}
+
 /// How the destination was found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Destination {

@@ -42,7 +42,7 @@ def compare(policies=None, presets=None, episodes=100, seed=0, out="report", *, 
     presets = list(presets) if presets is not None else _native.default_compare_presets()
     policies = dict(policies or {})
     out = str(out)
-    _native.check_compare(presets, int(episodes), int(seed), out, bool(force), arm)
+    _native.check_compare(presets, int(episodes), int(seed), out, bool(force), arm, threads)
     methods = []
     for name, value in policies.items():
         policy, recipe, agent = _method(value)

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use fairgrasp_eval::compare::{
-    ComparePreset, CompareSpec, DEFAULT_PRESETS, LearnedPolicy, run_comparison,
+    ComparePreset, CompareSpec, DEFAULT_PRESETS, LearnedPolicy, default_threads, run_comparison,
 };
 use fairgrasp_eval::shipped;
 use fairgrasp_report::comparison_folder::write_comparison_folder;
@@ -40,9 +40,7 @@ fn spec(
             })
         })
         .collect::<PyResult<Vec<_>>>()?;
-    let threads = threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
-        .clamp(1, 256);
+    let threads = threads.unwrap_or_else(default_threads);
     let spec = CompareSpec {
         presets,
         episodes,
@@ -56,18 +54,10 @@ fn spec(
     Ok(spec)
 }
 
-fn existing(force: bool) -> Existing {
-    if force {
-        Existing::Replace
-    } else {
-        Existing::Refuse
-    }
-}
-
 /// Checks a comparison request and its output folder before any episode runs (the Python
 /// methods are evaluated between this check and [`compare`]).
 #[pyfunction]
-#[pyo3(signature = (presets, episodes, seed, out, force = false, arm = "servo"))]
+#[pyo3(signature = (presets, episodes, seed, out, force = false, arm = "servo", threads = None))]
 pub(crate) fn check_compare(
     presets: Vec<String>,
     episodes: usize,
@@ -75,12 +65,17 @@ pub(crate) fn check_compare(
     out: &str,
     force: bool,
     arm: &str,
+    threads: Option<usize>,
 ) -> PyResult<()> {
-    spec(&presets, episodes, seed, arm, None, "")?;
+    spec(&presets, episodes, seed, arm, threads, "")?;
     // Created and dropped: the folder is writable and replaceable (the staging folder goes).
-    StagedFolder::create(Path::new(out), existing(force), "fairgrasp.compare")
-        .map(drop)
-        .map_err(value_error)
+    StagedFolder::create(
+        Path::new(out),
+        Existing::from_force(force),
+        "fairgrasp.compare",
+    )
+    .map(drop)
+    .map_err(value_error)
 }
 
 /// One method evaluated in Python: its name, where it came from, and its episode records per
@@ -122,7 +117,7 @@ pub(crate) fn compare(
         } else {
             Vec::new()
         };
-        let staged = StagedFolder::create(out, existing(force), "fairgrasp.compare")
+        let staged = StagedFolder::create(out, Existing::from_force(force), "fairgrasp.compare")
             .map_err(|e| e.to_string())?;
         let mut output = run_comparison(&spec, &learned, &|_| {}).map_err(|e| e.to_string())?;
         for m in methods {

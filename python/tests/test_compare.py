@@ -47,3 +47,8 @@ def test_a_bad_policy_or_name_is_refused_and_nothing_is_written(tmp_path):
         fairgrasp.compare(policies={"oracle script": lambda obs: np.zeros(7)}, presets=["seed"],
                           episodes=3, out=out, shipped=False)
     assert not out.exists() and not list(tmp_path.iterdir())
+    # The thread count follows the CLI's rule (1–256), checked before any policy runs.
+    with pytest.raises(ValueError, match="threads = 0: 1–256"):
+        fairgrasp.compare(policies={"broken one": broken}, presets=["seed"], episodes=3, out=out,
+                          shipped=False, threads=0)
+    assert not out.exists()

@@ -6,15 +6,16 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
-use fairgrasp_eval::compare::{ComparePreset, CompareSpec, LearnedPolicy, run_comparison};
+use fairgrasp_eval::compare::{
+    ComparePreset, CompareSpec, LearnedPolicy, default_threads, run_comparison,
+};
 use fairgrasp_eval::shipped;
-use fairgrasp_report::StagedFolder;
 use fairgrasp_report::compare;
 use fairgrasp_report::comparison_folder::write_comparison_folder;
+use fairgrasp_report::{Existing, StagedFolder};
 use fairgrasp_types::ArmSimulation;
 
 use super::baseline::preset_config;
-use super::report::existing_rule;
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
@@ -38,7 +39,7 @@ pub struct CompareArgs {
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
     arm: ArmSimulation,
-    /// Worker threads (default: all cores).
+    /// Worker threads, 1–256 (default: one per core).
     #[arg(long)]
     threads: Option<usize>,
     /// Output folder: compare.csv, compare.json, charts, replays, report.md, report.ipynb. It
@@ -94,9 +95,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
         presets,
         episodes: a.episodes as usize,
         seed: a.seed,
-        threads: a
-            .threads
-            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+        threads: a.threads.unwrap_or_else(default_threads),
         episode: a.episode,
         replay_episodes: a.replay_episodes,
         command: std::iter::once("fairgrasp".to_string())
@@ -109,7 +108,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     let learned = LearnedPolicy::load_all(&policy_paths)
         .context("loading the policy (pass --policy DIR to choose one)")?;
     // The output folder is checked and its staging folder created before the episodes run.
-    let staged = StagedFolder::create(&a.out, existing_rule(a.force), "fairgrasp compare")?;
+    let staged = StagedFolder::create(&a.out, Existing::from_force(a.force), "fairgrasp compare")?;
     let bars = std::sync::Mutex::new(super::progress::CompareBars::new(
         u64::from(a.episodes),
         a.json,

@@ -208,16 +208,8 @@ pub struct ReportArgs {
 }
 
 /// `--force` as the report crate's rule for an existing output folder.
-pub fn existing_rule(force: bool) -> Existing {
-    if force {
-        Existing::Replace
-    } else {
-        Existing::Refuse
-    }
-}
-
 pub fn run_report(a: &ReportArgs) -> anyhow::Result<ExitCode> {
-    let written = build_report(&a.inputs, &a.out, existing_rule(a.force))?;
+    let written = build_report(&a.inputs, &a.out, Existing::from_force(a.force))?;
     println!("Written to {}:", a.out.display());
     for p in &written {
         println!("  {}", p.strip_prefix(&a.out).unwrap_or(p).display());

@@ -15,7 +15,7 @@ pub mod methods;
 pub mod record;
 pub mod spec;
 
-pub use spec::{ComparePreset, CompareSpec, DEFAULT_PRESETS};
+pub use spec::{ComparePreset, CompareSpec, DEFAULT_PRESETS, MAX_THREADS, default_threads};
 
 use std::path::{Path, PathBuf};
 

@@ -33,8 +33,17 @@ pub struct CompareSpec {
     pub command: String,
 }
 
+/// The most worker threads a comparison takes.
+pub const MAX_THREADS: usize = 256;
+
+/// Worker threads when none are asked for: one per core.
+pub fn default_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
 impl CompareSpec {
-    /// Refuses an empty or repeated preset list, zero episodes and an out-of-range episode.
+    /// Refuses an empty or repeated preset list, zero episodes, an out-of-range episode and a
+    /// thread count outside 1–[`MAX_THREADS`].
     pub fn check(&self) -> Result<(), CompareError> {
         let request = |m: String| Err(CompareError::Request(m));
         if self.presets.is_empty() {
@@ -50,6 +59,9 @@ impl CompareSpec {
         }
         if self.episodes == 0 {
             return request("at least one episode per preset is needed".into());
+        }
+        if !(1..=MAX_THREADS).contains(&self.threads) {
+            return request(format!("threads = {}: 1–{MAX_THREADS}", self.threads));
         }
         if let Some(k) = self.episode.filter(|&k| k >= self.episodes) {
             return request(format!(
