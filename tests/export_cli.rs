@@ -148,6 +148,61 @@ fn the_three_formats_agree_and_a_played_export_still_grasps() {
 }
 
 #[test]
+fn the_real_cells_mount_and_a_placed_cube_travel_with_the_file_to_playback() {
+    let dir = temp_dir("cell");
+    // A base tilted 10° and turned 90° (degrees on the command line, radians in the file).
+    let mount = ["--base", "0.2", "-0.1", "0.75", "0", "10", "90", "--deg"];
+    let o = fairgrasp(
+        &dir,
+        &[&["export", "--gripper", "--out", "b.json"][..], &mount].concat(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let doc: Value = serde_json::from_slice(&std::fs::read(dir.join("b.json")).unwrap()).unwrap();
+    let base: Vec<f64> = serde_json::from_value(doc["source"]["base_in_world"].clone()).unwrap();
+    assert!(
+        (base[4] - 10f64.to_radians()).abs() < 1e-12
+            && (base[5] - 90f64.to_radians()).abs() < 1e-12
+    );
+    // Played without flags: the mount comes from the file, in radians, so it grasps again.
+    for deg in [&[][..], &["--deg"][..]] {
+        let o = fairgrasp(&dir, &[&["playback", "b.json", "--json"][..], deg].concat());
+        let report: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+        assert_eq!(report["outcome"], "success", "{report}");
+        assert_eq!(report["steps"], doc["source"]["steps"]);
+    }
+    // The same episode on the preset's own level mount is another motion (other steps): the
+    // mount is what makes the joints right for the real cell.
+    let o = fairgrasp(&dir, &["export", "--gripper", "--out", "level.json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let level: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("level.json")).unwrap()).unwrap();
+    assert_ne!(level["source"]["steps"], doc["source"]["steps"]);
+    // A cube placed by hand (table frame, yaw 30°).
+    let cube = ["--cube", "0.35", "0.05", "30", "--deg"];
+    let o = fairgrasp(
+        &dir,
+        &[&["export", "--gripper", "--out", "c.json"][..], &cube].concat(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let c: Value = serde_json::from_slice(&std::fs::read(dir.join("c.json")).unwrap()).unwrap();
+    assert_eq!(c["source"]["cube"]["xy_m"], serde_json::json!([0.35, 0.05]));
+    let o = fairgrasp(&dir, &["playback", "c.json", "--json"]);
+    let report: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    assert_eq!(report["outcome"], "success", "{report}");
+    // A mount the env refuses is named.
+    let bad = [
+        "export", "--out", "x.json", "--base", "0.2", "-0.1", "0.75", "3.14", "0", "0",
+    ];
+    let o = fairgrasp(&dir, &bad);
+    assert!(
+        !o.status.success() && stderr(&o).contains("arm.base_rpy"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.join("x.json").exists());
+}
+
+#[test]
 fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
     let dir = temp_dir("refusals");
     let o = fairgrasp(&dir, &["export", "--gripper", "--out", "ok.json"]);
