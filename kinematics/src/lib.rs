@@ -38,6 +38,7 @@
 pub mod analytic_ik;
 pub mod angles;
 pub mod calibrate;
+pub mod chain_ik;
 pub mod collision;
 pub mod diff_ik;
 pub mod fairino;
@@ -54,9 +55,12 @@ pub use fk::{EndFrame, damped_least_squares, manipulability, min_singular_value}
 pub use model::{ArmKind, ArmModel};
 pub use pose::{Pose, base_to_world, world_to_base};
 pub use qp_ik::{QpIkError, QpIkOptions, QpIkSolution};
-pub use urdf::{SerialChain, UrdfError, UrdfRobot};
+pub use urdf::{JointKind, SerialChain, UrdfError, UrdfRobot};
 
 /// The FR3 URDF shipped in `assets/fr3.urdf` (arm, flange, parallel gripper, TCP).
 pub const FR3_URDF: &str = include_str!("../../assets/fr3.urdf");
 /// The FR5 URDF shipped in `assets/fr5.urdf` (arm and flange).
 pub const FR5_URDF: &str = include_str!("../../assets/fr5.urdf");
+/// A 7-joint arm fairgrasp writes for its IK tests and benchmarks (`assets/seven_joint_arm.urdf`;
+/// no real product).
+pub const SEVEN_JOINT_URDF: &str = include_str!("../../assets/seven_joint_arm.urdf");
