@@ -94,6 +94,7 @@ fn budgeted(line: &str) -> (Vec<String>, i32) {
         }
         "bench" if args[1] == "ppo" => cap(&mut args, "--iterations", 1),
         "bench" if args[1] == "soak" => cap(&mut args, "--steps", 100),
+        "bench" if args[1] == "ik" => cap(&mut args, "--poses", 200),
         _ => {}
     }
     (args, expected)

@@ -110,10 +110,14 @@ pub const MAX_CLI_NUMBER: f64 = 1e6;
 /// Parses a finite number within ±[`MAX_CLI_NUMBER`] (clap value parser); exponent forms such as
 /// `-1e-12` are numbers too.
 pub fn finite_number(text: &str) -> Result<f64, String> {
-    let value: f64 = text
-        .trim()
-        .parse()
-        .map_err(|_| format!("{text:?} is not a number"))?;
+    let value: f64 = text.trim().parse().map_err(|_| {
+        if text.starts_with("--") {
+            // A flag after a list of any length (`--joints` with --urdf) is read as a value.
+            format!("{text:?} is not a number: put flags before a list of numbers, not after it")
+        } else {
+            format!("{text:?} is not a number")
+        }
+    })?;
     if !value.is_finite() || value.abs() > MAX_CLI_NUMBER {
         return Err(format!(
             "{text}: must be a finite number within ±{MAX_CLI_NUMBER:e}"

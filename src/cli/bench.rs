@@ -19,6 +19,9 @@ enum BenchWhat {
     Env(EnvBenchArgs),
     /// PPO update throughput (samples/s, 64×64 network) and training throughput with the env.
     Ppo(PpoBenchArgs),
+    /// IK for any serial arm (the chain IK of 3 built-in URDFs, or --urdf) on random reachable
+    /// poses, beside the FR3's closed form on the same FR3 poses: success, median and p90 time.
+    Ik(IkBenchArgs),
     /// Soak every preset's env (default 1 M steps each) driven by the scripted grasp with noise
     /// (or random actions): counts non-finite observations and rewards, physics faults, env
     /// errors, and shows resident memory. Exits 1 if any of them was seen.
@@ -65,6 +68,77 @@ pub struct EnvBenchArgs {
     json: bool,
 }
 
+#[derive(Args, Debug)]
+pub struct IkBenchArgs {
+    /// Random reachable poses per arm.
+    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    poses: u32,
+    /// Seed of the poses and starts.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Bench this URDF's chain instead of the built-in FR3, FR5 and 7-joint arm.
+    #[arg(long, value_name = "FILE")]
+    urdf: Option<std::path::PathBuf>,
+    /// The chain's tip link (default: the URDF's only leaf).
+    #[arg(long, value_name = "LINK", requires = "urdf")]
+    tip: Option<String>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+fn run_ik(a: &IkBenchArgs) -> anyhow::Result<ExitCode> {
+    use fairgrasp_bench::ik::{bench_chain, bench_fr3_closed_form};
+    use fairgrasp_kinematics::chain_ik::ChainIk;
+    use fairgrasp_kinematics::{FR3_URDF, FR5_URDF, SEVEN_JOINT_URDF, UrdfRobot};
+    let built_in = |text: &str, file: &str, tip: Option<&str>| -> anyhow::Result<ChainIk> {
+        Ok(ChainIk::new(&UrdfRobot::from_str_named(text, file)?, tip)?)
+    };
+    let fr3 = built_in(FR3_URDF, "fr3.urdf", Some("tool0"))?;
+    let poses = a.poses as usize;
+    let mut rows = vec![bench_fr3_closed_form(&fr3, poses, a.seed)];
+    match &a.urdf {
+        Some(path) => {
+            let ik = ChainIk::new(&UrdfRobot::from_file(path)?, a.tip.as_deref())?;
+            rows.push(bench_chain(&path.display().to_string(), &ik, poses, a.seed));
+        }
+        None => {
+            rows.push(bench_chain("FR3 (tool0)", &fr3, poses, a.seed));
+            let fr5 = built_in(FR5_URDF, "fr5.urdf", None)?;
+            rows.push(bench_chain("FR5", &fr5, poses, a.seed));
+            let seven = built_in(SEVEN_JOINT_URDF, "seven_joint_arm.urdf", None)?;
+            rows.push(bench_chain("7-joint arm", &seven, poses, a.seed));
+        }
+    }
+    if a.json {
+        println!(
+            "{}",
+            serde_json::json!({ "poses": poses, "seed": a.seed, "rows": rows })
+        );
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!(
+        "{poses} random reachable poses per arm (seed {}), one thread:",
+        a.seed
+    );
+    println!(
+        "  {:<28} {:>4} {:>9} {:>11} {:>11} {:>9}",
+        "solver", "dof", "solved", "median µs", "p90 µs", "attempts"
+    );
+    for r in &rows {
+        println!(
+            "  {:<28} {:>4} {:>8.2}% {:>11.1} {:>11.1} {:>9.2}",
+            r.solver,
+            r.dof,
+            100.0 * r.solved as f64 / r.poses as f64,
+            r.median_us,
+            r.p90_us,
+            r.mean_attempts
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
     match &a.what {
         BenchWhat::Env(a) => run_env(a),
@@ -76,6 +150,7 @@ pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
              cargo run --release --features train -- bench ppo …"
         ),
         BenchWhat::Soak(a) => super::soak::run(a),
+        BenchWhat::Ik(a) => run_ik(a),
     }
 }
 

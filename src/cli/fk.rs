@@ -11,24 +11,47 @@ use super::args::{ModelArg, OutputArgs, fmt_joints, fmt3, joints_from, print_jso
 #[derive(Args, Debug)]
 pub struct FkArgs {
     /// Arm model.
-    #[arg(long, value_enum, default_value = "fr3")]
+    #[arg(long, value_enum, default_value = "fr3", conflicts_with = "urdf")]
     model: ModelArg,
-    /// Joint angles q1 … q6 (radians, or degrees with --deg).
+    /// Any serial arm's URDF instead of the built-in model: the pose of the chain's tip.
+    #[arg(long, value_name = "FILE")]
+    urdf: Option<std::path::PathBuf>,
+    /// The chain's tip link with --urdf (default: the URDF's only leaf).
+    #[arg(long, value_name = "LINK", requires = "urdf")]
+    tip: Option<String>,
+    /// Joint angles q1 … q6 (radians, or degrees with --deg); with --urdf, for a chain of six
+    /// movable joints.
     #[arg(
         long,
         num_args = 6,
-        required = true,
+        required_unless_present = "chain_joints",
         allow_hyphen_values = true, value_parser = crate::cli::args::finite_number,
         value_name = "Q"
     )]
-    joints: Vec<f64>,
+    joints: Option<Vec<f64>>,
+    /// With --urdf: one value per movable joint of the chain, any number of them (revolute:
+    /// radians or --deg; prismatic: metres). Give it last: it takes every value after it.
+    #[arg(
+        long,
+        num_args = 1..,
+        requires = "urdf",
+        conflicts_with = "joints",
+        allow_hyphen_values = true, value_parser = crate::cli::args::finite_number,
+        value_name = "Q"
+    )]
+    chain_joints: Option<Vec<f64>>,
     #[command(flatten)]
     out: OutputArgs,
 }
 
 pub fn run(a: &FkArgs) -> anyhow::Result<ExitCode> {
+    let given = a.joints.as_ref().or(a.chain_joints.as_ref());
+    let given = given.expect("clap requires --joints or --chain-joints");
+    if let Some(path) = &a.urdf {
+        return super::chain::run_fk(path, a.tip.as_deref(), given, &a.out);
+    }
     let model = a.model.model();
-    let q = joints_from(&a.joints, &a.out, "--joints")?;
+    let q = joints_from(given, &a.out, "--joints")?;
     let flange = model.fk_flange(&q);
     let tcp = model.fk_tcp(&q);
     let jac = model.jacobian(&q, EndFrame::Tcp);

@@ -14,17 +14,30 @@ use super::args::{
 #[derive(Args, Debug)]
 pub struct IkArgs {
     /// Arm model.
-    #[arg(long, value_enum, default_value = "fr3")]
+    #[arg(long, value_enum, default_value = "fr3", conflicts_with = "urdf")]
     model: ModelArg,
+    /// Any serial arm's URDF instead of the built-in model: the chain IK (damped QP steps
+    /// within the joint limits, random restarts) places the chain's tip at --pose, in the
+    /// URDF's root frame.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["frame", "qp"])]
+    urdf: Option<std::path::PathBuf>,
+    /// The chain's tip link with --urdf (default: the URDF's only leaf).
+    #[arg(long, value_name = "LINK", requires = "urdf")]
+    tip: Option<String>,
     /// Target pose in base_link: x y z [m] roll pitch yaw (URDF fixed-axis; radians or --deg).
     #[arg(long, num_args = 6, required = true, allow_hyphen_values = true, value_parser = crate::cli::args::finite_number, value_names = ["X", "Y", "Z", "ROLL", "PITCH", "YAW"])]
     pose: Vec<f64>,
     /// Which frame to place at the pose.
     #[arg(long, value_enum, default_value = "tool0")]
     frame: FrameArg,
-    /// Current joints q1 … q6: picks the nearest branch and seeds the QP solver (default all 0).
+    /// Current joints q1 … q6: picks the nearest branch and seeds the QP solver (default all 0);
+    /// with --urdf, the chain IK's start for a chain of six movable joints.
     #[arg(long, num_args = 6, allow_hyphen_values = true, value_parser = crate::cli::args::finite_number, value_name = "Q")]
     current: Option<Vec<f64>>,
+    /// With --urdf: the chain IK's start, one value per movable joint, any number of them
+    /// (default: 0 within each joint's limits). Give it last: it takes every value after it.
+    #[arg(long, num_args = 1.., requires = "urdf", conflicts_with = "current", allow_hyphen_values = true, value_parser = crate::cli::args::finite_number, value_name = "Q")]
+    chain_current: Option<Vec<f64>>,
     /// Also run the clarabel QP IK from --current (tolerance 1e-4 m / 1e-3 rad).
     #[arg(long)]
     qp: bool,
@@ -36,9 +49,19 @@ pub struct IkArgs {
 }
 
 pub fn run(a: &IkArgs) -> anyhow::Result<ExitCode> {
+    let target = pose_from(&a.pose, &a.out, "--pose")?;
+    if let Some(path) = &a.urdf {
+        let request = super::chain::ChainIkRequest {
+            path,
+            tip: a.tip.as_deref(),
+            pose: target,
+            current: a.current.as_deref().or(a.chain_current.as_deref()),
+            seed: a.seed,
+        };
+        return super::chain::run_ik(&request, &a.out);
+    }
     let model = a.model.model();
     let frame = EndFrame::from(a.frame);
-    let target = pose_from(&a.pose, &a.out, "--pose")?;
     let current = match &a.current {
         Some(values) => joints_from(values, &a.out, "--current")?,
         None => [0.0; 6],

@@ -6,6 +6,7 @@ mod bench;
 #[cfg(feature = "train")]
 mod bench_ppo;
 mod calibrate;
+mod chain;
 mod compare;
 mod eval;
 mod export;
