@@ -35,6 +35,41 @@ def ik_qp(pose, start, frame="tool0", seed=0, model="fr3"):
     return _native.ik_qp(_vec(pose, 6, "pose"), _vec(start, 6, "start"), frame, seed, model)
 
 
+class Chain:
+    """Any serial arm read from a URDF (N movable joints): ``fk(q)`` and ``ik(pose)``, the chain
+    IK of ``fairgrasp ik --urdf`` (damped QP steps within the joint limits, seeded random
+    restarts). ``tip`` names the chain's last link where the URDF branches (e.g. ``"tool0"`` in
+    the FR3's URDF, whose gripper has fingers). Poses are ``[x, y, z, roll, pitch, yaw]`` in the
+    URDF's root link."""
+
+    def __init__(self, urdf, tip=None):
+        self._native = _native.Chain(str(urdf), tip)
+
+    @property
+    def joint_names(self):
+        return self._native.joint_names
+
+    @property
+    def limits(self):
+        """``(lower, upper)`` arrays, radians or metres per joint."""
+        return self._native.limits
+
+    @property
+    def tip(self):
+        return self._native.tip
+
+    def fk(self, q):
+        """The tip's pose ``[x, y, z, roll, pitch, yaw]`` at joints ``q``."""
+        return self._native.fk(np.ascontiguousarray(q, dtype=np.float64).reshape(-1))
+
+    def ik(self, pose, start=None, seed=0):
+        """Joints placing the tip at ``pose``: ``{"joints", "position_error_m",
+        "orientation_error_rad", "iterations", "attempts"}``; ``ValueError`` when it does not
+        converge (with the best residual) or a value is wrong."""
+        start = None if start is None else np.ascontiguousarray(start, dtype=np.float64).reshape(-1)
+        return self._native.ik(_vec(pose, 6, "pose"), start, int(seed))
+
+
 def world_to_base(base_pose, point):
     """A world point expressed in base_link, given base_link's pose in the world."""
     return _native.world_to_base(_vec(base_pose, 6, "base_pose"), _vec(point, 3, "point"))

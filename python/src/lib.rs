@@ -16,6 +16,7 @@ mod agent_env;
 mod agent_vec;
 mod bench;
 mod calibrate;
+mod chain;
 mod compare;
 mod env;
 mod info;
@@ -96,6 +97,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(calibrate::calibrate_points, m)?)?;
     m.add_function(wrap_pyfunction!(calibrate::calibrate_hand_eye, m)?)?;
     m.add_class::<policy::NativePolicy>()?;
+    m.add_class::<chain::Chain>()?;
     m.add_function(wrap_pyfunction!(policy::scenario_seeds, m)?)?;
     m.add_function(wrap_pyfunction!(policy::wilson_interval, m)?)?;
     m.add_function(wrap_pyfunction!(compare::default_compare_presets, m)?)?;

@@ -84,3 +84,24 @@ def test_calibrate_hand_eye_equals_the_cli_on_the_example(cli):
     assert np.allclose(ours["camera_in_base"][:3], theirs["camera_in_base"]["xyz"], atol=1e-9)
     assert np.allclose(ours["camera_in_base"][3:], theirs["camera_in_base"]["rpy"], atol=1e-9)
     assert "Park" in ours["method"]
+
+
+def test_a_seven_joint_urdf_chain_solves_what_its_fk_gives(tmp_path):
+    from pathlib import Path
+
+    urdf = Path(__file__).resolve().parents[2] / "assets" / "seven_joint_arm.urdf"
+    chain = kinematics.Chain(urdf)
+    assert chain.joint_names == ["a1", "a2", "a3", "a4", "a5", "a6", "a7"] and chain.tip == "tool0"
+    lower, upper = chain.limits
+    q = np.array([0.3, 0.5, -0.2, -1.1, 0.4, 0.7, 0.1])
+    pose = chain.fk(q)
+    answer = chain.ik(pose, seed=1)
+    assert answer["position_error_m"] <= 1e-4 and answer["orientation_error_rad"] <= 1e-3
+    assert np.all(answer["joints"] >= lower) and np.all(answer["joints"] <= upper)
+    assert np.allclose(chain.fk(answer["joints"])[:3], pose[:3], atol=1e-4)
+    with pytest.raises(ValueError, match="7 movable joints"):
+        chain.fk(np.zeros(6))
+    with pytest.raises(ValueError, match="did not converge"):
+        chain.ik([3.0, 0.0, 0.5, 0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="name a tip link"):
+        kinematics.Chain(urdf.parent / "fr3.urdf")
