@@ -47,6 +47,7 @@ pub mod geometry;
 pub mod model;
 pub mod pose;
 pub mod qp_ik;
+mod restart;
 pub mod urdf;
 mod wrist_singular;
 

@@ -13,6 +13,7 @@ use crate::diff_ik::{
 use crate::fk::EndFrame;
 use crate::model::ArmModel;
 use crate::pose::Pose;
+use crate::restart::SplitMix64;
 
 /// Settings of [`ArmModel::ik_qp`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -111,20 +112,6 @@ pub enum QpIkError {
     /// A QP step failed.
     #[error(transparent)]
     Qp(#[from] QpError),
-}
-
-/// SplitMix64: a tiny, seeded, portable generator for restart configurations.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 impl ArmModel {

@@ -1,9 +1,8 @@
 //! The geometric Jacobian of any serial chain read from a URDF, for N movable joints.
 
-use nalgebra::{DMatrix, Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
+use nalgebra::{DMatrix, Vector3};
 
 use crate::pose::Pose;
-use crate::urdf::JointKind;
 use crate::urdf::SerialChain;
 
 impl SerialChain {
@@ -12,34 +11,12 @@ impl SerialChain {
     /// movable joints in order, per rad/s or m/s) at joint values `q`. Panics if
     /// `q.len() != dof()`.
     pub fn fk_jacobian(&self, q: &[f64]) -> (Pose, DMatrix<f64>) {
-        assert_eq!(
-            q.len(),
-            self.dof(),
-            "SerialChain::fk_jacobian: wrong number of values"
-        );
-        let mut t = Isometry3::identity();
-        let mut values = q.iter();
         // Each movable joint's axis and origin in the root frame, and whether it slides.
         let mut axes: Vec<(Vector3<f64>, Vector3<f64>, bool)> = Vec::with_capacity(q.len());
-        for joint in &self.joints {
-            t *= joint.origin.iso;
-            let axis = Unit::new_unchecked(Vector3::from(joint.axis));
-            let world_axis = t.rotation * axis.into_inner();
-            match joint.kind {
-                JointKind::Revolute | JointKind::Continuous => {
-                    axes.push((world_axis, t.translation.vector, false));
-                    let angle = *values.next().expect("counted by dof");
-                    t *= UnitQuaternion::from_axis_angle(&axis, angle);
-                }
-                JointKind::Prismatic => {
-                    axes.push((world_axis, t.translation.vector, true));
-                    let offset = *values.next().expect("counted by dof");
-                    t *= Translation3::from(axis.into_inner() * offset);
-                }
-                _ => {}
-            }
-        }
-        let tip = t.translation.vector;
+        let pose = self.walk(q, |frame, axis, slides| {
+            axes.push((axis, frame.translation.vector, slides));
+        });
+        let tip = pose.iso.translation.vector;
         let mut jacobian = DMatrix::zeros(6, q.len());
         for (c, (z, origin, slides)) in axes.iter().enumerate() {
             let (linear, angular) = if *slides {
@@ -52,6 +29,6 @@ impl SerialChain {
                 jacobian[(r + 3, c)] = angular[r];
             }
         }
-        (Pose { iso: t }, jacobian)
+        (pose, jacobian)
     }
 }

@@ -6,6 +6,7 @@ use crate::chain_ik::step::bounded_step;
 use serde::Serialize;
 
 use crate::pose::Pose;
+use crate::restart::SplitMix64;
 use crate::urdf::{SerialChain, UrdfError, UrdfRobot};
 
 /// Settings of [`ChainIk::solve`].
@@ -109,20 +110,6 @@ pub struct ChainIk {
     /// Lower and upper limits of each movable joint [rad or m] (continuous joints: ±2π).
     pub lower: Vec<f64>,
     pub upper: Vec<f64>,
-}
-
-/// SplitMix64: a tiny, seeded, portable generator for restart configurations.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 impl ChainIk {

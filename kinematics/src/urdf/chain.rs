@@ -34,10 +34,21 @@ impl SerialChain {
 
     /// `T_root_tip` for movable-joint values `q` [rad or m]. Panics if `q.len() != dof()`.
     pub fn fk(&self, q: &[f64]) -> Pose {
+        self.walk(q, |_, _, _| {})
+    }
+
+    /// Walks the chain at joint values `q`, calling `at_joint(frame, axis, slides)` for each
+    /// movable joint with its frame in the root before its motion, its axis in the root frame and
+    /// whether it is prismatic; returns `T_root_tip`. Panics if `q.len() != dof()`.
+    pub(crate) fn walk(
+        &self,
+        q: &[f64],
+        mut at_joint: impl FnMut(&Isometry3<f64>, Vector3<f64>, bool),
+    ) -> Pose {
         assert_eq!(
             q.len(),
             self.dof(),
-            "SerialChain::fk: wrong number of joint values"
+            "SerialChain: wrong number of joint values"
         );
         let mut t = Isometry3::identity();
         let mut values = q.iter();
@@ -46,10 +57,12 @@ impl SerialChain {
             let axis = Unit::new_unchecked(Vector3::from(joint.axis));
             match joint.kind {
                 JointKind::Revolute | JointKind::Continuous => {
+                    at_joint(&t, t.rotation * axis.into_inner(), false);
                     let angle = *values.next().expect("counted by dof");
                     t *= UnitQuaternion::from_axis_angle(&axis, angle);
                 }
                 JointKind::Prismatic => {
+                    at_joint(&t, t.rotation * axis.into_inner(), true);
                     let offset = *values.next().expect("counted by dof");
                     t *= Translation3::from(axis.into_inner() * offset);
                 }
