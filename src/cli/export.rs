@@ -28,13 +28,15 @@ use super::baseline::preset_config;
 /// Where the episode comes from: the preset, its scenario and the cell (shared with playback).
 #[derive(Args, Debug)]
 pub struct EpisodeArgs {
-    /// Preset name or a .toml env config (e.g. the one `fairgrasp calibrate points --out` wrote).
+    /// Preset name or a .toml env config (e.g. the one `fairgrasp calibrate points --out` wrote)
+    /// [default: seed; playback: the file's].
     #[arg(long)]
     pub preset: Option<String>,
-    /// Index of the scenario in the preset's seeded set (the episode `compare --seed S` calls N).
+    /// Index of the scenario in the preset's seeded set (the episode `compare --seed S` calls N)
+    /// [default: 0; playback: the file's].
     #[arg(long, value_name = "N")]
     pub episode: Option<usize>,
-    /// Seed of the scenario set.
+    /// Seed of the scenario set [default: 0; playback: the file's].
     #[arg(long)]
     pub seed: Option<u64>,
     /// The real cell's mount: base_link in the world, x y z [m] roll pitch yaw (radians, or
@@ -53,7 +55,7 @@ pub struct EpisodeArgs {
 pub struct ExportArgs {
     #[command(flatten)]
     pub episode: EpisodeArgs,
-    /// The script that grasps (open_loop, closed_loop, oracle, calibrated).
+    /// The script that grasps [default: open_loop, unless --policy].
     #[arg(long, conflicts_with = "policy", value_parser = clap::builder::PossibleValuesParser::new(SCRIPT_NAMES))]
     method: Option<String>,
     /// A shipped policy by name (residual_nudged, pure_full, …) or a checkpoint folder.
