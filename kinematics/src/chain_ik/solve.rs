@@ -243,7 +243,8 @@ impl ChainIk {
                         (lo, hi)
                     })
                     .collect();
-                let dq = bounded_step(hessian, &rhs, damping, &bounds)?;
+                let dq =
+                    bounded_step(hessian, &rhs, damping, &bounds).map_err(ChainIkError::Solver)?;
                 iterations += 1;
                 for i in 0..n {
                     // The interior-point answer may sit 1e-12 outside a bound.

@@ -6,8 +6,6 @@ use clarabel::solver::{
 };
 use nalgebra::{DMatrix, DVector};
 
-use crate::chain_ik::ChainIkError;
-
 /// The step: the box QP solved by a primal active set (exact for a box and a positive definite
 /// `H`; N×N Cholesky solves, a handful at most), else, if that does not settle within 3N
 /// rounds, by clarabel.
@@ -16,7 +14,7 @@ pub(super) fn bounded_step(
     gradient: &DVector<f64>,
     damping: f64,
     bounds: &[(f64, f64)],
-) -> Result<DVector<f64>, ChainIkError> {
+) -> Result<DVector<f64>, String> {
     let n = gradient.len();
     for i in 0..n {
         hessian[(i, i)] += damping;
@@ -32,7 +30,7 @@ fn clarabel_step(
     hessian: &DMatrix<f64>,
     gradient: &DVector<f64>,
     bounds: &[(f64, f64)],
-) -> Result<DVector<f64>, ChainIkError> {
+) -> Result<DVector<f64>, String> {
     let n = gradient.len();
     // P: the upper triangle, column by column; A = [I; −I], b = [hi; −lo], A·dq + s = b, s ≥ 0.
     let (mut colptr, mut rowval, mut nzval) = (vec![0], Vec::new(), Vec::new());
@@ -62,14 +60,14 @@ fn clarabel_step(
         ..DefaultSettings::default()
     };
     let cones = [NonnegativeConeT(2 * n)];
-    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &cones, settings)
-        .map_err(|e| ChainIkError::Solver(format!("{e:?}")))?;
+    let mut solver =
+        DefaultSolver::new(&p, &q, &a, &b, &cones, settings).map_err(|e| format!("{e:?}"))?;
     solver.solve();
     match solver.solution.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             Ok(DVector::from_column_slice(&solver.solution.x))
         }
-        status => Err(ChainIkError::Solver(format!("{status:?}"))),
+        status => Err(format!("{status:?}")),
     }
 }
 
