@@ -83,7 +83,35 @@ pub struct ExportArgs {
     output: OutputArgs,
 }
 
-/// The cell and scenario `a` names, with defaults (`seed`, episode 0, set 0).
+/// Where an episode happens, flags parsed (angles in radians); `None`: not given.
+pub struct Place {
+    pub preset: Option<String>,
+    pub episode: Option<usize>,
+    pub seed: Option<u64>,
+    pub base: Option<Pose>,
+    /// The cube's x, y [m] in the table frame and yaw [rad].
+    pub cube: Option<[f64; 3]>,
+}
+
+impl Place {
+    /// The flags of `a`, angles converted per `--deg`.
+    pub fn from_args(a: &EpisodeArgs, out: &OutputArgs) -> anyhow::Result<Place> {
+        let base = a
+            .base
+            .as_ref()
+            .map(|b| pose_from(b, out, "--base"))
+            .transpose()?;
+        Ok(Place {
+            preset: a.preset.clone(),
+            episode: a.episode,
+            seed: a.seed,
+            base,
+            cube: a.cube.as_ref().map(|c| [c[0], c[1], out.angle(c[2])]),
+        })
+    }
+}
+
+/// The cell and scenario a [`Place`] names, with defaults (`seed`, episode 0, set 0).
 pub struct Chosen {
     pub preset: String,
     pub episode: usize,
@@ -93,35 +121,30 @@ pub struct Chosen {
     pub scenario: Scenario,
 }
 
-/// Resolves the preset, the mount and the scenario of `a`.
-pub fn choose(a: &EpisodeArgs, out: &OutputArgs) -> anyhow::Result<Chosen> {
-    let preset = a.preset.clone().unwrap_or_else(|| "seed".into());
-    let (episode, seed) = (a.episode.unwrap_or(0), a.seed.unwrap_or(0));
+/// Resolves the preset, the mount and the scenario of `p`.
+pub fn choose(p: &Place) -> anyhow::Result<Chosen> {
+    let preset = p.preset.clone().unwrap_or_else(|| "seed".into());
+    let (episode, seed) = (p.episode.unwrap_or(0), p.seed.unwrap_or(0));
     let mut config = preset_config(&preset, ArmSimulation::Servo)
         .with_context(|| format!("preset `{preset}`"))?;
-    let base = match &a.base {
-        Some(values) => {
-            let pose = pose_from(values, out, "--base")?;
-            config.arm.base_xyz = pose.xyz();
-            config.arm.base_rpy = pose.rpy();
-            config.validate().context("--base")?;
-            Some(pose)
-        }
-        None => None,
-    };
+    if let Some(pose) = &p.base {
+        config.arm.base_xyz = pose.xyz();
+        config.arm.base_rpy = pose.rpy();
+        config.validate().context("--base")?;
+    }
     let mut scenario = *scenario_set(&config, seed, episode + 1)
         .with_context(|| format!("preset `{preset}`: drawing scenario {episode}"))?
         .last()
         .expect("episode + 1 scenarios");
-    if let Some(cube) = &a.cube {
-        scenario.object_xy = [cube[0], cube[1]];
-        scenario.object_yaw = out.angle(cube[2]);
+    if let Some([x, y, yaw]) = p.cube {
+        scenario.object_xy = [x, y];
+        scenario.object_yaw = yaw;
     }
     Ok(Chosen {
         preset,
         episode,
         seed,
-        base,
+        base: p.base,
         config,
         scenario,
     })
@@ -149,7 +172,7 @@ pub fn run(a: &ExportArgs) -> anyhow::Result<ExitCode> {
             );
         }
     }
-    let chosen = choose(&a.episode, &a.output)?;
+    let chosen = choose(&Place::from_args(&a.episode, &a.output)?)?;
     let name = match (&a.method, &a.policy) {
         (Some(m), _) => m.clone(),
         (None, Some(p)) => p.clone(),

@@ -9,13 +9,14 @@ use anyhow::{Context, bail};
 use clap::Args;
 use fairgrasp_env::GraspEnv;
 use fairgrasp_env::episode::Outcome;
+use fairgrasp_kinematics::Pose;
 use fairgrasp_planner::stream::file::{Format, parse};
 use fairgrasp_planner::stream::{StreamLimits, check_stream, play};
 use fairgrasp_types::fs::read_text_bounded;
 use serde_json::{Value, json};
 
 use super::args::{OutputArgs, print_json};
-use super::export::{EpisodeArgs, choose};
+use super::export::{EpisodeArgs, Place, choose};
 
 /// The largest stream file read [bytes] (a 10-minute stream at 1 ms is about 40 MB).
 const MAX_STREAM_BYTES: u64 = 256 << 20;
@@ -38,13 +39,13 @@ pub fn run(a: &PlaybackArgs) -> anyhow::Result<ExitCode> {
     };
     let text = read_text_bounded(&a.file, MAX_STREAM_BYTES).with_context(|| shown.to_string())?;
     let (stream, source) = parse(&text, format).with_context(|| shown.to_string())?;
-    let episode = with_source(&a.episode, &source, &a.output);
-    if episode.preset.is_none() || episode.episode.is_none() {
+    let place = with_source(Place::from_args(&a.episode, &a.output)?, &source);
+    if place.preset.is_none() || place.episode.is_none() {
         bail!(
             "{shown} does not say which scenario it grasps in (a CSV): give --preset and --episode"
         );
     }
-    let chosen = choose(&episode, &a.output)?;
+    let chosen = choose(&place)?;
     let model = fairgrasp_env::cell::Cell::from_config(&chosen.config).model;
     let limits = StreamLimits::of(&model);
     check_stream(&stream.joints, stream.period_sec, &limits)
@@ -92,28 +93,23 @@ pub fn run(a: &PlaybackArgs) -> anyhow::Result<ExitCode> {
     })
 }
 
-/// `args` with what the file's `source` says filled in where a flag is not given.
-fn with_source(args: &EpisodeArgs, source: &Value, out: &OutputArgs) -> EpisodeArgs {
-    let angle = |rad: f64| if out.deg { rad.to_degrees() } else { rad };
+/// `place` with what the file's `source` says (radians) filled in where a flag is not given.
+fn with_source(place: Place, source: &Value) -> Place {
     let numbers =
         |v: &Value| -> Option<Vec<f64>> { v.as_array()?.iter().map(Value::as_f64).collect() };
-    EpisodeArgs {
-        preset: args
-            .preset
-            .clone()
-            .or(source["preset"].as_str().map(String::from)),
-        episode: args
+    Place {
+        preset: place.preset.or(source["preset"].as_str().map(String::from)),
+        episode: place
             .episode
             .or(source["episode"].as_u64().map(|v| v as usize)),
-        seed: args.seed.or(source["seed"].as_u64()),
-        base: args.base.clone().or_else(|| {
-            let b = numbers(&source["base_in_world"])?;
-            (b.len() == 6).then(|| vec![b[0], b[1], b[2], angle(b[3]), angle(b[4]), angle(b[5])])
+        seed: place.seed.or(source["seed"].as_u64()),
+        base: place.base.or_else(|| {
+            let b: [f64; 6] = numbers(&source["base_in_world"])?.try_into().ok()?;
+            Pose::try_from_xyz_rpy([b[0], b[1], b[2]], [b[3], b[4], b[5]]).ok()
         }),
-        cube: args.cube.clone().or_else(|| {
-            let xy = numbers(&source["cube"]["xy_m"])?;
-            let yaw = source["cube"]["yaw_rad"].as_f64()?;
-            (xy.len() == 2).then(|| vec![xy[0], xy[1], angle(yaw)])
+        cube: place.cube.or_else(|| {
+            let [x, y]: [f64; 2] = numbers(&source["cube"]["xy_m"])?.try_into().ok()?;
+            Some([x, y, source["cube"]["yaw_rad"].as_f64()?])
         }),
     }
 }

@@ -39,8 +39,6 @@ pub struct Resampled {
     pub stream: ServoStream,
     /// Time [s] at which the stream reaches each waypoint.
     pub waypoint_sec: Vec<f64>,
-    /// Sample index at which each waypoint is reached (the nearest).
-    pub waypoint_samples: Vec<usize>,
     /// Segments that took longer than the env step (the limits demanded it).
     pub stretched_segments: usize,
     /// The episode's duration [s] (waypoints × step).
@@ -128,14 +126,11 @@ pub fn resample(
     let last = *joints.last().expect("at least one sample");
     joints.extend(std::iter::repeat_n(last, hold_samples));
     starts.truncate(n);
-    let waypoint_samples: Vec<usize> = starts
-        .iter()
-        .map(|t| (t / period_sec).round() as usize)
-        .collect();
     let mut events: Vec<GripperEvent> = Vec::new();
     for (k, &command) in episode.gripper.iter().enumerate() {
         if events.last().is_none_or(|e| e.command != command) {
-            let sample = waypoint_samples[k.min(n - 1)];
+            // At the sample nearest to the start of the step's segment.
+            let sample = (starts[k.min(n - 1)] / period_sec).round() as usize;
             events.push(GripperEvent { sample, command });
         }
     }
@@ -147,7 +142,6 @@ pub fn resample(
             gripper: events,
         },
         waypoint_sec: starts,
-        waypoint_samples,
         stretched_segments: stretched,
         episode_sec: (n - 1) as f64 * step_sec,
     })
@@ -266,7 +260,13 @@ mod tests {
             worst.to_degrees()
         );
         let events: Vec<(usize, f64)> = s.gripper.iter().map(|e| (e.sample, e.command)).collect();
-        assert_eq!(events, [(0, -1.0), (r.waypoint_samples[20], 1.0)]);
+        assert_eq!(
+            events,
+            [
+                (0, -1.0),
+                ((r.waypoint_sec[20] / 0.008).round() as usize, 1.0)
+            ]
+        );
         assert_eq!(s.gripper_at(0), Some(-1.0));
         assert_eq!(s.gripper_at(s.joints.len() - 1), Some(1.0));
         let end = s.joints[s.joints.len() - 26];
