@@ -11,7 +11,12 @@
 //!   per-step exploration noise becomes a slowly varying, bounded offset of the grasp
 //!   (time-correlated exploration). It is frozen once the gripper closes: it places the grasp,
 //!   the script lifts from there.
-//! - entries 4–5: unused.
+//! - entry 4: the squeeze, only when the residual has it ([`ResidualScript::squeezing`],
+//!   `agent.squeeze = true`; unused otherwise): through the same filter, the grip force per
+//!   finger is `gripper.force + s·`[`CorrectionLimits::max_squeeze`] for a filtered command
+//!   `s ≥ 0`, down to [`MIN_GRIP_FORCE`] at `s = −1` ([`ResidualScript::grip_force`]). It is
+//!   not frozen: the policy may squeeze harder as it lifts. The policy does not see it.
+//! - entry 5: unused.
 //! - entry 6: the close's timing, through the same filter: above 0.5 close now (during the
 //!   descent), below −0.5 hold open a little longer ([`CloseTiming`]), between them the
 //!   script's timing. (Unfiltered, σ = 0.3 exploration noise alone would close early on one
@@ -64,6 +69,18 @@ pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
 /// Above this the gripper entry closes now; below its negative it waits.
 pub const CLOSE_THRESHOLD: f64 = 0.5;
 
+/// The weakest squeeze the residual may ask for, per finger [N].
+pub const MIN_GRIP_FORCE: f64 = 1.0;
+
+/// The squeeze a residual commands, when it has one.
+#[derive(Clone, Copy, Debug)]
+struct Squeeze {
+    /// The env's `gripper.force` [N].
+    base: f64,
+    /// The filtered squeeze command (in [-1, 1]).
+    signal: f64,
+}
+
 /// `angle` wrapped into [−45°, 45°): a cube's yaw means nothing more.
 pub fn wrap_quarter(angle: f64) -> f64 {
     angle - FRAC_PI_2 * (angle / FRAC_PI_2).round()
@@ -78,6 +95,8 @@ pub struct ResidualScript {
     step_dt: f64,
     /// The filtered close-timing command.
     close_signal: f64,
+    /// The squeeze, if this residual has it.
+    squeeze: Option<Squeeze>,
 }
 
 impl ResidualScript {
@@ -93,7 +112,28 @@ impl ResidualScript {
             mount: Cell::from_config(env).mount,
             step_dt: env.physics.dt * env.physics.substeps as f64,
             close_signal: 0.0,
+            squeeze: None,
         }
+    }
+
+    /// The same script with the squeeze: action entry 4 commands the grip force (module doc).
+    pub fn squeezing(mut self, env: &EnvConfig) -> Self {
+        self.squeeze = Some(Squeeze {
+            base: env.gripper.force,
+            signal: 0.0,
+        });
+        self
+    }
+
+    /// The grip force per finger [N] the squeeze asks for (None without the squeeze).
+    pub fn grip_force(&self) -> Option<f64> {
+        let s = self.squeeze?;
+        let force = if s.signal >= 0.0 {
+            s.base + s.signal * self.limits.max_squeeze
+        } else {
+            s.base + s.signal * (s.base - MIN_GRIP_FORCE).max(0.0)
+        };
+        Some(force.max(MIN_GRIP_FORCE))
     }
 
     /// The script inside.
@@ -121,6 +161,9 @@ impl ResidualScript {
     pub fn reset(&mut self, seed: u64) {
         self.script.reset(seed);
         self.close_signal = 0.0;
+        if let Some(s) = &mut self.squeeze {
+            s.signal = 0.0;
+        }
     }
 
     /// The filtered close-timing command (in [-1, 1]).
@@ -138,6 +181,9 @@ impl ResidualScript {
         }
         let alpha = self.limits.gain(self.step_dt);
         self.close_signal += (action[6].clamp(-1.0, 1.0) - self.close_signal) * alpha;
+        if let Some(s) = &mut self.squeeze {
+            s.signal += (action[4].clamp(-1.0, 1.0) - s.signal) * alpha;
+        }
         let timing = if self.close_signal > CLOSE_THRESHOLD {
             CloseTiming::Now
         } else if self.close_signal < -CLOSE_THRESHOLD {
@@ -194,6 +240,8 @@ impl ResidualScript {
 pub struct OracleResidual {
     residual: ResidualScript,
     truth: Option<ObservedObject>,
+    /// The squeeze command it holds (entry 4; 0 without the squeeze).
+    squeeze: f64,
 }
 
 impl OracleResidual {
@@ -201,12 +249,24 @@ impl OracleResidual {
         Self {
             residual: ResidualScript::new(env),
             truth: None,
+            squeeze: 0.0,
+        }
+    }
+
+    /// The same oracle with the squeeze, holding the command `squeeze` (in [-1, 1]) on it: the
+    /// gate of the contact family (a fixed squeeze; it knows nothing of the cube's mass).
+    pub fn squeezing(env: &EnvConfig, squeeze: f64) -> Self {
+        Self {
+            residual: ResidualScript::new(env).squeezing(env),
+            truth: None,
+            squeeze: squeeze.clamp(-1.0, 1.0),
         }
     }
 
     /// The command for the correction that puts the grasp on the true cube.
     fn action(&self) -> [f64; 7] {
         let mut a = [0.0; 7];
+        a[4] = self.squeeze;
         let (Some(truth), Some(planned)) = (self.truth, self.residual.script().planned_on()) else {
             return a;
         };
@@ -248,5 +308,9 @@ impl Policy for OracleResidual {
 
     fn phase(&self) -> Option<&'static str> {
         Some(self.residual.script().phase().name())
+    }
+
+    fn grip_force(&self) -> Option<f64> {
+        self.residual.grip_force()
     }
 }

@@ -125,6 +125,9 @@ impl AgentEnv {
             }
             None => Action(*action),
         };
+        if let Some(force) = self.agent.as_ref().and_then(|(_, a)| a.grip_force()) {
+            self.env.set_grip_force(force)?;
+        }
         let mut step = self.env.step(&env_action)?;
         if step.terminated || step.truncated {
             let agent = self.agent.as_ref().map(|(_, a)| a);

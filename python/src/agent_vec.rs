@@ -140,7 +140,13 @@ impl AgentVecEnv {
                 None => Action(*a),
             };
         }
-        self.inner.step(&self.actions)?;
+        let grip: Vec<Option<f64>> = match &self.agent {
+            Some((config, agents)) if config.squeeze => {
+                agents.iter().map(|a| a.grip_force()).collect()
+            }
+            _ => Vec::new(),
+        };
+        self.inner.step_gripping(&self.actions, &grip)?;
         self.ended.clear();
         let mut advanced = None;
         let batch = self.inner.batch();

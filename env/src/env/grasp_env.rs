@@ -173,6 +173,7 @@ impl GraspEnv {
         self.sim
             .place_object(&object, scenario.friction, scenario.mass);
         self.robot.teleport(&mut self.sim, &scenario.start_joints);
+        self.robot.set_grip_force(self.config.gripper.force);
         for _ in 0..SETTLE_SUBSTEPS {
             self.physics_substep(&[0.0; 6]);
         }
@@ -329,6 +330,21 @@ impl GraspEnv {
     /// The TCP pose in `base_link` at the current joints.
     pub fn tcp_in_base(&self) -> Pose {
         self.robot.tcp_in_base()
+    }
+
+    /// Each finger's squeeze force in effect [N]: `gripper.force` after a reset.
+    pub fn grip_force(&self) -> f64 {
+        self.robot.grip_force()
+    }
+
+    /// Squeezes with `newtons` per finger from the next step on, until the next reset (as a
+    /// real gripper takes a force with each command); finite and in (0, 100] N.
+    pub fn set_grip_force(&mut self, newtons: f64) -> Result<(), EnvError> {
+        if !(newtons.is_finite() && newtons > 0.0 && newtons <= 100.0) {
+            return Err(EnvError::GripForce(newtons));
+        }
+        self.robot.set_grip_force(newtons);
+        Ok(())
     }
 
     /// Current finger travels [m] (0 open … 0.0425 closed).

@@ -85,10 +85,14 @@ pub enum EnvError {
     SetpointCount { expected: usize, got: usize },
     #[error("servo setpoint {substep}: {what} is not finite")]
     NonFiniteSetpoint { substep: usize, what: String },
+    #[error("grip force {0} N: must be finite and in (0, 100] N (gripper.force's range)")]
+    GripForce(f64),
     #[error("the episode has ended (terminated or truncated): call reset first")]
     EpisodeOver,
     #[error("a vectorised step takes one action per environment: {expected} expected, got {got}")]
     ActionCount { expected: usize, got: usize },
+    #[error("a vectorised env needs at least one env config")]
+    NoConfigs,
     #[error("an environment worker thread stopped (it panicked): the vectorised env cannot go on")]
     WorkerLost,
     #[error(transparent)]

@@ -30,6 +30,11 @@ pub trait Policy {
     fn phase(&self) -> Option<&'static str> {
         None
     }
+    /// The squeeze per finger [N] the policy asks for with its latest `act` (applied before the
+    /// step, as [`GraspEnv::set_grip_force`]); `None` (the default) keeps the env's.
+    fn grip_force(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// Runs one episode of `policy` from `scenario`; records it into `trajectory` if given.
@@ -66,6 +71,9 @@ pub fn run_recorded(
     loop {
         policy.observe_truth(&true_object(env.mount(), &env.object_in_base()));
         let action = policy.act(&obs);
+        if let Some(force) = policy.grip_force() {
+            env.set_grip_force(force)?;
+        }
         let step = env.step(&action)?;
         recorder.record_step(env, &action, &step, policy.phase());
         obs = step.obs;

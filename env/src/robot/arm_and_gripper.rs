@@ -52,7 +52,8 @@ pub struct Robot {
     pub fingers: [FingerState; 2],
     /// Joint acceleration limit [rad/s²].
     max_acceleration: f64,
-    /// Squeeze force of each finger [N].
+    /// Squeeze force of each finger [N] (the config's `gripper.force` unless a policy asks for
+    /// another: [`Robot::set_grip_force`]).
     grip_force: f64,
 }
 
@@ -215,6 +216,16 @@ impl Robot {
             + CENTRING_DAMPING * (right.rate - left.rate);
         let correction = asymmetry.clamp(-0.9 * force, 0.9 * force);
         (target, [force + correction, force - correction])
+    }
+
+    /// Squeeze force of each finger [N].
+    pub fn grip_force(&self) -> f64 {
+        self.grip_force
+    }
+
+    /// Sets the squeeze force of each finger [N] (checked by the caller).
+    pub fn set_grip_force(&mut self, newtons: f64) {
+        self.grip_force = newtons;
     }
 
     /// Distance between the pads' inner faces [m] (0.085 fully open).

@@ -90,6 +90,8 @@ pub(crate) struct Chunk {
     pub(crate) base_seed: u64,
     /// A worker's actions, copied in by the calling thread.
     pub(crate) actions: Vec<Action>,
+    /// Each env's squeeze per finger [N] for this step, if asked (copied in with the actions).
+    pub(crate) grip: Vec<Option<f64>>,
     pub(crate) out: VecStep,
 }
 
@@ -111,9 +113,17 @@ impl Chunk {
         Ok(())
     }
 
-    pub(crate) fn step(&mut self, actions: &[Action]) -> Result<(), EnvError> {
+    /// Steps env `j` with `actions[j]`, squeezing with `grip[j]` [N] first if given.
+    pub(crate) fn step(
+        &mut self,
+        actions: &[Action],
+        grip: &[Option<f64>],
+    ) -> Result<(), EnvError> {
         self.out.clear();
         for (j, action) in actions.iter().enumerate().take(self.envs.len()) {
+            if let Some(&Some(force)) = grip.get(j) {
+                self.envs[j].set_grip_force(force)?;
+            }
             let step = self.envs[j].step(action)?;
             let flags = [step.terminated, step.truncated];
             if step.terminated || step.truncated {
@@ -136,8 +146,10 @@ impl Chunk {
     /// Steps with the actions a worker was handed.
     pub(crate) fn step_own_actions(&mut self) -> Result<(), EnvError> {
         let actions = std::mem::take(&mut self.actions);
-        let result = self.step(&actions);
+        let grip = std::mem::take(&mut self.grip);
+        let result = self.step(&actions, &grip);
         self.actions = actions;
+        self.grip = grip;
         result
     }
 

@@ -35,14 +35,29 @@ impl VecEnv {
         threads: usize,
         base_seed: u64,
     ) -> Result<Self, EnvError> {
+        Self::mixed(std::slice::from_ref(config), n, threads, base_seed)
+    }
+
+    /// `n` environments, environment `i` of `configs[i % configs.len()]` (a mixture of
+    /// presets: e.g. one generalist trained on several families), on `threads` threads.
+    pub fn mixed(
+        configs: &[EnvConfig],
+        n: usize,
+        threads: usize,
+        base_seed: u64,
+    ) -> Result<Self, EnvError> {
+        let Some(first) = configs.first() else {
+            return Err(EnvError::NoConfigs);
+        };
+        let config_of = |i: usize| configs.get(i % configs.len()).unwrap_or(first);
         let n = n.max(1);
         let per_thread = n.div_ceil(threads.clamp(1, n));
         let mut chunks = Vec::new();
         let mut first_index = 0;
         while first_index < n {
             let len = per_thread.min(n - first_index);
-            let envs = (0..len)
-                .map(|_| GraspEnv::new(config.clone()))
+            let envs = (first_index..first_index + len)
+                .map(|i| GraspEnv::new(config_of(i).clone()))
                 .collect::<Result<Vec<_>, _>>()?;
             chunks.push(Chunk {
                 envs,
@@ -50,6 +65,7 @@ impl VecEnv {
                 first_index,
                 base_seed,
                 actions: Vec::with_capacity(len),
+                grip: Vec::with_capacity(len),
                 out: VecStep::default(),
             });
             first_index += len;
@@ -105,26 +121,51 @@ impl VecEnv {
 
     /// Steps every environment with its action, in parallel; ended episodes are reset.
     pub fn step(&mut self, actions: &[Action]) -> Result<&VecStep, EnvError> {
+        self.step_gripping(actions, &[])
+    }
+
+    /// [`VecEnv::step`], each env `i` first squeezing with `grip[i]` per finger [N] if given
+    /// ([`GraspEnv::set_grip_force`]; an empty `grip` changes nothing).
+    pub fn step_gripping(
+        &mut self,
+        actions: &[Action],
+        grip: &[Option<f64>],
+    ) -> Result<&VecStep, EnvError> {
         let n = self.len();
-        if actions.len() != n {
+        if actions.len() != n || !(grip.is_empty() || grip.len() == n) {
             return Err(EnvError::ActionCount {
                 expected: n,
-                got: actions.len(),
+                got: if actions.len() != n {
+                    actions.len()
+                } else {
+                    grip.len()
+                },
             });
         }
         if self.out.obs.len() != n {
             return Err(EnvError::EpisodeOver);
         }
+        let part = |from: usize, len: usize| {
+            if grip.is_empty() {
+                &[][..]
+            } else {
+                &grip[from..from + len]
+            }
+        };
         let mut offset = self.local.envs.len();
         for w in &self.workers {
             let mine = &actions[offset..offset + w.len];
+            let squeeze = part(offset, w.len);
             w.start(Job::Step, |chunk| {
                 chunk.actions.clear();
                 chunk.actions.extend_from_slice(mine);
+                chunk.grip.clear();
+                chunk.grip.extend_from_slice(squeeze);
             })?;
             offset += w.len;
         }
-        let local = self.local.step(&actions[..self.local.envs.len()]);
+        let first = self.local.envs.len();
+        let local = self.local.step(&actions[..first], part(0, first));
         self.gather(local)?;
         Ok(&self.out)
     }

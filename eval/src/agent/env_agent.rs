@@ -65,6 +65,12 @@ impl EnvAgent {
         )
     }
 
+    /// The grip force per finger [N] the script's squeeze asks for after the latest `act`
+    /// (None without the squeeze): hand it to the env before the step.
+    pub fn grip_force(&self) -> Option<f64> {
+        self.script.as_ref().and_then(Script::grip_force)
+    }
+
     /// The joint baseline's action for the last observation (None in pure mode and for a
     /// task-space residual).
     pub fn base_action(&self) -> Option<&Action> {
@@ -138,7 +144,7 @@ pub fn output_names(agent: &AgentConfig, env: &EnvConfig) -> Vec<String> {
             "offset_y",
             "offset_z",
             "offset_yaw",
-            "unused_4",
+            if agent.squeeze { "squeeze" } else { "unused_4" },
             "unused_5",
             "close_timing",
         ]

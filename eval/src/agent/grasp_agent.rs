@@ -77,6 +77,9 @@ pub struct AgentConfig {
     /// in pure mode (the env's `TaskSpaceAction`), the rate of a correction of the script's grasp in
     /// residual mode ([`crate::agent::script`]).
     pub action_space: ActionSpace,
+    /// A task-space residual also commands the grip force with its output's entry 4
+    /// ([`fairgrasp_planner::residual`]); off by default (earlier policies' entry 4 is unused).
+    pub squeeze: bool,
 }
 
 impl Default for AgentConfig {
@@ -86,6 +89,7 @@ impl Default for AgentConfig {
             residual_scale: 0.3,
             gripper: GripperMode::Residual,
             action_space: ActionSpace::Joint,
+            squeeze: false,
         }
     }
 }
@@ -98,6 +102,16 @@ pub use fairgrasp_env::env::spaces::ACT_DIM;
 impl AgentConfig {
     /// Checks the numbers (the residual's scale in (0, 10]); the message names the field.
     pub fn check(&self) -> Result<(), String> {
+        if self.squeeze && !self.task_residual() {
+            return Err(format!(
+                "agent.squeeze = true needs mode = \"residual\" and action_space = \"tcp\" (got mode = \"{}\", action_space = \"{}\")",
+                self.mode,
+                match self.action_space {
+                    ActionSpace::Joint => "joint",
+                    ActionSpace::Tcp => "tcp",
+                }
+            ));
+        }
         if !(self.residual_scale > 0.0 && self.residual_scale <= 10.0) {
             let v = self.residual_scale;
             let shown = if v.abs() >= 1e6 {
@@ -271,7 +285,7 @@ impl AgentConfig {
     pub fn script(&self, env: &EnvConfig) -> Option<Script> {
         match self.mode {
             Mode::Pure => None,
-            Mode::Residual if self.task_residual() => Some(Script::task(env)),
+            Mode::Residual if self.task_residual() => Some(Script::task(env, self.squeeze)),
             Mode::Residual => Some(Script::joint(env)),
         }
     }
@@ -343,5 +357,9 @@ impl Policy for GraspAgent {
 
     fn phase(&self) -> Option<&'static str> {
         self.script.as_ref().map(Script::phase)
+    }
+
+    fn grip_force(&self) -> Option<f64> {
+        self.script.as_ref().and_then(Script::grip_force)
     }
 }

@@ -26,9 +26,18 @@ impl Script {
         Script::Joint(Box::new(ScriptedGrasp::new(env, BaselineConfig::default())))
     }
 
-    /// The task-space residual interface.
-    pub fn task(env: &EnvConfig) -> Script {
-        Script::Task(Box::new(ResidualScript::new(env)))
+    /// The task-space residual interface, with the squeeze if `squeeze`.
+    pub fn task(env: &EnvConfig, squeeze: bool) -> Script {
+        let r = ResidualScript::new(env);
+        Script::Task(Box::new(if squeeze { r.squeezing(env) } else { r }))
+    }
+
+    /// The grip force per finger [N] the task script's squeeze asks for (None otherwise).
+    pub fn grip_force(&self) -> Option<f64> {
+        match self {
+            Script::Joint(_) => None,
+            Script::Task(r) => r.grip_force(),
+        }
     }
 
     pub fn reset(&mut self, seed: u64) {

@@ -212,6 +212,9 @@ impl Policy for Boxed {
     fn phase(&self) -> Option<&'static str> {
         self.0.phase()
     }
+    fn grip_force(&self) -> Option<f64> {
+        self.0.grip_force()
+    }
 }
 
 /// The simulated camera calibration of a config's cell, for "script + calibration".

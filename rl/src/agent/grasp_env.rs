@@ -26,6 +26,8 @@ pub struct GraspVecEnv {
     agents: Vec<EnvAgent>,
     /// The composed actions handed to the envs.
     env_actions: Vec<Action>,
+    /// The squeeze each env's script asks for (empty unless `agent.squeeze`).
+    grip: Vec<Option<f64>>,
     returns: Vec<f32>,
     lengths: Vec<usize>,
     batch: StepBatch,
@@ -40,12 +42,32 @@ impl GraspVecEnv {
         threads: usize,
         seed: u64,
     ) -> Result<Self, EnvError> {
-        let inner = VecEnv::new(config, n, threads, seed)?;
+        Self::mixed(std::slice::from_ref(config), agent, n, threads, seed)
+    }
+
+    /// `n` envs, env `i` of `configs[i % configs.len()]` ([`VecEnv::mixed`]), each with its
+    /// own script of its config.
+    pub fn mixed(
+        configs: &[EnvConfig],
+        agent: AgentConfig,
+        n: usize,
+        threads: usize,
+        seed: u64,
+    ) -> Result<Self, EnvError> {
+        let inner = VecEnv::mixed(configs, n, threads, seed)?;
         let n = inner.len();
+        let config = &configs[0];
         Ok(Self {
             inner,
-            agents: (0..n).map(|_| EnvAgent::new(&agent, config)).collect(),
+            agents: (0..n)
+                .map(|i| EnvAgent::new(&agent, &configs[i % configs.len()]))
+                .collect(),
             env_actions: vec![Action::hold_open(); n],
+            grip: if agent.squeeze {
+                vec![None; n]
+            } else {
+                Vec::new()
+            },
             returns: vec![0.0; n],
             lengths: vec![0; n],
             batch: StepBatch::new(n, agent.input_dim()),
@@ -119,7 +141,10 @@ impl VecEnvironment for GraspVecEnv {
         {
             *slot = agent.act(&self.agent, obs, policy, self.task_space.as_ref());
         }
-        let step = self.inner.step(&self.env_actions)?;
+        for (force, agent) in self.grip.iter_mut().zip(&self.agents) {
+            *force = agent.grip_force();
+        }
+        let step = self.inner.step_gripping(&self.env_actions, &self.grip)?;
         for e in 0..n {
             let row = e * self.agent.input_dim()..(e + 1) * self.agent.input_dim();
             let reward = step.rewards[e] as f32;
