@@ -28,6 +28,11 @@ pub const MAX_EVAL_EPISODES: usize = 100_000;
 pub struct TrainConfig {
     /// Environment preset (`fixed`, `seed`, `wide`, `full`, `hard`) or a .toml file.
     pub preset: String,
+    /// Presets trained on besides `preset`, for one policy of several families (a generalist):
+    /// the envs take `preset`, `mix[0]`, `mix[1]`, … in turn, and the run's evaluations split
+    /// their episodes over all of them in the same order. Empty (the default): `preset` only.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub mix: Vec<String>,
     /// Arm simulation.
     pub arm: ArmSimulation,
     /// Seed of the network initialisation, the sampling and the episodes.
@@ -67,6 +72,7 @@ impl Default for TrainConfig {
     fn default() -> Self {
         Self {
             preset: "hard".into(),
+            mix: Vec::new(),
             arm: ArmSimulation::Servo,
             seed: 0,
             total_timesteps: 200_000,
@@ -172,8 +178,45 @@ impl TrainConfig {
         if let Some(c) = &self.curriculum {
             c.validate()?;
         }
-        let env = self.training_env_config().map_err(|e| e.to_string())?;
-        recipe::check_agent_env(&env)
+        if !self.mix.is_empty() {
+            let presets = self.mix.len() + 1;
+            if self.curriculum.is_some() {
+                return Err("mix: a run on several presets cannot also have a [curriculum] (it stages one preset's randomisation)".into());
+            }
+            if self.n_envs < presets {
+                return Err(format!(
+                    "mix: {presets} presets need n_envs ≥ {presets} (one env each at least), got {}",
+                    self.n_envs
+                ));
+            }
+        }
+        for env in self.training_env_configs().map_err(|e| e.to_string())? {
+            recipe::check_agent_env(&env)?;
+        }
+        Ok(())
+    }
+
+    /// The evaluation env configuration of every preset trained on: `preset`'s, then each of
+    /// `mix` (the message names the preset that does not load).
+    pub fn env_configs(&self) -> Result<Vec<EnvConfig>, String> {
+        let mut all = vec![self.env_config().map_err(|e| e.to_string())?];
+        for p in &self.mix {
+            all.push(recipe::env_config(p, self.arm).map_err(|e| format!("mix: {p}: {e}"))?);
+        }
+        Ok(all)
+    }
+
+    /// The training env configuration of every preset trained on ([`Self::env_configs`]'s
+    /// order), each with the `[env]` overrides.
+    pub fn training_env_configs(&self) -> Result<Vec<EnvConfig>, String> {
+        let mut all = vec![self.training_env_config().map_err(|e| e.to_string())?];
+        for p in &self.mix {
+            all.push(
+                recipe::training_env_config(p, self.arm, self.env.as_ref())
+                    .map_err(|e| format!("mix: {p}: {e}"))?,
+            );
+        }
+        Ok(all)
     }
 
     /// The environment configuration of the preset and arm (what evaluations use).

@@ -13,26 +13,36 @@ use crate::run::error::TrainError;
 /// Seed of the scenario set a training run is evaluated on; training scenarios never use it.
 pub const EVAL_SEED: u64 = 1_000_000;
 
-/// Evaluates a model deterministically on `n` scenarios of the run's preset (seed [`EVAL_SEED`]).
+/// Evaluates a model deterministically on `n` scenarios of the run's preset (seed
+/// [`EVAL_SEED`]); a run on several presets (`mix`) splits the `n` over them, the first
+/// `n % presets` getting one more, and reports them together.
 pub fn evaluate_model(
     config: &TrainConfig,
     meta: &CheckpointMeta,
     model: &ActorCritic,
     n: usize,
 ) -> Result<EvalReport, TrainError> {
-    let env_config = config
-        .env_config()
-        .map_err(|e| TrainError::Config(e.to_string()))?;
-    let make = || agent_policy(meta, model, &env_config);
-    Ok(evaluate_seeded(
-        &env_config,
-        EVAL_SEED,
-        n,
-        config.threads,
-        None,
-        &make,
-        &|| {},
-    )?)
+    let env_configs = config.env_configs().map_err(TrainError::Config)?;
+    let k = env_configs.len();
+    let mut results = Vec::with_capacity(n);
+    for (j, env_config) in env_configs.iter().enumerate() {
+        let share = n / k + usize::from(j < n % k);
+        if share == 0 {
+            continue;
+        }
+        let make = || agent_policy(meta, model, env_config);
+        let report = evaluate_seeded(
+            env_config,
+            EVAL_SEED,
+            share,
+            config.threads,
+            None,
+            &make,
+            &|| {},
+        )?;
+        results.extend(report.results);
+    }
+    Ok(EvalReport::from_results(results))
 }
 
 /// The deterministic agent policy of a checkpoint's model.

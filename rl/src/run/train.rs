@@ -305,8 +305,9 @@ pub fn train_with(
             .seed
             .wrapping_mul(7_919)
             .wrapping_add(meta.updates * 1_000);
-    let env = GraspVecEnv::new(
-        &env_config,
+    let mixture = config.training_env_configs().map_err(TrainError::Config)?;
+    let env = GraspVecEnv::mixed(
+        &mixture,
         config.agent.clone(),
         config.n_envs,
         config.threads,
