@@ -10,6 +10,8 @@
 //! - [`shipped`]: the trained policies built into the binary.
 //! - [`compare`]: every method on the same scenario sets (the `compare` experiment).
 //! - [`export`]: one episode as a servo stream for a real FR3 (`fairgrasp export`).
+//! - [`squeeze_probe`]: the grip force a squeezing residual commands against the squeeze each
+//!   cube needed (`fairgrasp eval --squeeze-chart`).
 
 pub mod actor;
 pub mod agent;
@@ -20,3 +22,4 @@ pub mod export;
 pub mod recipe;
 pub mod recipes;
 pub mod shipped;
+pub mod squeeze_probe;

@@ -22,6 +22,11 @@ pub struct EvalArgs {
     /// several. An unknown name is refused with the list of input names.
     #[arg(long = "mask-input", value_name = "NAME")]
     mask_input: Vec<String>,
+    /// Also draw what a squeezing residual learned (`[agent] squeeze = true`): each episode's
+    /// grip force as the lift began against the squeeze its cube needed (mass and friction),
+    /// as FILE.png, with the rows in FILE.csv. Runs the episodes a second time.
+    #[arg(long = "squeeze-chart", value_name = "FILE.png")]
+    squeeze_chart: Option<PathBuf>,
     #[command(flatten)]
     scenarios: ScenarioArgs,
 }
@@ -49,6 +54,13 @@ pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
     }
     let make =
         |config: &EnvConfig| actor_policy(&meta, &actor, config).with_masked_inputs(masked.clone());
+    if let Some(png) = &a.squeeze_chart {
+        super::squeeze_chart::check_paths(png)?;
+    }
     let extra = serde_json::json!({"policy": policy.display().to_string(), "trained_timesteps": meta.timesteps, "masked_inputs": a.mask_input});
-    evaluate_and_print(&a.scenarios, &method, &make, extra)
+    let code = evaluate_and_print(&a.scenarios, &method, &make, extra)?;
+    if let Some(png) = &a.squeeze_chart {
+        super::squeeze_chart::write(&a.scenarios, &method, png, &make)?;
+    }
+    Ok(code)
 }

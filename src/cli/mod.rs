@@ -21,6 +21,7 @@ mod replay;
 mod report;
 mod scene;
 mod soak;
+mod squeeze_chart;
 mod train;
 
 use std::process::ExitCode;

@@ -12,6 +12,7 @@ pub mod axis;
 pub mod curves;
 pub mod episode;
 pub mod replay;
+pub mod squeeze;
 pub mod success;
 pub mod workspace;
 
