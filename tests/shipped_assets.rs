@@ -55,6 +55,7 @@ fn a_copied_binary_run_elsewhere_compares_the_built_in_policies_on_a_built_in_pr
         "residual_miscalibrated_b",
         "residual_nudged",
         "residual_wrist_camera",
+        "residual_heavy_slippery",
         "pure_full",
         "residual_hard",
     ];

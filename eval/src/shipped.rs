@@ -30,6 +30,8 @@ pub enum ShippedPolicy {
     ResidualNudged,
     /// The same recipe on `wrist_camera` (a coarse fixed camera and an exact wrist camera).
     ResidualWristCamera,
+    /// The residual with the squeeze on `heavy_slippery` (cubes the script's grip cannot lift).
+    ResidualHeavySlippery,
 }
 
 /// A file of a shipped policy: its path inside the policy folder, and its bytes.
@@ -86,6 +88,7 @@ const RESIDUAL_MISCALIBRATED: &[File] = policy_files!("residual_miscalibrated");
 const RESIDUAL_MISCALIBRATED_B: &[File] = policy_files!("residual_miscalibrated_b");
 const RESIDUAL_NUDGED: &[File] = policy_files!("residual_nudged");
 const RESIDUAL_WRIST_CAMERA: &[File] = policy_files!("residual_wrist_camera");
+const RESIDUAL_HEAVY_SLIPPERY: &[File] = policy_files!("residual_heavy_slippery");
 
 /// A shipped policy that could not be unpacked.
 #[derive(Debug, thiserror::Error)]
@@ -98,11 +101,12 @@ pub struct ShippedError {
 
 impl ShippedPolicy {
     /// Every shipped policy.
-    pub const ALL: [ShippedPolicy; 7] = [
+    pub const ALL: [ShippedPolicy; 8] = [
         ShippedPolicy::ResidualMiscalibrated,
         ShippedPolicy::ResidualMiscalibratedB,
         ShippedPolicy::ResidualNudged,
         ShippedPolicy::ResidualWristCamera,
+        ShippedPolicy::ResidualHeavySlippery,
         ShippedPolicy::PureFull,
         ShippedPolicy::ResidualHard,
         ShippedPolicy::PureHard,
@@ -124,6 +128,7 @@ impl ShippedPolicy {
             ShippedPolicy::ResidualMiscalibratedB => "residual_miscalibrated_b",
             ShippedPolicy::ResidualNudged => "residual_nudged",
             ShippedPolicy::ResidualWristCamera => "residual_wrist_camera",
+            ShippedPolicy::ResidualHeavySlippery => "residual_heavy_slippery",
         }
     }
 
@@ -136,6 +141,7 @@ impl ShippedPolicy {
             ShippedPolicy::ResidualMiscalibratedB => RESIDUAL_MISCALIBRATED_B,
             ShippedPolicy::ResidualNudged => RESIDUAL_NUDGED,
             ShippedPolicy::ResidualWristCamera => RESIDUAL_WRIST_CAMERA,
+            ShippedPolicy::ResidualHeavySlippery => RESIDUAL_HEAVY_SLIPPERY,
         }
     }
 

@@ -155,3 +155,25 @@ fn bad_requests_are_refused_before_any_episode_runs() {
     let e = run_comparison(&spec(&[], 2), &[], &never).unwrap_err();
     assert!(e.to_string().contains("no preset"), "{e}");
 }
+
+/// The contact family in a comparison: the shipped squeezing residual squeezes there too (a
+/// comparison hands each policy's grip force to the env, as training did) and lifts far more
+/// of the heavy, slippery cubes than the oracle script, which knows their pose exactly.
+#[test]
+fn the_squeezing_residual_beats_the_oracle_script_on_heavy_slippery_cubes_in_a_comparison() {
+    let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rl-compare-squeeze");
+    let dir = ShippedPolicy::ResidualHeavySlippery
+        .checkpoint_dir_in(&root)
+        .unwrap();
+    let learned = LearnedPolicy::load_all(&[dir]).unwrap();
+    let mut s = spec(&["heavy_slippery"], 40);
+    s.replay_episodes = 0;
+    let out = run_comparison(&s, &learned, &|_| {}).unwrap();
+    let c = &out.comparison;
+    let rate = |method: &str| c.get(method, "heavy_slippery").unwrap().report.success_rate;
+    let learned_name = c.methods.last().unwrap().clone();
+    let (residual, oracle) = (rate(&learned_name), rate("oracle script"));
+    eprintln!("{learned_name}: {residual:.3}, oracle script {oracle:.3}");
+    assert!(residual >= 0.85, "{residual}");
+    assert!(residual >= oracle + 0.4, "{residual} vs {oracle}");
+}

@@ -75,8 +75,8 @@ impl CompareSpec {
 }
 
 /// The presets `fairgrasp compare` compares on by default: the seed recipe's (`seed`), the
-/// full randomisation, the hard one, and the four scenario families.
-pub const DEFAULT_PRESETS: [&str; 7] = [
+/// full randomisation, the hard one, the four scenario families and the contact family.
+pub const DEFAULT_PRESETS: [&str; 8] = [
     "seed",
     "full",
     "hard",
@@ -84,4 +84,5 @@ pub const DEFAULT_PRESETS: [&str; 7] = [
     "miscalibrated_b",
     "nudged",
     "wrist_camera",
+    "heavy_slippery",
 ];
