@@ -7,7 +7,15 @@ use std::path::Path;
 use fairgrasp_env::ConfigError;
 
 /// Name (the file's stem) and text of every shipped recipe, in name order.
-pub const SHIPPED: [(&str, &str); 5] = [
+pub const SHIPPED: [(&str, &str); 9] = [
+    (
+        "joint_residual_nudged",
+        include_str!("../../assets/experiments/joint_residual_nudged.toml"),
+    ),
+    (
+        "joint_residual_wrist_camera",
+        include_str!("../../assets/experiments/joint_residual_wrist_camera.toml"),
+    ),
     (
         "pure_full",
         include_str!("../../assets/experiments/pure_full.toml"),
@@ -19,6 +27,14 @@ pub const SHIPPED: [(&str, &str); 5] = [
     (
         "pure_tcp_seedreward_full",
         include_str!("../../assets/experiments/pure_tcp_seedreward_full.toml"),
+    ),
+    (
+        "residual_generalist",
+        include_str!("../../assets/experiments/residual_generalist.toml"),
+    ),
+    (
+        "residual_heavy_slippery",
+        include_str!("../../assets/experiments/residual_heavy_slippery.toml"),
     ),
     (
         "residual_miscalibrated",

@@ -68,12 +68,21 @@ def test_a_recipe_id_builds_the_env_the_recipe_trains_on(name):
         else:
             assert config["arm"]["action_space"] == "joint"
             assert env.unwrapped.action_names[0] == "j1_velocity"
+    elif agent["action_space"] == "joint":
+        # The seed's residual: observation ⊕ the baseline's 7 action values in, a correction of
+        # each out.
+        assert env.observation_space.shape == (fairgrasp.OBS_DIM + 7,)
+        assert names[fairgrasp.OBS_DIM:] == [f"baseline_action_{i}" for i in range(7)]
+        assert config["arm"]["action_space"] == "joint"
+        assert env.unwrapped.action_names[0] == "j1_velocity_correction"
     else:
-        # The residual: observation ⊕ the script's 19 features in, the correction out.
+        # The task-space residual: observation ⊕ the script's 19 features in, the correction
+        # out; with the squeeze, entry 4 commands the grip force.
         assert env.observation_space.shape == (fairgrasp.OBS_DIM + 19,)
         assert names[fairgrasp.OBS_DIM:] == FEATURES
         assert config["arm"]["action_space"] == "joint"
-        assert env.unwrapped.action_names == ["offset_x", "offset_y", "offset_z", "offset_yaw", "unused_4", "unused_5", "close_timing"]
+        entry_4 = "squeeze" if agent.get("squeeze", False) else "unused_4"
+        assert env.unwrapped.action_names == ["offset_x", "offset_y", "offset_z", "offset_yaw", entry_4, "unused_5", "close_timing"]
     _, info = env.reset(seed=3)
     if "curriculum" in recipe:
         assert info["curriculum_stage"] == 0 and info["curriculum_stage_name"] == "fixed"
@@ -174,3 +183,24 @@ def test_overrides_merge_and_drop():
     config = tomllib.loads(evaluation._native.config_toml())
     assert config["task"]["reward"] == preset_file("seed").get("task", {}).get("reward", "seed")
     assert config["arm"]["action_space"] == "tcp" and evaluation.curriculum_stage is None
+
+
+def test_the_squeeze_reaches_the_env_from_python():
+    """`residual_heavy_slippery`'s entry 4 commands the grip force in Python's env as in
+    training: a full squeeze lifts the heavy, slippery cubes the script's 5 N grip leaves on the
+    table."""
+    env = fairgrasp.make("residual_heavy_slippery")
+    squeeze = np.array([0, 0, 0, 0, 1.0, 0, 0])
+
+    def outcome(seed, action):
+        env.reset(seed=seed)
+        while True:
+            _, _, te, tr, info = env.step(action)
+            if te or tr:
+                return info["episode_record"]["outcome"]
+
+    seeds = range(100, 108)
+    held = [outcome(s, squeeze) for s in seeds]
+    plain = [outcome(s, np.zeros(7)) for s in seeds]
+    assert held.count("success") >= 7, held
+    assert plain.count("success") <= 5, plain
