@@ -234,6 +234,7 @@ fn every_docs_page_with_commands_is_run() {
     let run = [
         "docs/GUIDE.md",
         "docs/baseline.md",
+        "docs/contact.md",
         "docs/env.md",
         "docs/index.md",
         "docs/kinematics.md",
@@ -329,6 +330,19 @@ fn rl_commands_run_as_written() {
         &[
             "runs/res_miscalibrated_s0/metrics.csv",
             "runs/pure_full_s1/checkpoints/best/meta.json",
+        ],
+    );
+}
+
+#[test]
+fn contact_commands_run_as_written() {
+    run_page("docs/contact.md").has(
+        "docs/contact.md",
+        &[
+            "runs/res_heavy_s0/checkpoints/best/meta.json",
+            "runs/compare_heavy/report.md",
+            "squeeze.png",
+            "squeeze.csv",
         ],
     );
 }
