@@ -100,7 +100,8 @@ pub const OBS_DIM: usize = fairgrasp_env::env::obs::OBS_DIM;
 pub use fairgrasp_env::env::spaces::ACT_DIM;
 
 impl AgentConfig {
-    /// Checks the numbers (the residual's scale in (0, 10]); the message names the field.
+    /// Checks the numbers (the residual's scale in (0, 10]) and that only a task-space residual
+    /// has the squeeze; the message names the field.
     pub fn check(&self) -> Result<(), String> {
         if self.squeeze && !self.task_residual() {
             return Err(format!(
