@@ -37,6 +37,29 @@ pub trait Policy {
     }
 }
 
+/// A boxed policy is a policy: every method goes to the box's content, so no adapter has to
+/// list them (one that forgot `grip_force` once made a squeezing residual squeeze nothing).
+impl<P: Policy + ?Sized> Policy for Box<P> {
+    fn reset(&mut self, seed: u64) {
+        (**self).reset(seed);
+    }
+    fn act(&mut self, obs: &Observation) -> Action {
+        (**self).act(obs)
+    }
+    fn observe_truth(&mut self, truth: &ObservedObject) {
+        (**self).observe_truth(truth);
+    }
+    fn gave_up(&self) -> Option<Outcome> {
+        (**self).gave_up()
+    }
+    fn phase(&self) -> Option<&'static str> {
+        (**self).phase()
+    }
+    fn grip_force(&self) -> Option<f64> {
+        (**self).grip_force()
+    }
+}
+
 /// Runs one episode of `policy` from `scenario`; records it into `trajectory` if given.
 pub fn run_episode(
     env: &mut GraspEnv,

@@ -42,7 +42,7 @@ impl Script {
 
     pub fn reset(&mut self, seed: u64) {
         match self {
-            Script::Joint(b) => b.reset(seed),
+            Script::Joint(b) => (**b).reset(seed),
             Script::Task(r) => r.reset(seed),
         }
     }
@@ -52,7 +52,7 @@ impl Script {
     /// policy's correction.
     pub fn prepare(&mut self, obs: &Observation) -> Option<Action> {
         match self {
-            Script::Joint(b) => Some(b.act(obs)),
+            Script::Joint(b) => Some((**b).act(obs)),
             Script::Task(_) => None,
         }
     }
@@ -93,7 +93,7 @@ impl Script {
     /// The script's phase (for recorded trajectories).
     pub fn phase(&self) -> &'static str {
         match self {
-            Script::Joint(b) => b.phase().name(),
+            Script::Joint(b) => (**b).phase().name(),
             Script::Task(r) => r.script().phase().name(),
         }
     }
@@ -101,7 +101,7 @@ impl Script {
     /// Set when the script has given up (no IK solution).
     pub fn gave_up(&self) -> Option<Outcome> {
         match self {
-            Script::Joint(b) => b.gave_up(),
+            Script::Joint(b) => (**b).gave_up(),
             Script::Task(r) => r.script().gave_up(),
         }
     }

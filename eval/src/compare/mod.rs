@@ -193,30 +193,6 @@ pub(crate) fn make_policy(
     }
 }
 
-/// Adapts a boxed policy to `evaluate`'s generic parameter.
-struct Boxed(Box<dyn Policy>);
-
-impl Policy for Boxed {
-    fn reset(&mut self, seed: u64) {
-        self.0.reset(seed);
-    }
-    fn act(&mut self, obs: &fairgrasp_env::Observation) -> fairgrasp_env::Action {
-        self.0.act(obs)
-    }
-    fn observe_truth(&mut self, truth: &fairgrasp_env::scenario::perception::ObservedObject) {
-        self.0.observe_truth(truth);
-    }
-    fn gave_up(&self) -> Option<fairgrasp_env::episode::Outcome> {
-        self.0.gave_up()
-    }
-    fn phase(&self) -> Option<&'static str> {
-        self.0.phase()
-    }
-    fn grip_force(&self) -> Option<f64> {
-        self.0.grip_force()
-    }
-}
-
 /// The simulated camera calibration of a config's cell, for "script + calibration".
 pub(crate) fn calibration_of(
     config: &EnvConfig,
@@ -260,7 +236,7 @@ pub fn run_comparison(
                 preset: &preset.name,
                 method,
             });
-            let make = || Boxed(make_policy(i, learned, &preset.config, &calibration));
+            let make = || make_policy(i, learned, &preset.config, &calibration);
             let report: EvalReport = evaluate(
                 &preset.config,
                 &scenarios,
