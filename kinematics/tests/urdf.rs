@@ -277,3 +277,74 @@ fn a_floating_joint_in_the_chain_is_unsupported() {
     let message = load(&text).unwrap().chain(None).unwrap_err().to_string();
     assert!(message.contains("joint 'j1' is floating"), "{message}");
 }
+
+/// fairgrasp reads URDFs with its own pass over the XML (no urdf-rs in the build); on every
+/// shipped file, and on the test's own, it reads what urdf-rs reads: names, links, joint types,
+/// parents, children, origins, axes and limits.
+#[test]
+fn every_shipped_urdf_reads_as_urdf_rs_reads_it() {
+    let seven = include_str!("../../assets/seven_joint_arm.urdf");
+    for (file, text) in [
+        ("fr3.urdf", FR3_URDF),
+        ("fr5.urdf", fairgrasp_kinematics::FR5_URDF),
+        ("seven_joint_arm.urdf", seven),
+        ("tiny.urdf", TWO_LINKS),
+    ] {
+        let ours = UrdfRobot::from_str_named(text, file).unwrap();
+        let theirs = urdf_rs::read_from_string(text).unwrap();
+        assert_eq!(ours.name, theirs.name, "{file}");
+        let links: Vec<&str> = theirs.links.iter().map(|l| l.name.as_str()).collect();
+        assert_eq!(ours.links, links, "{file}");
+        assert_eq!(ours.joints.len(), theirs.joints.len(), "{file}");
+        for t in &theirs.joints {
+            let o = ours.joints.iter().find(|j| j.name == t.name).unwrap();
+            let what = format!("{file}: joint {}", t.name);
+            assert_eq!(
+                o.kind.name(),
+                format!("{:?}", t.joint_type).to_lowercase(),
+                "{what}"
+            );
+            assert_eq!(
+                (&o.parent, &o.child),
+                (&t.parent.link, &t.child.link),
+                "{what}"
+            );
+            let expected = fairgrasp_kinematics::Pose::from_xyz_rpy(t.origin.xyz.0, t.origin.rpy.0);
+            assert_eq!(o.origin, expected, "{what}");
+            let a = t.axis.xyz.0;
+            let norm = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            for (ours, theirs) in o.axis.iter().zip(a) {
+                assert!((ours - theirs / norm).abs() < 1e-12, "{what}: axis");
+            }
+            let limits = o.limits.unwrap_or([t.limit.lower, t.limit.upper]);
+            assert_eq!(limits, [t.limit.lower, t.limit.upper], "{what}");
+            assert_eq!(
+                (o.max_velocity, o.max_effort),
+                (t.limit.velocity, t.limit.effort),
+                "{what}"
+            );
+        }
+    }
+}
+
+#[test]
+fn what_the_reader_needs_and_does_not_find_is_named_with_its_line() {
+    let no_parent = TWO_LINKS.replace("    <parent link=\"base_link\"/>\n", "");
+    let e = load(&no_parent).unwrap_err().to_string();
+    assert!(
+        e.contains("bad.urdf") && e.contains("line 5") && e.contains("joint 'j1' has no <parent"),
+        "{e}"
+    );
+    let not_robot = "<?xml version=\"1.0\"?>\n<model name=\"m\"><link name=\"a\"/></model>\n";
+    let e = load(not_robot).unwrap_err().to_string();
+    assert!(
+        e.contains("line 2") && e.contains("root element is <model>"),
+        "{e}"
+    );
+    let unnamed = TWO_LINKS.replace("<robot name=\"tiny\">", "<robot>");
+    let e = load(&unnamed).unwrap_err().to_string();
+    assert!(e.contains("<robot> has no name"), "{e}");
+    let bad_parent = TWO_LINKS.replace("<parent link=\"base_link\"/>", "<parent/>");
+    let e = load(&bad_parent).unwrap_err().to_string();
+    assert!(e.contains("joint 'j1' <parent>: no link attribute"), "{e}");
+}

@@ -1,9 +1,8 @@
 //! A first pass over URDF text that names the offending element, attribute and line.
 //!
-//! `urdf-rs` reports a bad number or an unknown joint type without saying where, and it builds a
-//! tree with one level of recursion per level of nesting. This pass reads the XML once, in time
-//! linear in its length and with no recursion, before `urdf-rs` sees it, and reports the first
-//! fault as `line N: joint 'j2' <origin> xyz="0 0 abc": …`. It checks
+//! This pass reads the XML once, in time linear in its length and with no recursion, before the
+//! robot is read out of it (`read.rs`), and reports the first fault as
+//! `line N: joint 'j2' <origin> xyz="0 0 abc": …`. It checks
 //! - the size ([`MAX_URDF_BYTES`]) and the nesting depth ([`MAX_NESTING_DEPTH`]),
 //! - every joint's type, and that revolute and prismatic joints have a `<limit>`,
 //! - that no two links and no two joints share a name,
@@ -15,17 +14,7 @@ use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 
 use crate::urdf::error::UrdfError;
-
-/// The joint types URDF defines (`urdf-rs` reads all of them).
-pub const URDF_JOINT_TYPES: [&str; 7] = [
-    "revolute",
-    "continuous",
-    "prismatic",
-    "fixed",
-    "floating",
-    "planar",
-    "spherical",
-];
+use crate::urdf::joint::JointKind;
 
 /// The largest URDF text read [bytes]. A URDF names its mesh files rather than holding them:
 /// the shipped FR3 file is 8 kB, a humanoid's a few hundred kB.
@@ -292,7 +281,8 @@ fn shorten(value: String) -> String {
     }
 }
 
-fn attribute(element: &BytesStart<'_>, key: &str) -> Option<String> {
+/// Attribute `key` of `element`, unescaped (`None` when absent or not decodable).
+pub(crate) fn attribute(element: &BytesStart<'_>, key: &str) -> Option<String> {
     element
         .attributes()
         .flatten()
@@ -308,7 +298,7 @@ fn check_joint_type(
     element: &BytesStart<'_>,
 ) -> Result<String, UrdfError> {
     match attribute(element, "type") {
-        Some(kind) if URDF_JOINT_TYPES.contains(&kind.as_str()) => Ok(kind),
+        Some(kind) if JointKind::from_name(&kind).is_some() => Ok(kind),
         found => Err(UrdfError::UnknownJointType {
             file: file.to_string(),
             line,

@@ -18,6 +18,22 @@ pub enum JointKind {
 }
 
 impl JointKind {
+    /// Every joint type URDF defines.
+    pub const ALL: [JointKind; 7] = [
+        JointKind::Revolute,
+        JointKind::Continuous,
+        JointKind::Prismatic,
+        JointKind::Fixed,
+        JointKind::Floating,
+        JointKind::Planar,
+        JointKind::Spherical,
+    ];
+
+    /// The joint type of a URDF `type` attribute (`None` for anything else).
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+
     /// The URDF spelling.
     pub fn name(self) -> &'static str {
         match self {

@@ -16,6 +16,7 @@ use crate::urdf::chain::SerialChain;
 use crate::urdf::check::{MAX_URDF_BYTES, check_urdf_text};
 use crate::urdf::error::UrdfError;
 use crate::urdf::joint::{JointKind, UrdfJoint};
+use crate::urdf::read::{JointText, RobotText, read_robot};
 
 /// A parsed robot: its joints in depth-first order from the root link.
 #[derive(Clone, Debug, PartialEq)]
@@ -59,11 +60,7 @@ impl UrdfRobot {
     /// Parses URDF text of at most [`MAX_URDF_BYTES`]; `file` names it in error messages.
     pub fn from_str_named(text: &str, file: &str) -> Result<Self, UrdfError> {
         check_urdf_text(file, text)?;
-        let robot = urdf_rs::read_from_string(text).map_err(|e| UrdfError::Parse {
-            file: file.to_string(),
-            message: e.to_string(),
-        })?;
-        build_tree(file, robot)
+        build_tree(file, read_robot(file, text)?)
     }
 
     /// Joints with one degree of freedom, in tree order.
@@ -132,12 +129,12 @@ fn child_joints(joints: &[UrdfJoint]) -> HashMap<&str, Vec<&UrdfJoint>> {
     children
 }
 
-fn build_tree(file: &str, robot: urdf_rs::Robot) -> Result<UrdfRobot, UrdfError> {
-    let links: Vec<String> = robot.links.iter().map(|l| l.name.clone()).collect();
+fn build_tree(file: &str, robot: RobotText) -> Result<UrdfRobot, UrdfError> {
+    let links = robot.links;
     let known_links: HashSet<&str> = links.iter().map(String::as_str).collect();
     let mut parent_of: HashMap<&str, &str> = HashMap::new();
     for j in &robot.joints {
-        for (role, link) in [("parent", &j.parent.link), ("child", &j.child.link)] {
+        for (role, link) in [("parent", &j.parent), ("child", &j.child)] {
             if !known_links.contains(link.as_str()) {
                 return Err(UrdfError::MissingLink {
                     file: file.to_string(),
@@ -147,12 +144,12 @@ fn build_tree(file: &str, robot: urdf_rs::Robot) -> Result<UrdfRobot, UrdfError>
                 });
             }
         }
-        if let Some(other) = parent_of.insert(&j.child.link, &j.name) {
+        if let Some(other) = parent_of.insert(&j.child, &j.name) {
             return Err(UrdfError::NotATree {
                 file: file.to_string(),
                 detail: format!(
                     "link '{}' is the child of two joints, '{other}' and '{}'",
-                    j.child.link, j.name
+                    j.child, j.name
                 ),
             });
         }
@@ -217,35 +214,28 @@ fn depth_first(pool: &[UrdfJoint], root: &str) -> Vec<UrdfJoint> {
     ordered
 }
 
-fn convert_joint(file: &str, j: &urdf_rs::Joint) -> Result<UrdfJoint, UrdfError> {
-    let kind = match j.joint_type {
-        urdf_rs::JointType::Revolute => JointKind::Revolute,
-        urdf_rs::JointType::Continuous => JointKind::Continuous,
-        urdf_rs::JointType::Prismatic => JointKind::Prismatic,
-        urdf_rs::JointType::Fixed => JointKind::Fixed,
-        urdf_rs::JointType::Floating => JointKind::Floating,
-        urdf_rs::JointType::Planar => JointKind::Planar,
-        urdf_rs::JointType::Spherical => JointKind::Spherical,
-    };
+fn convert_joint(file: &str, j: &JointText) -> Result<UrdfJoint, UrdfError> {
     let bad = |problem: String| UrdfError::BadJoint {
         file: file.to_string(),
         joint: j.name.clone(),
         problem,
     };
+    let kind = JointKind::from_name(&j.kind)
+        .ok_or_else(|| bad(format!("unknown joint type \"{}\"", j.kind)))?;
     // Scaled by its largest component first, so that 1e200 does not overflow the norm.
-    let axis = Vector3::from(j.axis.xyz.0);
+    let axis = Vector3::from(j.axis);
     let largest = axis.amax();
     let axis = if largest > 0.0 { axis / largest } else { axis };
     let norm = axis.norm();
     if kind.is_single_axis() && largest < 1e-9 {
-        let [x, y, z] = j.axis.xyz.0;
+        let [x, y, z] = j.axis;
         return Err(bad(format!(
             "its axis is zero: <axis xyz=\"{x} {y} {z}\"/>; a unit vector is expected"
         )));
     }
     let limits = match kind {
         JointKind::Revolute | JointKind::Prismatic => {
-            let (lower, upper) = (j.limit.lower, j.limit.upper);
+            let (lower, upper) = (j.lower, j.upper);
             if lower > upper {
                 return Err(bad(format!(
                     "limit lower = {lower} is above upper = {upper}"
@@ -258,16 +248,16 @@ fn convert_joint(file: &str, j: &urdf_rs::Joint) -> Result<UrdfJoint, UrdfError>
     Ok(UrdfJoint {
         name: j.name.clone(),
         kind,
-        parent: j.parent.link.clone(),
-        child: j.child.link.clone(),
-        origin: Pose::from_xyz_rpy(j.origin.xyz.0, j.origin.rpy.0),
+        parent: j.parent.clone(),
+        child: j.child.clone(),
+        origin: Pose::from_xyz_rpy(j.xyz, j.rpy),
         axis: if norm > 0.0 {
             (axis / norm).into()
         } else {
             [0.0, 0.0, 1.0]
         },
         limits,
-        max_velocity: j.limit.velocity,
-        max_effort: j.limit.effort,
+        max_velocity: j.velocity,
+        max_effort: j.effort,
     })
 }
