@@ -44,7 +44,7 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
     let learned = shipped_residual();
     let (episodes_done, started) = (AtomicUsize::new(0), Mutex::new(Vec::new()));
     let out = run_comparison(&spec(&["fixed", "seed"], 3), &learned, &|e| match e {
-        CompareEvent::Episode => {
+        CompareEvent::Episode { .. } => {
             episodes_done.fetch_add(1, Ordering::Relaxed);
         }
         CompareEvent::Method { preset, method } => {
@@ -176,4 +176,43 @@ fn the_squeezing_residual_beats_the_oracle_script_on_heavy_slippery_cubes_in_a_c
     eprintln!("{learned_name}: {residual:.3}, oracle script {oracle:.3}");
     assert!(residual >= 0.85, "{residual}");
     assert!(residual >= oracle + 0.4, "{residual} vs {oracle}");
+}
+
+/// The workers share one queue of episodes across methods and presets: the results do not
+/// depend on how many there are, and equal each method evaluated alone, scenario by scenario.
+#[test]
+fn the_shared_episode_queue_gives_each_method_its_own_evaluation_whatever_the_threads() {
+    let learned = shipped_residual();
+    let run = |threads: usize| {
+        let mut s = spec(&["seed", "nudged"], 7);
+        s.threads = threads;
+        s.replay_episodes = 0;
+        let events = Mutex::new(Vec::new());
+        let out = run_comparison(&s, &learned, &|e| {
+            if let CompareEvent::MethodDone { preset, method, .. } = e {
+                events.lock().unwrap().push(format!("{preset}/{method}"));
+            }
+        })
+        .unwrap();
+        (out.comparison, events.into_inner().unwrap())
+    };
+    let (one, done_one) = run(1);
+    let (three, done_three) = run(3);
+    assert_eq!(one.results, three.results);
+    assert_eq!(done_one.len(), one.results.len());
+    let mut sorted = done_three.clone();
+    sorted.sort();
+    let mut expected = done_one.clone();
+    expected.sort();
+    assert_eq!(
+        sorted, expected,
+        "every method finishes once on every preset"
+    );
+    let config = presets::load("nudged").unwrap();
+    let scenarios = fairgrasp_env::scenario::scenario_set(&config, 11, 7).unwrap();
+    let make = || fairgrasp_planner::ClosedLoopGrasp::observed(&config);
+    let alone =
+        fairgrasp_env::episode::evaluate(&config, &scenarios, 1, None, &make, &|| {}).unwrap();
+    let compared = three.get("closed-loop script", "nudged").unwrap();
+    assert_eq!(compared.report.results, alone.results);
 }

@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::charts::draw_all::{Drawing, draw_all};
 use crate::charts::{curves, episode, replay, success, workspace};
 use crate::compare::{Comparison, markdown_table, paired_markdown};
 use crate::document::{Document, toml_block};
@@ -217,10 +218,58 @@ fn comparison_section(
              equally good.\n\n{paired}"
         ));
     }
-    let file = format!("{prefix}success_rate.png");
-    success::success_chart(c, &out.join(&file))?;
-    written.push(file.clone());
-    doc.image(&file, "success rate per method and preset with 95 % CI");
+    // Every chart of the section, drawn at once (`draw_all`); the text below names them.
+    let success_png = format!("{prefix}success_rate.png");
+    let workspace_pngs: Vec<(String, &String)> = c
+        .presets
+        .iter()
+        .map(|p| (format!("{prefix}workspace_{}.png", slug(p)), p))
+        .collect();
+    let episode_files: Vec<(String, String, String, &Trajectory)> = c
+        .recorded
+        .iter()
+        .zip(trajectories)
+        .map(|(rec, t)| {
+            let stem = format!(
+                "{prefix}{}_{}_ep{}",
+                slug(&rec.method),
+                slug(&rec.preset),
+                rec.episode
+            );
+            let title = format!(
+                "{} on `{}`, episode {} ({})",
+                rec.method, rec.preset, rec.episode, rec.outcome
+            );
+            (
+                format!("episode_{stem}.png"),
+                format!("replay_{stem}.gif"),
+                title,
+                t,
+            )
+        })
+        .collect();
+    let mut drawings: Vec<Drawing<'_>> = vec![Box::new(|| {
+        success::success_chart(c, &out.join(&success_png))
+    })];
+    for (file, preset) in &workspace_pngs {
+        drawings.push(Box::new(move || {
+            workspace::workspace_map(c, preset, &out.join(file))
+        }));
+    }
+    for (png, gif, title, t) in &episode_files {
+        drawings.push(Box::new(move || {
+            episode::episode_chart(t, title, &out.join(png))
+        }));
+        drawings.push(Box::new(move || {
+            replay::replay_gif(t, title, &out.join(gif))
+        }));
+    }
+    draw_all(&drawings)?;
+    written.push(success_png.clone());
+    doc.image(
+        &success_png,
+        "success rate per method and preset with 95 % CI",
+    );
     doc.markdown(
         "**Discussion.** Which preset separates the methods? Are the intervals of two methods \
          disjoint, or is the difference within noise? What does the failure breakdown say \
@@ -231,11 +280,9 @@ fn comparison_section(
          (the arm base is the cross at the origin): every dot is one episode's cube start, \
          coloured by how the episode ended.",
     );
-    for preset in &c.presets {
-        let file = format!("{prefix}workspace_{}.png", slug(preset));
-        workspace::workspace_map(c, preset, &out.join(&file))?;
+    for (file, preset) in &workspace_pngs {
         written.push(file.clone());
-        doc.image(&file, &format!("workspace map, preset {preset}"));
+        doc.image(file, &format!("workspace map, preset {preset}"));
     }
     if !c.recorded.is_empty() {
         doc.markdown(
@@ -245,25 +292,11 @@ fn comparison_section(
              cube and the table).",
         );
     }
-    for (rec, trajectory) in c.recorded.iter().zip(trajectories) {
-        let stem = format!(
-            "{prefix}{}_{}_ep{}",
-            slug(&rec.method),
-            slug(&rec.preset),
-            rec.episode
-        );
-        let title = format!(
-            "{} on `{}`, episode {} ({})",
-            rec.method, rec.preset, rec.episode, rec.outcome
-        );
-        let png = format!("episode_{stem}.png");
-        episode::episode_chart(trajectory, &title, &out.join(&png))?;
-        let gif = format!("replay_{stem}.gif");
-        replay::replay_gif(trajectory, &title, &out.join(&gif))?;
+    for (png, gif, title, _) in &episode_files {
         written.extend([png.clone(), gif.clone()]);
         doc.markdown(format!("#### {title}"));
-        doc.image(&png, &title);
-        doc.image(&gif, &format!("replay: {title}"));
+        doc.image(png, title);
+        doc.image(gif, &format!("replay: {title}"));
     }
     crate::replay3d::section::replay_section(doc, (dir, c, trajectories), out, prefix, written)?;
     doc.markdown(format!(

@@ -1,6 +1,7 @@
 //! Live progress on stderr (never on stdout): `compare`'s progress bar per preset × method
 //! (plain lines when stderr is not a terminal). `train`'s lines are in [`super::train`].
 
+use std::collections::HashMap;
 use std::io::IsTerminal;
 use std::time::Instant;
 
@@ -8,14 +9,15 @@ use fairgrasp_eval::compare::CompareEvent;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// `compare`'s progress: a bar per preset × method in a terminal, else a line per finished
-/// preset × method; nothing with `quiet`.
+/// preset × method; nothing with `quiet`. Two methods can be running at once (the workers share
+/// one queue of episodes), so each bar is found by its preset and method.
 pub struct CompareBars {
     multi: MultiProgress,
-    current: Option<ProgressBar>,
+    /// The running bars and when each started, by (preset, method).
+    running: HashMap<(String, String), (ProgressBar, Instant)>,
     episodes: u64,
     terminal: bool,
     quiet: bool,
-    started: Instant,
 }
 
 impl CompareBars {
@@ -29,11 +31,10 @@ impl CompareBars {
         };
         CompareBars {
             multi: MultiProgress::with_draw_target(target),
-            current: None,
+            running: HashMap::new(),
             episodes,
             terminal,
             quiet,
-            started: Instant::now(),
         }
     }
 
@@ -48,11 +49,11 @@ impl CompareBars {
                         .progress_chars("=> "),
                 );
                 bar.set_prefix(format!("{preset} · {method}"));
-                self.current = Some(bar);
-                self.started = Instant::now();
+                self.running
+                    .insert((preset.into(), method.into()), (bar, Instant::now()));
             }
-            CompareEvent::Episode => {
-                if let Some(bar) = &self.current {
+            CompareEvent::Episode { preset, method } => {
+                if let Some((bar, _)) = self.running.get(&(preset.into(), method.into())) {
                     bar.inc(1);
                 }
             }
@@ -62,14 +63,16 @@ impl CompareBars {
                 success_rate,
             } => {
                 let text = format!("{:.1} % success", 100.0 * success_rate);
-                if let Some(bar) = self.current.take() {
-                    bar.finish_with_message(text.clone());
-                }
+                let Some((bar, started)) = self.running.remove(&(preset.into(), method.into()))
+                else {
+                    return;
+                };
+                bar.finish_with_message(text.clone());
                 if !self.terminal && !self.quiet {
                     eprintln!(
                         "compare: {preset} · {method}: {} episodes, {text}, {:.1} s",
                         self.episodes,
-                        self.started.elapsed().as_secs_f64()
+                        started.elapsed().as_secs_f64()
                     );
                 }
             }

@@ -10,17 +10,19 @@
 //! - [`record`]: recording every method on chosen scenarios (the charts' episode, the replay's).
 //! - [`methods`]: a method named on the command line (`fairgrasp replay --policy`).
 //! - [`spec`]: what a comparison runs, and the default presets.
+//! - `schedule`: the evaluations as one queue of episodes shared by the worker threads.
 
 pub mod methods;
 pub mod record;
+mod schedule;
 pub mod spec;
 
 pub use spec::{ComparePreset, CompareSpec, DEFAULT_PRESETS, MAX_THREADS, default_threads};
 
 use std::path::{Path, PathBuf};
 
+use fairgrasp_env::episode::Policy;
 use fairgrasp_env::episode::trajectory::Trajectory;
-use fairgrasp_env::episode::{EvalReport, Policy, evaluate};
 use fairgrasp_env::scenario::{Scenario, scenario_set};
 use fairgrasp_env::{EnvConfig, EnvError};
 use fairgrasp_planner::{
@@ -126,8 +128,9 @@ pub fn run_folder_of(checkpoint: &Path) -> Option<PathBuf> {
 pub enum CompareEvent<'a> {
     /// A method starts on a preset's scenario set.
     Method { preset: &'a str, method: &'a str },
-    /// One more episode is done.
-    Episode,
+    /// One more episode of this preset and method is done (episodes of two methods may
+    /// finish interleaved: the workers share one queue).
+    Episode { preset: &'a str, method: &'a str },
     /// A method has finished a preset's scenario set with this success rate.
     MethodDone {
         preset: &'a str,
@@ -226,30 +229,20 @@ pub fn run_comparison(
     spec.check()?;
     let mut methods: Vec<String> = SCRIPTS.iter().map(|s| s.to_string()).collect();
     methods.extend(learned.iter().map(|l| l.name.clone()));
-    let mut results = Vec::new();
-    let mut last_scenarios = Vec::new();
+    let mut work = Vec::with_capacity(spec.presets.len());
     for preset in &spec.presets {
-        let scenarios = scenarios_of(preset, spec)?;
-        let calibration = calibration_of(&preset.config, &preset.name)?;
+        work.push(schedule::PresetWork {
+            name: &preset.name,
+            config: &preset.config,
+            scenarios: scenarios_of(preset, spec)?,
+            calibration: calibration_of(&preset.config, &preset.name)?,
+        });
+    }
+    let reports = schedule::evaluate_all(&work, &methods, learned, spec.threads, progress)?;
+    let mut reports = reports.into_iter();
+    let mut results = Vec::with_capacity(work.len() * methods.len());
+    for preset in &spec.presets {
         for (i, method) in methods.iter().enumerate() {
-            progress(CompareEvent::Method {
-                preset: &preset.name,
-                method,
-            });
-            let make = || make_policy(i, learned, &preset.config, &calibration);
-            let report: EvalReport = evaluate(
-                &preset.config,
-                &scenarios,
-                spec.threads,
-                None,
-                &make,
-                &|| progress(CompareEvent::Episode),
-            )?;
-            progress(CompareEvent::MethodDone {
-                preset: &preset.name,
-                method,
-                success_rate: report.success_rate,
-            });
             results.push(MethodResult {
                 method: method.clone(),
                 preset: preset.name.clone(),
@@ -258,11 +251,11 @@ pub fn run_comparison(
                 policy: i
                     .checked_sub(SCRIPTS.len())
                     .map(|j| learned[j].dir.display().to_string()),
-                report,
+                report: reports.next().expect("a report per preset and method"),
             });
         }
-        last_scenarios = scenarios;
     }
+    let last_scenarios = work.pop().map(|w| w.scenarios).unwrap_or_default();
 
     // `check` refused an empty preset list, so there is a last preset.
     let last = &spec.presets[spec.presets.len() - 1];

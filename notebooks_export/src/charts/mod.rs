@@ -10,6 +10,7 @@
 
 pub mod axis;
 pub mod curves;
+pub(crate) mod draw_all;
 pub mod episode;
 pub mod replay;
 pub mod squeeze;
