@@ -2,8 +2,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::charts::draw_all::{Drawing, draw_all};
-use crate::charts::{curves, episode, replay, success, workspace};
+use crate::charts::curves;
+use crate::charts::draw_all::draw_comparison_charts;
 use crate::compare::{Comparison, markdown_table, paired_markdown};
 use crate::document::{Document, toml_block};
 use crate::error::{ReportError, write_file};
@@ -67,7 +67,7 @@ pub use fairgrasp_types::fs::slug;
 /// whole or not at all ([`StagedFolder`]; `existing` says whether an earlier fairgrasp report
 /// there may be replaced); returns every file written. All inputs are loaded (and refused if
 /// broken), and `out` is checked, before anything is written; `out` may not be, or contain,
-/// an input.
+/// an input. The charts are drawn on one thread per core.
 pub fn build_report(
     inputs: &[PathBuf],
     out: &Path,
@@ -85,7 +85,8 @@ pub fn build_report(
         });
     }
     let staged = StagedFolder::create(out, existing, "fairgrasp report")?;
-    let written = write_report(&loaded, staged.path(), out)?;
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let written = write_report(&loaded, staged.path(), out, threads)?;
     staged.commit()?;
     Ok(written.iter().map(|name| out.join(name)).collect())
 }
@@ -114,11 +115,13 @@ fn input_inside<'a>(inputs: &'a [PathBuf], out: &Path) -> Option<&'a PathBuf> {
 
 /// Writes charts, `report.md` and `report.ipynb` for the loaded `inputs` into the existing
 /// folder `dir` (a [`StagedFolder`]'s path), which will end up at `shown_as` (the name the
-/// report gives the folder); returns the files written, relative to `dir`.
+/// report gives the folder); returns the files written, relative to `dir`. The charts are drawn
+/// on `threads` threads.
 pub fn write_report(
     loaded: &[Input],
     dir: &Path,
     shown_as: &Path,
+    threads: usize,
 ) -> Result<Vec<String>, ReportError> {
     let out = dir;
     let mut written = Vec::new();
@@ -153,8 +156,7 @@ pub fn write_report(
                 comparison_section(
                     &mut doc,
                     (dir, shown, comparison, trajectories),
-                    out,
-                    &prefix,
+                    (out, &prefix, threads),
                     &mut written,
                 )?;
                 for folder in &comparison.run_folders {
@@ -192,8 +194,7 @@ pub fn write_report(
 fn comparison_section(
     doc: &mut Document,
     (dir, shown, c, trajectories): (&Path, &Path, &Comparison, &[Trajectory]),
-    out: &Path,
-    prefix: &str,
+    (out, prefix, threads): (&Path, &str, usize),
     written: &mut Vec<String>,
 ) -> Result<(), ReportError> {
     let episodes = c.results.first().map_or(0, |r| r.report.episodes);
@@ -218,56 +219,10 @@ fn comparison_section(
              equally good.\n\n{paired}"
         ));
     }
-    // Every chart of the section, drawn at once (`draw_all`); the text below names them.
-    let success_png = format!("{prefix}success_rate.png");
-    let workspace_pngs: Vec<(String, &String)> = c
-        .presets
-        .iter()
-        .map(|p| (format!("{prefix}workspace_{}.png", slug(p)), p))
-        .collect();
-    let episode_files: Vec<(String, String, String, &Trajectory)> = c
-        .recorded
-        .iter()
-        .zip(trajectories)
-        .map(|(rec, t)| {
-            let stem = format!(
-                "{prefix}{}_{}_ep{}",
-                slug(&rec.method),
-                slug(&rec.preset),
-                rec.episode
-            );
-            let title = format!(
-                "{} on `{}`, episode {} ({})",
-                rec.method, rec.preset, rec.episode, rec.outcome
-            );
-            (
-                format!("episode_{stem}.png"),
-                format!("replay_{stem}.gif"),
-                title,
-                t,
-            )
-        })
-        .collect();
-    let mut drawings: Vec<Drawing<'_>> = vec![Box::new(|| {
-        success::success_chart(c, &out.join(&success_png))
-    })];
-    for (file, preset) in &workspace_pngs {
-        drawings.push(Box::new(move || {
-            workspace::workspace_map(c, preset, &out.join(file))
-        }));
-    }
-    for (png, gif, title, t) in &episode_files {
-        drawings.push(Box::new(move || {
-            episode::episode_chart(t, title, &out.join(png))
-        }));
-        drawings.push(Box::new(move || {
-            replay::replay_gif(t, title, &out.join(gif))
-        }));
-    }
-    draw_all(&drawings)?;
-    written.push(success_png.clone());
+    let charts = draw_comparison_charts(c, trajectories, out, prefix, threads)?;
+    written.push(charts.success.clone());
     doc.image(
-        &success_png,
+        &charts.success,
         "success rate per method and preset with 95 % CI",
     );
     doc.markdown(
@@ -280,7 +235,7 @@ fn comparison_section(
          (the arm base is the cross at the origin): every dot is one episode's cube start, \
          coloured by how the episode ended.",
     );
-    for (file, preset) in &workspace_pngs {
+    for (file, preset) in &charts.workspaces {
         written.push(file.clone());
         doc.image(file, &format!("workspace map, preset {preset}"));
     }
@@ -292,7 +247,7 @@ fn comparison_section(
              cube and the table).",
         );
     }
-    for (png, gif, title, _) in &episode_files {
+    for (png, gif, title) in &charts.episodes {
         written.extend([png.clone(), gif.clone()]);
         doc.markdown(format!("#### {title}"));
         doc.image(png, title);

@@ -127,7 +127,7 @@ pub(crate) fn compare(
                 .map_err(|e| e.to_string())?;
         }
         let comparison = output.comparison.clone();
-        write_comparison_folder(staged, &comparison, out, |dir| {
+        write_comparison_folder(staged, &comparison, out, spec.threads, |dir| {
             output.save_episodes(dir).map_err(|e| e.to_string())
         })
         .map_err(|e| e.to_string())

@@ -120,7 +120,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     })?;
 
     let comparison = &output.comparison;
-    let written = write_comparison_folder(staged, comparison, &a.out, |dir| {
+    let written = write_comparison_folder(staged, comparison, &a.out, spec.threads, |dir| {
         output.save_episodes(dir).map_err(|e| e.to_string())
     })?;
     if fairgrasp_report::replay3d::three_version().is_none() {

@@ -11,6 +11,7 @@
 //!   the robot's bodies and shapes in it, for 3D replays.
 //! - [`fs`]: [`write_atomic`], the one way fairgrasp writes a result file; [`output`]: when an
 //!   existing file may be written over (only one fairgrasp wrote).
+//! - [`work_queue`]: numbered jobs shared by worker threads, results in job order.
 
 pub mod body;
 pub mod checksum;
@@ -22,6 +23,7 @@ pub mod names;
 pub mod output;
 pub mod paired;
 pub mod trajectory;
+pub mod work_queue;
 
 pub use compare::{Comparison, MethodResult, RecordedEpisode, SchemaError};
 pub use episode::{EpisodeFacts, EpisodeRecord};

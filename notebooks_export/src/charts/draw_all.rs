@@ -1,49 +1,86 @@
-//! Drawing a report's charts at once: PNG and GIF encoding are most of a report's time, and
-//! every chart is its own file, so they are drawn on one thread per core, each thread claiming
-//! the next chart not yet drawn. The files are the same as drawn one after another.
+//! A comparison's charts drawn at once: PNG and GIF encoding are most of a report's time, and
+//! every chart is its own file, so they are jobs of a queue shared by the threads
+//! ([`fairgrasp_types::work_queue`]). The files are the same as drawn one after another; a
+//! failure returns the error of the first failing chart in the order listed here.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::path::Path;
 
+use fairgrasp_types::fs::slug;
+use fairgrasp_types::work_queue::run_in_order;
+
+use crate::charts::{episode, replay, success, workspace};
+use crate::compare::Comparison;
 use crate::error::ReportError;
+use crate::trajectory::Trajectory;
 
-/// One chart to draw (it writes its own file).
-pub(crate) type Drawing<'a> = Box<dyn Fn() -> Result<(), ReportError> + Send + Sync + 'a>;
+/// The chart files of one comparison section, relative to the report folder.
+pub(crate) struct ComparisonCharts {
+    /// Success rate per method and preset.
+    pub success: String,
+    /// A workspace map per preset: (file, preset).
+    pub workspaces: Vec<(String, String)>,
+    /// Per recorded episode that has its trajectory: (episode chart PNG, replay GIF, title).
+    pub episodes: Vec<(String, String, String)>,
+}
 
-/// Draws every drawing; on failure, returns the error of the first failing one in list order
-/// (the same error whatever the threads did), after the others have stopped.
-pub(crate) fn draw_all(drawings: &[Drawing<'_>]) -> Result<(), ReportError> {
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(drawings.len())
-        .max(1);
-    let next = AtomicUsize::new(0);
-    let failed = AtomicUsize::new(usize::MAX);
-    let mut errors: Vec<(usize, ReportError)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..threads)
-            .map(|_| {
-                scope.spawn(|| {
-                    let mut errors = Vec::new();
-                    loop {
-                        let j = next.fetch_add(1, Ordering::Relaxed);
-                        if j >= drawings.len() || j > failed.load(Ordering::Relaxed) {
-                            return errors;
-                        }
-                        if let Err(e) = drawings[j]() {
-                            failed.fetch_min(j, Ordering::Relaxed);
-                            errors.push((j, e));
-                        }
-                    }
-                })
+/// Draws the success chart, a workspace map per preset and, per recorded episode (`trajectories`
+/// in the order of `c.recorded`), its chart and GIF replay into `out`, file names starting with
+/// `prefix`, on `threads` threads.
+pub(crate) fn draw_comparison_charts(
+    c: &Comparison,
+    trajectories: &[Trajectory],
+    out: &Path,
+    prefix: &str,
+    threads: usize,
+) -> Result<ComparisonCharts, ReportError> {
+    let charts = ComparisonCharts {
+        success: format!("{prefix}success_rate.png"),
+        workspaces: c
+            .presets
+            .iter()
+            .map(|p| (format!("{prefix}workspace_{}.png", slug(p)), p.clone()))
+            .collect(),
+        episodes: c
+            .recorded
+            .iter()
+            .zip(trajectories)
+            .map(|(rec, _)| {
+                let stem = format!(
+                    "{prefix}{}_{}_ep{}",
+                    slug(&rec.method),
+                    slug(&rec.preset),
+                    rec.episode
+                );
+                let title = format!(
+                    "{} on `{}`, episode {} ({})",
+                    rec.method, rec.preset, rec.episode, rec.outcome
+                );
+                (
+                    format!("episode_{stem}.png"),
+                    format!("replay_{stem}.gif"),
+                    title,
+                )
             })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().expect("a chart-drawing thread panicked"))
-            .collect()
-    });
-    errors.sort_by_key(|(j, _)| *j);
-    match errors.into_iter().next() {
-        Some((_, e)) => Err(e),
-        None => Ok(()),
-    }
+            .collect(),
+    };
+    // Job 0: the success chart; then one per workspace map; then two per recorded episode.
+    let maps = charts.workspaces.len();
+    let episodes = charts.episodes.len();
+    let draw = |_: &mut (), j: usize| -> Result<(), ReportError> {
+        if j == 0 {
+            return success::success_chart(c, &out.join(&charts.success));
+        }
+        if let Some((file, preset)) = charts.workspaces.get(j - 1) {
+            return workspace::workspace_map(c, preset, &out.join(file));
+        }
+        let k = j - 1 - maps;
+        let ((png, gif, title), t) = (&charts.episodes[k / 2], &trajectories[k / 2]);
+        if k.is_multiple_of(2) {
+            episode::episode_chart(t, title, &out.join(png))
+        } else {
+            replay::replay_gif(t, title, &out.join(gif))
+        }
+    };
+    run_in_order(1 + maps + 2 * episodes, threads, &|_| {}, &|| (), &draw)?;
+    Ok(charts)
 }
