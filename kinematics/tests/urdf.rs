@@ -284,7 +284,15 @@ fn a_floating_joint_in_the_chain_is_unsupported() {
 #[test]
 fn every_shipped_urdf_reads_as_urdf_rs_reads_it() {
     let seven = include_str!("../../assets/seven_joint_arm.urdf");
+    // URDF 1.1: a rotation given as a quaternion (urdf-rs turns it into rpy).
+    let quaternion = TWO_LINKS
+        .replace(
+            "<robot name=\"tiny\">",
+            "<robot name=\"tiny\" version=\"1.1\">",
+        )
+        .replace("rpy=\"0 0 0\"", "quat_xyzw=\"0.1 -0.4 0.3 0.8\"");
     for (file, text) in [
+        ("quaternion.urdf", quaternion.as_str()),
         ("fr3.urdf", FR3_URDF),
         ("fr5.urdf", fairgrasp_kinematics::FR5_URDF),
         ("seven_joint_arm.urdf", seven),
@@ -310,7 +318,9 @@ fn every_shipped_urdf_reads_as_urdf_rs_reads_it() {
                 "{what}"
             );
             let expected = fairgrasp_kinematics::Pose::from_xyz_rpy(t.origin.xyz.0, t.origin.rpy.0);
-            assert_eq!(o.origin, expected, "{what}");
+            let error = (o.origin.iso.inverse() * expected.iso).to_homogeneous()
+                - nalgebra::Matrix4::identity();
+            assert!(error.amax() < 1e-12, "{what}: origin {error}");
             let a = t.axis.xyz.0;
             let norm = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
             for (ours, theirs) in o.axis.iter().zip(a) {
@@ -341,9 +351,33 @@ fn what_the_reader_needs_and_does_not_find_is_named_with_its_line() {
         e.contains("line 2") && e.contains("root element is <model>"),
         "{e}"
     );
+    let twice = TWO_LINKS.replace(
+        "<axis xyz=\"0 0 1\"/>",
+        "<axis xyz=\"0 0 1\"/><axis xyz=\"1 0 0\"/>",
+    );
+    let e = load(&twice).unwrap_err().to_string();
+    assert!(
+        e.contains("line 9") && e.contains("joint 'j1' <axis>: given twice"),
+        "{e}"
+    );
+    let no_velocity = TWO_LINKS.replace(" velocity=\"1\"", "");
+    let e = load(&no_velocity).unwrap_err().to_string();
+    assert!(
+        e.contains("joint 'j1' <limit>: no velocity attribute"),
+        "{e}"
+    );
+    let both = TWO_LINKS.replace("rpy=\"0 0 0\"", "rpy=\"0 0 0\" quat_xyzw=\"0 0 0 1\"");
+    let e = load(&both).unwrap_err().to_string();
+    assert!(e.contains("both rpy and quat_xyzw"), "{e}");
+    let second_root = format!("{TWO_LINKS}<robot name=\"other\"/>\n");
+    let e = load(&second_root).unwrap_err().to_string();
+    assert!(
+        e.contains("line 13") && e.contains("a second root element <robot>"),
+        "{e}"
+    );
+    // urdf-rs reads a nameless robot as named ""; so does fairgrasp.
     let unnamed = TWO_LINKS.replace("<robot name=\"tiny\">", "<robot>");
-    let e = load(&unnamed).unwrap_err().to_string();
-    assert!(e.contains("<robot> has no name"), "{e}");
+    assert_eq!(load(&unnamed).unwrap().name, "");
     let bad_parent = TWO_LINKS.replace("<parent link=\"base_link\"/>", "<parent/>");
     let e = load(&bad_parent).unwrap_err().to_string();
     assert!(e.contains("joint 'j1' <parent>: no link attribute"), "{e}");

@@ -254,7 +254,7 @@ fn non_finite_numbers_are_refused_naming_the_element_and_attribute() {
 
 #[test]
 fn a_non_finite_quaternion_origin_of_urdf_1_1_is_refused() {
-    // URDF 1.1 allows `quat_xyzw` instead of `rpy`; urdf-rs turns it into rpy, and a NaN
+    // URDF 1.1 allows `quat_xyzw` instead of `rpy` (read as the rotation it gives); a NaN
     // quaternion used to become the identity rotation silently.
     let text = TWO_JOINTS
         .replace(

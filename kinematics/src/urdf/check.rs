@@ -46,7 +46,7 @@ fn numeric_arity(element: &str, attribute: &str) -> Option<usize> {
 
 /// 1-based line numbers of byte offsets, counted incrementally: a pass asking for increasing
 /// offsets reads the text once in all (counting from the start each time was quadratic).
-struct LineCounter<'a> {
+pub(crate) struct LineCounter<'a> {
     bytes: &'a [u8],
     /// Byte offset up to which newlines have been counted.
     position: usize,
@@ -55,7 +55,7 @@ struct LineCounter<'a> {
 }
 
 impl<'a> LineCounter<'a> {
-    fn new(text: &'a str) -> Self {
+    pub(crate) fn new(text: &'a str) -> Self {
         Self {
             bytes: text.as_bytes(),
             position: 0,
@@ -63,7 +63,7 @@ impl<'a> LineCounter<'a> {
         }
     }
 
-    fn line_at(&mut self, offset: usize) -> usize {
+    pub(crate) fn line_at(&mut self, offset: usize) -> usize {
         let offset = offset.min(self.bytes.len());
         if offset < self.position {
             self.position = 0;
@@ -82,7 +82,7 @@ impl<'a> LineCounter<'a> {
 /// A top-level `<joint>` whose end has not been read yet.
 struct OpenJoint {
     name: String,
-    kind: String,
+    kind: JointKind,
     line: usize,
     has_limit: bool,
 }
@@ -219,13 +219,12 @@ fn check_unique(
 }
 
 fn check_limit_present(file: &str, joint: &OpenJoint) -> Result<(), UrdfError> {
-    let needs_limit = joint.kind == "revolute" || joint.kind == "prismatic";
-    if needs_limit && !joint.has_limit {
+    if joint.kind.has_position_limits() && !joint.has_limit {
         return Err(UrdfError::MissingLimit {
             file: file.to_string(),
             line: joint.line,
             joint: joint.name.clone(),
-            kind: joint.kind.clone(),
+            kind: joint.kind.name().to_string(),
         });
     }
     Ok(())
@@ -296,14 +295,15 @@ fn check_joint_type(
     line: usize,
     owner: &str,
     element: &BytesStart<'_>,
-) -> Result<String, UrdfError> {
-    match attribute(element, "type") {
-        Some(kind) if JointKind::from_name(&kind).is_some() => Ok(kind),
-        found => Err(UrdfError::UnknownJointType {
+) -> Result<JointKind, UrdfError> {
+    let found = attribute(element, "type");
+    found
+        .as_deref()
+        .and_then(JointKind::from_name)
+        .ok_or_else(|| UrdfError::UnknownJointType {
             file: file.to_string(),
             line,
             joint: owner.to_string(),
             value: found.unwrap_or_else(|| "(missing)".to_string()),
-        }),
-    }
+        })
 }

@@ -81,7 +81,8 @@ pub enum UrdfError {
         value: String,
         expected: &'static str,
     },
-    /// Anything else urdf-rs refused.
+    /// The XML is well formed but not a URDF fairgrasp reads (no `<robot>`, a joint without
+    /// its parent link, an element given twice, …); the message names the line.
     #[error("{file}: not a valid URDF: {message}")]
     Parse { file: String, message: String },
     /// A joint names a link that does not exist.

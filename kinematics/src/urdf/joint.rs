@@ -47,6 +47,11 @@ impl JointKind {
         }
     }
 
+    /// Does URDF require this joint to have a `<limit>` (and do its limits bound its position)?
+    pub fn has_position_limits(self) -> bool {
+        matches!(self, JointKind::Revolute | JointKind::Prismatic)
+    }
+
     /// Does this joint add one degree of freedom along an axis?
     pub fn is_single_axis(self) -> bool {
         matches!(

@@ -220,8 +220,7 @@ fn convert_joint(file: &str, j: &JointText) -> Result<UrdfJoint, UrdfError> {
         joint: j.name.clone(),
         problem,
     };
-    let kind = JointKind::from_name(&j.kind)
-        .ok_or_else(|| bad(format!("unknown joint type \"{}\"", j.kind)))?;
+    let kind = j.kind;
     // Scaled by its largest component first, so that 1e200 does not overflow the norm.
     let axis = Vector3::from(j.axis);
     let largest = axis.amax();
@@ -233,17 +232,16 @@ fn convert_joint(file: &str, j: &JointText) -> Result<UrdfJoint, UrdfError> {
             "its axis is zero: <axis xyz=\"{x} {y} {z}\"/>; a unit vector is expected"
         )));
     }
-    let limits = match kind {
-        JointKind::Revolute | JointKind::Prismatic => {
-            let (lower, upper) = (j.lower, j.upper);
-            if lower > upper {
-                return Err(bad(format!(
-                    "limit lower = {lower} is above upper = {upper}"
-                )));
-            }
-            Some([lower, upper])
+    let limits = if kind.has_position_limits() {
+        let (lower, upper) = (j.lower, j.upper);
+        if lower > upper {
+            return Err(bad(format!(
+                "limit lower = {lower} is above upper = {upper}"
+            )));
         }
-        _ => None,
+        Some([lower, upper])
+    } else {
+        None
     };
     Ok(UrdfJoint {
         name: j.name.clone(),
