@@ -7,7 +7,7 @@ use std::path::Path;
 use fairgrasp_env::ConfigError;
 
 /// Name (the file's stem) and text of every shipped recipe, in name order.
-pub const SHIPPED: [(&str, &str); 9] = [
+pub const SHIPPED: [(&str, &str); 10] = [
     (
         "joint_residual_nudged",
         include_str!("../../assets/experiments/joint_residual_nudged.toml"),
@@ -19,6 +19,10 @@ pub const SHIPPED: [(&str, &str); 9] = [
     (
         "pure_full",
         include_str!("../../assets/experiments/pure_full.toml"),
+    ),
+    (
+        "pure_full_10min",
+        include_str!("../../assets/experiments/pure_full_10min.toml"),
     ),
     (
         "pure_joint_full",
