@@ -102,12 +102,22 @@ mod tests {
 
     #[test]
     fn the_lowest_failing_job_is_reported_and_claiming_stops() {
-        let ran = AtomicUsize::new(0);
-        let out: Result<Vec<()>, usize> = run_in_order(1000, 2, &|_| {}, &|| (), &|_, j| {
-            ran.fetch_add(1, Ordering::Relaxed);
-            if j == 7 || j == 9 { Err(j) } else { Ok(()) }
-        });
+        let failing = |_: &mut (), j: usize| if j == 7 || j == 9 { Err(j) } else { Ok(()) };
+        // Two threads: job 7 is always claimed before job 9, so it always runs; its error is
+        // the one reported whether or not job 9 ran too.
+        let out: Result<Vec<()>, usize> = run_in_order(1000, 2, &|_| {}, &|| (), &failing);
         assert_eq!(out.unwrap_err(), 7);
-        assert!(ran.load(Ordering::Relaxed) < 1000, "claiming stopped");
+        // One thread: nothing is claimed after the failure.
+        let claimed = AtomicUsize::new(0);
+        let on_claim = |_| {
+            claimed.fetch_add(1, Ordering::Relaxed);
+        };
+        let out: Result<Vec<()>, usize> = run_in_order(1000, 1, &on_claim, &|| (), &failing);
+        assert_eq!(out.unwrap_err(), 7);
+        assert_eq!(
+            claimed.load(Ordering::Relaxed),
+            8,
+            "jobs 0-7 claimed, then none"
+        );
     }
 }
