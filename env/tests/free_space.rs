@@ -4,6 +4,7 @@
 mod common;
 
 use fairgrasp_env::env::free_space::joint_reach;
+use fairgrasp_env::task::Failure;
 use fairgrasp_env::{Action, ArmSimulation, EnvConfig, GraspEnv, Step};
 
 fn env_with(free_space: bool) -> GraspEnv {
@@ -50,6 +51,50 @@ fn free_space_steps_move_arm_and_fingers_as_full_physics_does() {
     let (p, q) = (free.object_in_base().xyz(), full.object_in_base().xyz());
     let moved = (0..3).map(|i| (p[i] - q[i]).powi(2)).sum::<f64>().sqrt();
     assert!(moved < 1e-4, "object differs by {moved} m");
+}
+
+/// Rapier does not compute the servo arm's link, palm and table pairs (kinematic and fixed
+/// bodies): a step that runs physics checks them on the exact shapes, as a free-space step
+/// does. Driving links into the table and into each other must then end both envs at the same
+/// step with the same pair, whichever kind of step found it.
+#[test]
+fn links_driven_into_the_table_or_each_other_collide_alike_with_and_without_physics() {
+    let cases = [
+        ([0.0, 1.0, 0.0, 0.0, 0.0, 0.0], "upperarm_link", "table"),
+        ([0.0, 1.0, 1.0, 0.0, 0.0, 0.0], "wrist2_link", "table"),
+        ([0.0, 0.0, -1.0, 0.0, 0.0, 0.0], "upperarm_link", "palm"),
+        (
+            [0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+            "upperarm_link",
+            "wrist1_link",
+        ),
+        (
+            [0.0, 0.0, 0.0, 1.0, 0.0, 0.0],
+            "forearm_link",
+            "wrist2_link",
+        ),
+    ];
+    for (joints, first, second) in cases {
+        let (mut free, mut full) = (env_with(true), env_with(false));
+        free.reset(3).unwrap();
+        full.reset(3).unwrap();
+        let action = Action([
+            joints[0], joints[1], joints[2], joints[3], joints[4], 0.0, -1.0,
+        ]);
+        let ending = (0..200).find_map(|k| {
+            let (a, b) = (free.step(&action).unwrap(), full.step(&action).unwrap());
+            assert!(b.info.simulated, "{joints:?} step {k}");
+            assert_eq!(a.info.failure, b.info.failure, "{joints:?} step {k}");
+            assert_eq!(a.info.collision_depth_m, b.info.collision_depth_m);
+            b.terminated
+                .then_some((b.info.failure, b.info.collision_depth_m))
+        });
+        let Some((Some(Failure::Collision(a, b)), Some(depth))) = ending else {
+            panic!("{joints:?}: expected a collision, got {ending:?}");
+        };
+        assert_eq!((a.as_str(), b.as_str()), (first, second), "{joints:?}");
+        assert!(depth > 0.0 && depth < 0.03, "{joints:?}: {depth} m");
+    }
 }
 
 /// Drives a top-down grasp and lift; returns every step.

@@ -90,12 +90,12 @@ fn colliders(env: &mut GraspEnv) -> Vec<(Part, Pose3, SharedShape)> {
     let mut out: Vec<_> = handles
         .parts
         .iter()
-        .filter(|(_, part)| **part != Part::Cube)
+        .filter(|(_, part)| *part != Part::Cube)
         .map(|(handle, part)| {
-            let c = &world.colliders[*handle];
+            let c = &world.colliders[handle];
             let body = world.bodies[c.parent().expect("on a body")].position();
             let offset = c.position_wrt_parent().copied().unwrap_or_default();
-            (*part, *body * offset, c.shared_shape().clone())
+            (part, *body * offset, c.shared_shape().clone())
         })
         .collect();
     out.sort_by_key(|(part, _, _)| format!("{part:?}"));

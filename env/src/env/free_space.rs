@@ -21,6 +21,7 @@ use nalgebra::Isometry3;
 use crate::config::EnvConfig;
 use crate::robot::{MotionState, Robot};
 use crate::sim::contacts::{CollisionFilter, ContactReport};
+use crate::sim::part::Part;
 use crate::sim::shapes::{CheckedPairs, RobotShapes};
 
 /// The closest any robot part may come to the object, at any moment of a free-space step [m]:
@@ -35,6 +36,9 @@ pub struct FreeSpace {
     shapes: RobotShapes,
     /// The robot–robot and robot–table pairs that count as collisions.
     pairs: CheckedPairs,
+    /// Those of them rapier does not compute for the servo arm: both parts never moved by
+    /// forces (links, palm, table; [`Part::never_moved_by_forces`]).
+    kinematic_pairs: CheckedPairs,
     /// For joint i (0 = j1): an upper bound on the distance [m] from its axis to any point of
     /// the links and gripper it moves, for any joint angles.
     reach: [f64; 6],
@@ -44,9 +48,12 @@ pub struct FreeSpace {
 
 impl FreeSpace {
     pub fn new(config: &EnvConfig, model: &ArmModel) -> FreeSpace {
+        let pairs = CheckedPairs::new(&CollisionFilter::new(model));
         FreeSpace {
             shapes: RobotShapes::new(config, model),
-            pairs: CheckedPairs::new(&CollisionFilter::new(model)),
+            kinematic_pairs: pairs
+                .only(|a, b| a.never_moved_by_forces() && b.never_moved_by_forces()),
+            pairs,
             reach: joint_reach(model),
             object_half: config.scene.cube_size / 2.0,
         }
@@ -103,6 +110,23 @@ impl FreeSpace {
             collision: self.shapes.collision_among(&self.pairs),
             ..ContactReport::default()
         })
+    }
+
+    /// After a step that ran physics with the servo arm: the deepest collision among the pairs
+    /// rapier leaves out (links and palm against each other and the table), with the robot
+    /// where it is now, as the narrow phase would have reported it after the last substep.
+    pub fn kinematic_collision(&mut self, robot: &Robot) -> Option<(Part, Part, f64)> {
+        self.place(robot);
+        self.shapes.collision_among(&self.kinematic_pairs)
+    }
+
+    /// Every penetrating pair of those [`FreeSpace::kinematic_collision`] checks, with the
+    /// robot where it is now: `(part, part, depth [m])`.
+    pub fn kinematic_penetrations(&self, robot: &Robot) -> Vec<(Part, Part, f64)> {
+        let mut shapes = self.shapes.clone();
+        let travel = robot.fingers.map(|f| f.travel);
+        shapes.place(&robot.model, &robot.base, &robot.q, travel);
+        shapes.penetrating_among(&self.kinematic_pairs)
     }
 
     fn place(&mut self, robot: &Robot) {

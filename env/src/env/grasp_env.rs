@@ -8,7 +8,7 @@
 
 use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
-use crate::config::{ActionSpace, EnvConfig};
+use crate::config::{ActionSpace, ArmSimulation, EnvConfig};
 use crate::env::free_space::FreeSpace;
 use crate::env::obs::Observation;
 pub use crate::env::step::{Action, EnvError, Info, ServoSetpoint, Step};
@@ -17,7 +17,7 @@ use crate::robot::tcp_action::TaskSpaceAction;
 use crate::scenario::Scenario;
 use crate::scenario::nudge::{NudgeEvent, NudgeHook};
 use crate::sim::Sim;
-use crate::sim::contacts::ContactReport;
+use crate::sim::contacts::{ContactReport, PairKind, TouchingPair};
 use crate::task::episode::EpisodeTracker;
 use crate::task::{Failure, judge, judge_protective_stop};
 use fairgrasp_kinematics::{ArmModel, Pose};
@@ -190,7 +190,7 @@ impl GraspEnv {
             simulated: true,
             ..Info::default()
         };
-        self.contacts = self.sim.contacts();
+        self.contacts = self.simulated_contacts();
         (self.observe([0.0; 6], &self.contacts), info)
     }
 
@@ -282,7 +282,10 @@ impl GraspEnv {
             });
         }
         // One contact report serves the observation and the collision check.
-        let contacts = free.unwrap_or_else(|| self.sim.contacts());
+        let contacts = match free {
+            Some(free) => free,
+            None => self.simulated_contacts(),
+        };
         self.contacts = contacts.clone();
         let obs = self.observe(velocities, &contacts);
         let collision = contacts.collision.map(|(a, b, depth)| {
@@ -358,10 +361,22 @@ impl GraspEnv {
         self.contacts.clone()
     }
 
-    /// Every touching pair of the narrow phase as of the latest step that ran physics (or the
-    /// reset), deepest first, with how it is judged.
-    pub fn touching_pairs(&self) -> Vec<crate::sim::contacts::TouchingPair> {
-        self.sim.touching_pairs()
+    /// Every touching pair, deepest first, with how it is judged: the narrow phase's as of the
+    /// latest step that ran physics (or the reset) and, for the servo arm, the penetrating
+    /// link, palm and table pairs rapier does not compute, from the exact shapes now.
+    pub fn touching_pairs(&self) -> Vec<TouchingPair> {
+        let mut pairs = self.sim.touching_pairs();
+        if self.robot.kind == ArmSimulation::Servo {
+            let found = self.free_space.kinematic_penetrations(&self.robot);
+            pairs.extend(found.into_iter().map(|(a, b, depth)| TouchingPair {
+                a,
+                b,
+                distance: -depth,
+                kind: PairKind::Collision,
+            }));
+            pairs.sort_by(|x, y| x.distance.total_cmp(&y.distance));
+        }
+        pairs
     }
 
     /// Current joint angles [rad].

@@ -1,12 +1,12 @@
 //! Which contacts matter: the robot pairs that are never collisions (the arm model's one rule,
 //! plus the base on its table), and rapier collision groups that skip them entirely.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 
 use fairgrasp_kinematics::ArmModel;
 use rapier3d::prelude::*;
 
-use crate::sim::part::{Part, ROBOT_PARTS};
+use crate::sim::part::{ColliderParts, Part, ROBOT_PARTS};
 
 /// Pairs of robot parts whose contacts are not collisions.
 #[derive(Clone, Debug)]
@@ -62,22 +62,18 @@ fn group_bit(part: Part) -> u32 {
 /// Collision groups that skip the pairs [`CollisionFilter`] ignores (neighbouring links that
 /// always overlap, the gripper's own parts, the base on its table): they cost narrow-phase time
 /// every physics step and are never reported.
-pub fn set_collision_groups(
-    world: &mut PhysicsWorld,
-    parts: &HashMap<ColliderHandle, Part>,
-    model: &ArmModel,
-) {
+pub fn set_collision_groups(world: &mut PhysicsWorld, parts: &ColliderParts, model: &ArmModel) {
     let filter = CollisionFilter::new(model);
-    for (handle, part) in parts {
+    for (handle, part) in parts.iter() {
         let mut allowed = 0u32;
         for other in ROBOT_PARTS.iter().chain(&[Part::Table, Part::Cube]) {
-            if !filter.ignores(*part, *other) {
+            if !filter.ignores(part, *other) {
                 allowed |= 1 << group_bit(*other);
             }
         }
-        if let Some(c) = world.colliders.get_mut(*handle) {
+        if let Some(c) = world.colliders.get_mut(handle) {
             let groups = InteractionGroups::new(
-                Group::from_bits_truncate(1 << group_bit(*part)),
+                Group::from_bits_truncate(1 << group_bit(part)),
                 Group::from_bits_truncate(allowed),
                 InteractionTestMode::And,
             );

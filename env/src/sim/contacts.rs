@@ -1,11 +1,9 @@
 //! Reading the narrow phase: collisions (with the pair named) and finger–cube contacts.
 
-use std::collections::HashMap;
-
 use rapier3d::prelude::*;
 
 pub use crate::sim::collision_filter::CollisionFilter;
-use crate::sim::part::Part;
+use crate::sim::part::{ColliderParts, Part};
 use crate::sim::scene::SceneHandles;
 
 /// A contact counts as touching below this signed distance [m] (negative = penetrating).
@@ -53,15 +51,17 @@ fn part_contacts<'a>(
     handles: &'a SceneHandles,
 ) -> impl Iterator<Item = (Part, Part, f32)> + 'a {
     world.narrow_phase.contact_pairs().filter_map(|pair| {
-        let a = *handles.parts.get(&pair.collider1)?;
-        let b = *handles.parts.get(&pair.collider2)?;
+        let a = handles.parts.get(&pair.collider1)?;
+        let b = handles.parts.get(&pair.collider2)?;
         let (_, contact) = pair.find_deepest_contact()?;
         Some((a, b, contact.dist))
     })
 }
 
 /// Every pair of the narrow phase closer than [`TOUCH_DISTANCE`], deepest first, judged by
-/// `filter`. Pairs excluded by collision groups are never computed and do not appear.
+/// `filter`. Pairs excluded by collision groups, and pairs of two bodies forces never move (the
+/// servo arm's links and palm, the table), are never computed and do not appear here
+/// (`GraspEnv::touching_pairs` adds the latter from the exact shapes).
 pub fn touching_pairs(
     world: &PhysicsWorld,
     handles: &SceneHandles,
@@ -131,11 +131,12 @@ pub struct RobotContactForce {
 /// each pair's net impulse [N·s] (normal impulses summed over its manifolds) divided by `dt`.
 ///
 /// Only the pairs of `cube` and `table` are visited (through the narrow phase's per-collider
-/// adjacency, no allocation). A kinematic link against the fixed table has no solver contact,
-/// hence no impulse; such a touch is a collision ([`CollisionFilter::is_collision`]) anyway.
+/// adjacency, no allocation). A kinematic link or palm against the fixed table is not in the
+/// narrow phase at all (no force could act between them); such a touch is a collision, found on
+/// the exact shapes at the end of the step.
 pub fn strongest_robot_contact(
     world: &PhysicsWorld,
-    parts: &HashMap<ColliderHandle, Part>,
+    parts: &ColliderParts,
     cube: ColliderHandle,
     table: ColliderHandle,
     dt: f64,
@@ -146,7 +147,7 @@ pub fn strongest_robot_contact(
         .contact_pairs_with(cube)
         .chain(world.narrow_phase.contact_pairs_with(table));
     for pair in pairs {
-        let (Some(&a), Some(&b)) = (parts.get(&pair.collider1), parts.get(&pair.collider2)) else {
+        let (Some(a), Some(b)) = (parts.get(&pair.collider1), parts.get(&pair.collider2)) else {
             continue;
         };
         let (robot, other) = match (a.is_robot(), b.is_robot()) {

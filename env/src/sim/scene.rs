@@ -3,8 +3,6 @@
 //! World frame: z up, the table top at `scene.table_height`. All rapier quantities are f32;
 //! the kinematics stay f64 and are converted at this boundary.
 
-use std::collections::HashMap;
-
 use fairgrasp_kinematics::{ArmModel, Pose};
 use nalgebra::Isometry3;
 use rapier3d::prelude::*;
@@ -15,7 +13,7 @@ pub use crate::sim::convert::from_rapier;
 use crate::sim::convert::{to_rapier, vec3};
 use crate::sim::finger_drive::{FINGER_DAMPING, FINGER_STIFFNESS};
 
-pub use crate::sim::part::{Part, ROBOT_PARTS};
+pub use crate::sim::part::{ColliderParts, Part, ROBOT_PARTS};
 
 /// Handles of everything in the world.
 #[derive(Clone, Debug)]
@@ -32,7 +30,7 @@ pub struct SceneHandles {
     /// Multibody joint handles j1 … j6 (multibody arm only).
     pub arm_joints: Option<[MultibodyJointHandle; 6]>,
     /// Which part each collider is.
-    pub parts: HashMap<ColliderHandle, Part>,
+    pub parts: ColliderParts,
 }
 
 /// Finger joint origin in the palm (= tool0) frame, open position [m], and closing axis.
@@ -111,8 +109,13 @@ pub fn finger_in_tool0(model: &ArmModel, finger: usize, travel: f64) -> Isometry
     Isometry3::translation(p[0], p[1], p[2])
 }
 
-/// Robot parts are computed against each other (to report self-collisions) but exert no forces
-/// on each other: the overlapping capsules of neighbouring links would otherwise push apart.
+/// Robot parts exert no forces on each other: the overlapping capsules of neighbouring links
+/// would otherwise push apart. Their contacts are still computed where a finger (a dynamic body)
+/// is involved; contacts between two bodies that forces never move — the servo arm's kinematic
+/// links and palm, and the fixed table ([`Part::never_moved_by_forces`]) — are not computed by
+/// rapier at all (its default collision types): the env checks those pairs with the exact
+/// shapes at the end of every step ([`crate::sim::shapes::RobotShapes`]), the only moment they
+/// are read (computing them every substep was a third of the narrow phase's time).
 fn robot_solver_groups() -> InteractionGroups {
     InteractionGroups::new(
         Group::GROUP_1,
@@ -121,26 +124,16 @@ fn robot_solver_groups() -> InteractionGroups {
     )
 }
 
-/// Robot colliders see kinematic and fixed bodies too, so that self and table contacts are found.
-fn robot_collision_types() -> ActiveCollisionTypes {
-    ActiveCollisionTypes::default()
-        | ActiveCollisionTypes::KINEMATIC_FIXED
-        | ActiveCollisionTypes::KINEMATIC_KINEMATIC
-}
-
-/// Inserts a collider of the robot on `body` with the robot's collision types and solver
-/// groups, and records which part it is.
+/// Inserts a collider of the robot on `body` with the robot's solver groups, and records which
+/// part it is.
 fn insert_robot_collider(
     world: &mut PhysicsWorld,
-    parts: &mut HashMap<ColliderHandle, Part>,
+    parts: &mut ColliderParts,
     collider: ColliderBuilder,
     body: RigidBodyHandle,
     part: Part,
 ) {
-    let collider = collider
-        .active_collision_types(robot_collision_types())
-        .solver_groups(robot_solver_groups())
-        .build();
+    let collider = collider.solver_groups(robot_solver_groups()).build();
     let h = world
         .colliders
         .insert_with_parent(collider, body, &mut world.bodies);
@@ -165,7 +158,7 @@ pub fn build(
     // the cube slides millimetres along the pads. Always recompute them.
     ip.contact_recycling = false;
     ip.warmstart_joints = true;
-    let mut parts = HashMap::new();
+    let mut parts = ColliderParts::default();
     let s = &config.scene;
 
     // Table: a fixed box whose top is at table_height, centred under the arm base.

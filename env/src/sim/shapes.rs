@@ -193,16 +193,39 @@ impl RobotShapes {
         self.deepest(|a, b| pairs.counts(a, b))
     }
 
-    /// The deepest penetrating pair among those `counts`; spheres screen the pairs first.
+    /// Every pair `pairs` counts that penetrates: `(part, part, depth [m])`, depth > 0, in the
+    /// order of [`RobotShapes::PARTS`] (the table last in each row).
+    pub fn penetrating_among(&self, pairs: &CheckedPairs) -> Vec<(Part, Part, f64)> {
+        let mut out = Vec::new();
+        self.each_penetrating(|a, b| pairs.counts(a, b), |found| out.push(found));
+        out
+    }
+
+    /// The deepest penetrating pair among those `counts`.
     fn deepest(&self, counts: impl Fn(Part, Part) -> bool) -> Option<(Part, Part, f64)> {
         let mut deepest: Option<(Part, Part, f64)> = None;
+        self.each_penetrating(counts, |(a, b, depth)| {
+            if deepest.is_none_or(|(_, _, d)| depth > d) {
+                deepest = Some((a, b, depth));
+            }
+        });
+        deepest
+    }
+
+    /// Calls `found` with every penetrating pair among those `counts`, `(part, part, depth
+    /// [m])`; bounding spheres screen the pairs first.
+    fn each_penetrating(
+        &self,
+        counts: impl Fn(Part, Part) -> bool,
+        mut found: impl FnMut((Part, Part, f64)),
+    ) {
         let mut consider = |a: Part, x: &Shape, xs, b: Part, y: &Shape, ys| {
             if !may_touch(xs, ys) || !counts(a, b) {
                 return;
             }
             let depth = -signed_distance(x, y);
-            if depth > 0.0 && deepest.is_none_or(|(_, _, d)| depth > d) {
-                deepest = Some((a, b, depth));
+            if depth > 0.0 {
+                found((a, b, depth));
             }
         };
         let table = Shape::Box(self.table);
@@ -213,7 +236,6 @@ impl RobotShapes {
             }
             consider(a, x, xs, Part::Table, &table, &self.table_sphere);
         }
-        deepest
     }
 
     /// Penetration depth [m] of `a` into `b` (robot parts or the table; exact), 0 when they
@@ -266,6 +288,15 @@ impl CheckedPairs {
         let part = |i: usize| RobotShapes::PARTS.get(i).copied().unwrap_or(Part::Table);
         let counted =
             std::array::from_fn(|i| std::array::from_fn(|j| filter.is_collision(part(i), part(j))));
+        CheckedPairs { counted }
+    }
+
+    /// These pairs restricted to those `keep` accepts.
+    pub fn only(&self, keep: impl Fn(Part, Part) -> bool) -> CheckedPairs {
+        let part = |i: usize| RobotShapes::PARTS.get(i).copied().unwrap_or(Part::Table);
+        let counted = std::array::from_fn(|i| {
+            std::array::from_fn(|j| self.counted[i][j] && keep(part(i), part(j)))
+        });
         CheckedPairs { counted }
     }
 

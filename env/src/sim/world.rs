@@ -272,7 +272,8 @@ impl Sim {
         })
     }
 
-    /// What the narrow phase says now: collisions, pad contacts, pad penetration.
+    /// What the narrow phase says now: collisions, pad contacts, pad penetration. The servo
+    /// arm's link, palm and table pairs are not in it ([`crate::sim::scene::build`]).
     pub fn contacts(&self) -> ContactReport {
         analyze(&self.world, &self.handles, &self.filter)
     }

@@ -124,6 +124,21 @@ impl GraspEnv {
         Some(report)
     }
 
+    /// What the contacts say after a step that ran physics (or the reset): the narrow phase's
+    /// report and, for the servo arm, the pairs rapier leaves out (links and palm against each
+    /// other and the table) checked on the exact shapes; the deeper collision is the one
+    /// reported.
+    pub(super) fn simulated_contacts(&mut self) -> ContactReport {
+        let mut report = self.sim.contacts();
+        if self.robot.kind == ArmSimulation::Servo
+            && let Some(found) = self.free_space.kinematic_collision(&self.robot)
+            && report.collision.is_none_or(|(_, _, depth)| found.2 > depth)
+        {
+            report.collision = Some(found);
+        }
+        report
+    }
+
     /// Checks an action and hands it to the robot: returns the joint-velocity command [rad/s]
     /// (from joint velocities, or from the TCP command through the Jacobian in `tcp` mode).
     pub(super) fn apply_action(&mut self, action: &Action) -> Result<[f64; 6], EnvError> {
