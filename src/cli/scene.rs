@@ -75,7 +75,9 @@ pub fn run(a: &SceneArgs) -> anyhow::Result<ExitCode> {
             println!("\nfairgrasp refuses this start at reset: {why}");
             println!("Shown anyway, forced to the config's own cube position:");
         }
-        println!("\nContacts after the reset and one step holding still (rapier narrow phase):");
+        println!(
+            "\nContacts after the reset and one step holding still (rapier's narrow phase; the arm's links, palm and table on their exact shapes):"
+        );
         if d.contacts.is_empty() {
             println!("  none");
         }

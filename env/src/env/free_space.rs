@@ -114,7 +114,8 @@ impl FreeSpace {
 
     /// After a step that ran physics with the servo arm: the deepest collision among the pairs
     /// rapier leaves out (links and palm against each other and the table), with the robot
-    /// where it is now, as the narrow phase would have reported it after the last substep.
+    /// where it is now, at the end of the last substep (rapier's narrow phase, which runs at
+    /// the start of each substep, saw them one substep, 1/240 s, earlier).
     pub fn kinematic_collision(&mut self, robot: &Robot) -> Option<(Part, Part, f64)> {
         self.place(robot);
         self.shapes.collision_among(&self.kinematic_pairs)

@@ -30,7 +30,7 @@ use crate::sim::scene::SceneHandles;
 const SETTLE_SUBSTEPS: usize = 24;
 
 mod step_parts;
-use step_parts::Drive;
+use step_parts::{Drive, collision_failure};
 
 /// The FR3 grasping environment: the robot, the task and the episode's scenario, composed over
 /// the simulator facade.
@@ -207,7 +207,7 @@ impl GraspEnv {
             let model = &self.robot.model;
             let (robot, other) = (contact.robot.name(model), contact.other.name(model));
             if contact.other == crate::sim::scene::Part::Table {
-                Failure::Collision(other.to_string(), robot.to_string())
+                collision_failure(model, contact.robot, contact.other)
             } else {
                 Failure::ProtectiveStop {
                     robot_part: robot.to_string(),
@@ -290,8 +290,7 @@ impl GraspEnv {
         let obs = self.observe(velocities, &contacts);
         let collision = contacts.collision.map(|(a, b, depth)| {
             info.collision_depth_m = Some(depth);
-            let model = &self.robot.model;
-            Failure::Collision(a.name(model).to_string(), b.name(model).to_string())
+            collision_failure(&self.robot.model, a, b)
         });
         let state = self.task_state(&contacts);
         let judgement = match stop {
@@ -356,7 +355,8 @@ impl GraspEnv {
     }
 
     /// What the latest step (or reset) found touching: collisions, pad contacts, pad
-    /// penetration (from the narrow phase, or from the exact shapes in a free-space step).
+    /// penetration (from the narrow phase and, for the servo arm's links, palm and table, the
+    /// exact shapes; a free-space step uses the exact shapes alone).
     pub fn contacts(&self) -> ContactReport {
         self.contacts.clone()
     }

@@ -1,6 +1,7 @@
 //! The robot's colliders as exact f64 shapes in the world, placed by forward kinematics without
 //! rapier: for free-space steps, where the arm and gripper are checked against the table and
-//! themselves analytically.
+//! themselves analytically, and for the pairs rapier never computes in any step (the servo
+//! arm's links and palm against each other and the table).
 //!
 //! Every shape is the one [`crate::sim::scene::build`] gives rapier (same sizes and offsets, from the
 //! same functions of [`crate::sim::scene`]): a capsule per link, boxes for the palm, the two finger

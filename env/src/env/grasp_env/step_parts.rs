@@ -8,8 +8,11 @@ use crate::env::obs::Observation;
 use crate::env::step::{Action, EnvError, Info, ServoSetpoint, Step};
 use crate::scenario::perception::{observe_object, wrist_view};
 use crate::sim::contacts::ContactReport;
+use crate::sim::part::Part;
+use crate::task::Failure;
 use crate::task::episode::{Ending, StepFacts};
 use crate::task::state::TaskState;
+use fairgrasp_kinematics::ArmModel;
 
 /// Gain of a servo step's feedback on the joints' distance from the setpoint [1/s]: a tenth of
 /// the error corrected per 1/240 s substep, the feedforward velocity doing the rest.
@@ -199,4 +202,15 @@ impl GraspEnv {
             wrist_camera,
         }
     }
+}
+
+/// The collision between parts `a` and `b`, named in one order whatever found it (the narrow
+/// phase, the exact shapes or the protective stop): the table first, then the arm from its base
+/// out, the gripper last (the order of [`Part`]).
+pub(super) fn collision_failure(model: &ArmModel, a: Part, b: Part) -> Failure {
+    let (first, second) = if a <= b { (a, b) } else { (b, a) };
+    Failure::Collision(
+        first.name(model).to_string(),
+        second.name(model).to_string(),
+    )
 }
