@@ -125,15 +125,12 @@ impl FreeSpace {
     /// robot where it is now: `(part, part, depth [m])`.
     pub fn kinematic_penetrations(&self, robot: &Robot) -> Vec<(Part, Part, f64)> {
         let mut shapes = self.shapes.clone();
-        let travel = robot.fingers.map(|f| f.travel);
-        shapes.place(&robot.model, &robot.base, &robot.q, travel);
+        place(&mut shapes, robot);
         shapes.penetrating_among(&self.kinematic_pairs)
     }
 
     fn place(&mut self, robot: &Robot) {
-        let travel = robot.fingers.map(|f| f.travel);
-        self.shapes
-            .place(&robot.model, &robot.base, &robot.q, travel);
+        place(&mut self.shapes, robot);
     }
 
     /// An upper bound on how far any point of the robot moved from `from` to `to` [m]: each
@@ -147,6 +144,12 @@ impl FreeSpace {
             .fold(0.0, f64::max);
         arm + fingers
     }
+}
+
+/// Places `shapes` where `robot` is: its joints and finger travels.
+fn place(shapes: &mut RobotShapes, robot: &Robot) {
+    let travel = robot.fingers.map(|f| f.travel);
+    shapes.place(&robot.model, &robot.base, &robot.q, travel);
 }
 
 /// For each joint, an upper bound on the distance from its axis to any point it moves [m]: the

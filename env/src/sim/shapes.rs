@@ -286,17 +286,16 @@ pub struct CheckedPairs {
 impl CheckedPairs {
     /// The verdicts of `filter` on every pair of robot parts and the table.
     pub fn new(filter: &CollisionFilter) -> Self {
-        let part = |i: usize| RobotShapes::PARTS.get(i).copied().unwrap_or(Part::Table);
-        let counted =
-            std::array::from_fn(|i| std::array::from_fn(|j| filter.is_collision(part(i), part(j))));
+        let counted = std::array::from_fn(|i| {
+            std::array::from_fn(|j| filter.is_collision(Self::part(i), Self::part(j)))
+        });
         CheckedPairs { counted }
     }
 
     /// These pairs restricted to those `keep` accepts.
     pub fn only(&self, keep: impl Fn(Part, Part) -> bool) -> CheckedPairs {
-        let part = |i: usize| RobotShapes::PARTS.get(i).copied().unwrap_or(Part::Table);
         let counted = std::array::from_fn(|i| {
-            std::array::from_fn(|j| self.counted[i][j] && keep(part(i), part(j)))
+            std::array::from_fn(|j| self.counted[i][j] && keep(Self::part(i), Self::part(j)))
         });
         CheckedPairs { counted }
     }
@@ -307,6 +306,11 @@ impl CheckedPairs {
             (Some(i), Some(j)) => self.counted[i][j],
             _ => false,
         }
+    }
+
+    /// The part of slot `i` (the inverse of [`CheckedPairs::slot`]).
+    fn part(i: usize) -> Part {
+        RobotShapes::PARTS.get(i).copied().unwrap_or(Part::Table)
     }
 
     fn slot(part: Part) -> Option<usize> {
