@@ -7,7 +7,7 @@ use std::path::Path;
 use fairgrasp_env::ConfigError;
 
 /// Name (the file's stem) and text of every shipped recipe, in name order.
-pub const SHIPPED: [(&str, &str); 10] = [
+pub const SHIPPED: [(&str, &str); 11] = [
     (
         "joint_residual_nudged",
         include_str!("../../assets/experiments/joint_residual_nudged.toml"),
@@ -35,6 +35,10 @@ pub const SHIPPED: [(&str, &str); 10] = [
     (
         "residual_generalist",
         include_str!("../../assets/experiments/residual_generalist.toml"),
+    ),
+    (
+        "residual_generalist_ppo_only",
+        include_str!("../../assets/experiments/residual_generalist_ppo_only.toml"),
     ),
     (
         "residual_heavy_slippery",

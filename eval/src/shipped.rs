@@ -112,6 +112,11 @@ impl ShippedPolicy {
         ShippedPolicy::PureHard,
     ];
 
+    /// The shipped policy called `name` ([`ShippedPolicy::name`]), if any.
+    pub fn named(name: &str) -> Option<ShippedPolicy> {
+        ShippedPolicy::ALL.into_iter().find(|p| p.name() == name)
+    }
+
     /// Whether `fairgrasp compare` compares it by default: every shipped policy but the pitfall
     /// exhibit `pure_hard` (0 % everywhere; the guide's pitfall 2 evaluates it).
     pub fn compared_by_default(self) -> bool {
@@ -170,6 +175,28 @@ impl ShippedPolicy {
         }
         Ok(folder.join("checkpoint"))
     }
+}
+
+/// The checkpoint folder `name_or_folder` names: a shipped policy's name (unpacked), a
+/// checkpoint folder (`meta.json` inside, or in the `.old` copy a kill left) or a run folder
+/// (its `checkpoints/best`). The error lists the shipped names.
+pub fn checkpoint_folder(name_or_folder: &str) -> Result<PathBuf, String> {
+    if let Some(p) = ShippedPolicy::named(name_or_folder) {
+        return p.checkpoint_dir().map_err(|e| e.to_string());
+    }
+    let path = Path::new(name_or_folder);
+    if path.join("meta.json").is_file() || path.with_extension("old").join("meta.json").is_file() {
+        return Ok(path.to_path_buf());
+    }
+    if path.join("checkpoints/best/meta.json").is_file() {
+        return Ok(path.join("checkpoints/best"));
+    }
+    let names: Vec<&str> = ShippedPolicy::ALL.iter().map(|p| p.name()).collect();
+    let shown: String = name_or_folder.chars().take(120).collect();
+    Err(format!(
+        "{shown:?} is neither a shipped policy ({}) nor a checkpoint folder (meta.json) nor a run folder (checkpoints/best)",
+        names.join(", ")
+    ))
 }
 
 /// The shipped residual policy's checkpoint folder: the default of `fairgrasp eval`.

@@ -3,11 +3,9 @@
 //! statistics, the deterministic mean action), and the seeded scenario list `fairgrasp eval`
 //! evaluates on, so a Python loop plays exactly its episodes.
 
-use std::path::{Path, PathBuf};
-
 use fairgrasp_eval::actor::Actor;
 use fairgrasp_eval::checkpoint::{CheckpointMeta, load_actor};
-use fairgrasp_eval::shipped::ShippedPolicy;
+use fairgrasp_eval::shipped::checkpoint_folder;
 use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
@@ -23,35 +21,11 @@ pub struct NativePolicy {
     source: String,
 }
 
-/// The checkpoint folder `name_or_folder` names: a shipped policy's name, a checkpoint folder
-/// (`meta.json` inside), or a run folder (its `checkpoints/best`).
-fn checkpoint_folder(name_or_folder: &str) -> PyResult<PathBuf> {
-    if let Some(p) = ShippedPolicy::ALL
-        .iter()
-        .find(|p| p.name() == name_or_folder)
-    {
-        return p.checkpoint_dir().map_err(value_error);
-    }
-    let path = Path::new(name_or_folder);
-    if path.join("meta.json").is_file() || path.with_extension("old").join("meta.json").is_file() {
-        return Ok(path.to_path_buf());
-    }
-    if path.join("checkpoints/best/meta.json").is_file() {
-        return Ok(path.join("checkpoints/best"));
-    }
-    let names: Vec<&str> = ShippedPolicy::ALL.iter().map(|p| p.name()).collect();
-    let shown: String = name_or_folder.chars().take(120).collect();
-    Err(value_error(format!(
-        "{shown:?} is neither a shipped policy ({}) nor a checkpoint folder (meta.json) nor a run folder (checkpoints/best)",
-        names.join(", ")
-    )))
-}
-
 #[pymethods]
 impl NativePolicy {
     #[new]
     fn new(name_or_folder: &str) -> PyResult<Self> {
-        let dir = checkpoint_folder(name_or_folder)?;
+        let dir = checkpoint_folder(name_or_folder).map_err(value_error)?;
         let (meta, actor) = load_actor(&dir).map_err(value_error)?;
         Ok(Self {
             meta,

@@ -191,7 +191,7 @@ fn resume_continues_the_timestep_count_and_the_metrics() {
     assert_eq!(rows.len(), 1 + 4, "header + 4 updates");
     let columns = rows[0].split(',').count();
     assert!(
-        rows[0].ends_with("outcome_physics_fault,steps_per_second"),
+        rows[0].ends_with("outcome_physics_fault,steps_per_second,kickstart_loss"),
         "{}",
         rows[0]
     );

@@ -83,7 +83,7 @@ fn outcome(dir: &std::path::Path) -> (Vec<u32>, Vec<String>) {
         .lines()
         .map(|row| {
             let mut cells: Vec<&str> = row.split(',').collect();
-            cells.pop(); // steps_per_second, the last column
+            cells.remove(cells.len() - 2); // steps_per_second, before kickstart_loss
             cells.remove(2); // wall_time_s
             cells.join(",")
         })

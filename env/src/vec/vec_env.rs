@@ -27,6 +27,12 @@ pub struct VecEnv {
     out: VecStep,
 }
 
+/// Which of a mixture's `presets` configurations environment `env` runs: `env % presets`
+/// (one rule for the envs, their agents and their teachers).
+pub fn preset_of_env(env: usize, presets: usize) -> usize {
+    env % presets.max(1)
+}
+
 impl VecEnv {
     /// `n` environments of `config`, stepped on `threads` threads (at least 1).
     pub fn new(
@@ -38,7 +44,7 @@ impl VecEnv {
         Self::mixed(std::slice::from_ref(config), n, threads, base_seed)
     }
 
-    /// `n` environments, environment `i` of `configs[i % configs.len()]` (a mixture of
+    /// `n` environments, environment `i` of `configs[`[`preset_of_env`]`]` (a mixture of
     /// presets: e.g. one generalist trained on several families), on `threads` threads.
     pub fn mixed(
         configs: &[EnvConfig],
@@ -49,7 +55,11 @@ impl VecEnv {
         let Some(first) = configs.first() else {
             return Err(EnvError::NoConfigs);
         };
-        let config_of = |i: usize| configs.get(i % configs.len()).unwrap_or(first);
+        let config_of = |i: usize| {
+            configs
+                .get(preset_of_env(i, configs.len()))
+                .unwrap_or(first)
+        };
         let n = n.max(1);
         let per_thread = n.div_ceil(threads.clamp(1, n));
         let mut chunks = Vec::new();

@@ -22,7 +22,7 @@ impl Method {
         if let Some(i) = SCRIPT_NAMES.iter().position(|s| *s == name) {
             return Ok(Method::Script(i));
         }
-        let dir = match ShippedPolicy::ALL.iter().find(|p| p.name() == name) {
+        let dir = match ShippedPolicy::named(name) {
             Some(p) => p.checkpoint_dir().map_err(|e| CompareError::Io {
                 path: e.path.clone(),
                 source: e.source,

@@ -9,7 +9,7 @@
 //! same observation by [`AgentConfig::write_input`]. Every buffer is sized in `new` and refilled in
 //! place: a step allocates nothing here.
 
-use fairgrasp_env::vec::VecEnv;
+use fairgrasp_env::vec::{VecEnv, preset_of_env};
 use fairgrasp_env::{Action, EnvConfig, EnvError};
 
 use crate::agent::grasp_agent::{ACT_DIM, AgentConfig};
@@ -45,8 +45,8 @@ impl GraspVecEnv {
         Self::mixed(std::slice::from_ref(config), agent, n, threads, seed)
     }
 
-    /// `n` envs, env `i` of `configs[i % configs.len()]` ([`VecEnv::mixed`]), each with its
-    /// own script of its config.
+    /// `n` envs, env `i` of `configs[preset_of_env(i, configs.len())]` ([`VecEnv::mixed`]),
+    /// each with its own script of its config.
     pub fn mixed(
         configs: &[EnvConfig],
         agent: AgentConfig,
@@ -60,7 +60,7 @@ impl GraspVecEnv {
         Ok(Self {
             inner,
             agents: (0..n)
-                .map(|i| EnvAgent::new(&agent, &configs[i % configs.len()]))
+                .map(|i| EnvAgent::new(&agent, &configs[preset_of_env(i, configs.len())]))
                 .collect(),
             env_actions: vec![Action::hold_open(); n],
             grip: if agent.squeeze {

@@ -26,6 +26,7 @@ use crate::ppo::loss::{clipped_surrogate, ratio_diagnostics, value_loss};
 use crate::ppo::model::ActorCritic;
 use crate::ppo::normalizer::RunningNorm;
 use crate::ppo::rollout::{RolloutBuffer, RolloutShape, gather, gather_rows};
+use crate::ppo::teacher::Kickstart;
 use crate::ppo::vec_api::{EpisodeStats, VecEnvError, VecEnvironment, check_finite};
 
 use crate::ppo::config::PpoConfig;
@@ -45,6 +46,9 @@ pub struct UpdateStats {
     /// Largest `|r − 1|` of the PPO ratio on the update's first minibatch, before any gradient
     /// step: 0 when the rollout and the update compute the same log-probability.
     pub first_ratio_deviation: f32,
+    /// The kickstarting term before its weight ([`crate::ppo::teacher`]), mean over the
+    /// minibatches; 0 without teachers.
+    pub kickstart_loss: f32,
 }
 
 fn tensor1(values: Vec<f32>, device: &Device) -> Tensor<1> {
@@ -89,6 +93,12 @@ pub struct Ppo {
     next_obs: Vec<f32>,
     /// The rollout storage, kept between iterations.
     buffer: Option<RolloutBuffer>,
+    /// Teachers whose mean actions the policy is also pulled towards (None: plain PPO).
+    pub kickstart: Option<Kickstart>,
+    /// The teachers' labels of the rollout's samples, `[sample][act_dim]`, and which entries
+    /// they label (1) or not (0).
+    teacher_targets: Vec<f32>,
+    teacher_mask: Vec<f32>,
 }
 
 impl Ppo {
@@ -110,6 +120,9 @@ impl Ppo {
             rng: ChaCha8Rng::seed_from_u64(seed),
             next_obs: Vec::new(),
             buffer: None,
+            kickstart: None,
+            teacher_targets: Vec::new(),
+            teacher_mask: Vec::new(),
         }
     }
 
@@ -162,6 +175,10 @@ impl Ppo {
         let device = self.device.clone().inner();
         let inference = self.model.valid();
         b.episodes.clear();
+        if self.kickstart.is_some() {
+            self.teacher_targets.resize(shape.samples() * ad, 0.0);
+            self.teacher_mask.resize(shape.samples() * ad, 0.0);
+        }
         for t in 0..shape.n_steps {
             let rows = b.step_range(t);
             check_finite(&self.next_obs, od, "observation")?;
@@ -170,6 +187,16 @@ impl Ppo {
             }
             let obs_n = &mut b.obs[rows.start * od..rows.end * od];
             self.normalize_rows(&self.next_obs, od, obs_n);
+            if let Some(k) = &self.kickstart {
+                let labels = rows.start * ad..rows.end * ad;
+                k.label_step(
+                    &self.next_obs,
+                    od,
+                    ad,
+                    &mut self.teacher_targets[labels.clone()],
+                    &mut self.teacher_mask[labels],
+                );
+            }
             let x = tensor2(obs_n.to_vec(), od, &device);
             let mean_t = inference.mean(x.clone());
             let mean = to_vec(mean_t.clone())?;
@@ -242,7 +269,8 @@ impl Ppo {
             episodes: b.episodes.clone(),
             ..UpdateStats::default()
         };
-        let (mut count, mut sums) = (0.0f32, [0.0f32; 5]);
+        let (mut count, mut sums) = (0.0f32, [0.0f32; 6]);
+        let kick_weight = self.kickstart.as_ref().map(|k| k.weight_at(progress));
         'epochs: for _ in 0..c.n_epochs {
             b_inds.shuffle(&mut self.rng);
             for mb_inds in b_inds.chunks(c.batch_size) {
@@ -260,7 +288,7 @@ impl Ppo {
                     tensor1(mb_adv, &self.device),
                     c.clip_coef,
                 );
-                let new_values = self.model.value(mb_obs);
+                let new_values = self.model.value(mb_obs.clone());
                 let v_loss = value_loss(
                     new_values,
                     tensor1(gather(&b.returns, mb_inds), &self.device),
@@ -268,10 +296,27 @@ impl Ppo {
                     c.clip_vloss.then_some(c.clip_coef),
                 );
                 let entropy = entropy.mean();
-                let loss = pg_loss
+                let mut loss = pg_loss
                     .clone()
                     .sub(entropy.clone().mul_scalar(c.ent_coef))
                     .add(v_loss.clone().mul_scalar(c.vf_coef));
+                let mut kick_loss = 0.0;
+                if let Some(w) = kick_weight {
+                    let target = gather_rows(&self.teacher_targets, ad, mb_inds);
+                    let mask = gather_rows(&self.teacher_mask, ad, mb_inds);
+                    let diff = self
+                        .model
+                        .mean(mb_obs)
+                        .sub(tensor2(target, ad, &self.device));
+                    let term = diff
+                        .clone()
+                        .mul(diff)
+                        .mul(tensor2(mask, ad, &self.device))
+                        .sum()
+                        .div_scalar(mb_inds.len() as f32);
+                    kick_loss = scalar(term.clone().inner())?;
+                    loss = loss.add(term.mul_scalar(w));
+                }
                 // Diagnostics (no gradients).
                 let diagnostics = ratio_diagnostics(&to_vec(log_ratio.inner())?, c.clip_coef);
                 if count == 0.0 {
@@ -285,6 +330,7 @@ impl Ppo {
                     scalar(entropy.inner())?,
                     diagnostics.approx_kl,
                     diagnostics.clip_fraction,
+                    kick_loss,
                 ]) {
                     *s += v;
                 }
@@ -302,6 +348,7 @@ impl Ppo {
             stats.entropy,
             stats.approx_kl,
             stats.clip_fraction,
+            stats.kickstart_loss,
         ] = sums.map(|s| s / count.max(1.0));
         stats.explained_variance = explained_variance(&b.values, &b.returns);
         self.buffer = Some(b);

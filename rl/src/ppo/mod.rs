@@ -11,6 +11,7 @@
 //!   [`normalizer`]: running observation statistics.
 //! - [`vec_api`]: the environment interface; [`point_mass`]: a small task PPO must solve;
 //!   [`free_env`]: one that costs nothing (for timing PPO alone).
+//! - [`teacher`]: kickstarting, a term that pulls the policy towards teachers' actions.
 
 pub mod algorithm;
 pub mod config;
@@ -24,6 +25,7 @@ pub mod model;
 pub mod normalizer;
 pub mod point_mass;
 pub mod rollout;
+pub mod teacher;
 pub mod vec_api;
 
 pub use algorithm::{Ppo, UpdateStats, adam};

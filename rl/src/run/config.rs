@@ -11,6 +11,7 @@ use crate::agent::grasp_agent::AgentConfig;
 use crate::ppo::PpoConfig;
 use crate::ppo::model::ModelConfig;
 use crate::run::error::{TrainError, io};
+use crate::run::kickstart::KickstartConfig;
 use fairgrasp_eval::recipe;
 
 /// The most parallel environments a run may step (each holds a physics world, ~1 MB).
@@ -58,6 +59,9 @@ pub struct TrainConfig {
     pub agent: AgentConfig,
     pub model: ModelConfig,
     pub ppo: PpoConfig,
+    /// Teachers the policy is also pulled towards, one per preset ([`crate::run::kickstart`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kickstart: Option<KickstartConfig>,
     /// Settings laid over the preset's env configuration for training only, as in an env
     /// config file (e.g. `[env.task] reward = "staged"`, `terminate_on_collision = false`).
     /// Evaluations use the preset as it is: the success criterion never changes.
@@ -85,6 +89,7 @@ impl Default for TrainConfig {
             curriculum: None,
             env: None,
             env_snapshot: None,
+            kickstart: None,
             agent: AgentConfig::default(),
             model: ModelConfig {
                 log_std_init: -1.0,
@@ -189,6 +194,9 @@ impl TrainConfig {
                     self.n_envs
                 ));
             }
+        }
+        if let Some(k) = &self.kickstart {
+            k.check(self.mix.len() + 1)?;
         }
         for env in self.training_env_configs().map_err(|e| e.to_string())? {
             recipe::check_agent_env(&env)?;

@@ -13,7 +13,8 @@ const LEADING_COLUMNS: &str = "update,timesteps,wall_time_s,episodes,episode_ret
 
 /// The header line: [`LEADING_COLUMNS`], then `outcome_<name>` for every [`Outcome`] (the share
 /// of the update's finished episodes that ended so), then `steps_per_second` (environment steps
-/// per second of the update's rollout and learning). Files written before the later columns
+/// per second of the update's rollout and learning) and `kickstart_loss` (the teachers' term,
+/// [`crate::ppo::teacher`]; 0 without teachers). Files written before the later columns
 /// existed have a prefix of them (a resume pads their rows).
 pub fn metrics_header() -> String {
     let mut header = LEADING_COLUMNS.to_string();
@@ -21,7 +22,7 @@ pub fn metrics_header() -> String {
         header.push_str(",outcome_");
         header.push_str(o.as_str());
     }
-    header.push_str(",steps_per_second");
+    header.push_str(",steps_per_second,kickstart_loss");
     header
 }
 
@@ -56,7 +57,7 @@ pub fn metrics_row(
         let share = mean(&|e| f64::from(u8::from(e.outcome == Some(o))));
         row.push_str(&format!(",{share:.4}"));
     }
-    row.push_str(&format!(",{speed:.1}"));
+    row.push_str(&format!(",{speed:.1},{:.6}", s.kickstart_loss));
     row
 }
 

@@ -9,6 +9,7 @@
 //! - [`folder`]: what a run folder holds and who may train in it; [`resume`]: continuing a run
 //!   safely; [`snapshot`]: the run's copy of its preset file; [`crash`]: the kill tests' fault injection.
 //! - [`evaluate`]: a checkpoint as a policy, evaluated on a preset.
+//! - [`kickstart`]: a run's teachers (one trained policy per preset it trains on).
 //! - [`shipped`]: the policies built into the binary (`fairgrasp_eval::shipped`, re-exported).
 
 pub mod checkpoint;
@@ -17,6 +18,7 @@ pub mod crash;
 pub mod error;
 pub mod evaluate;
 pub mod folder;
+pub mod kickstart;
 pub mod metrics;
 pub mod resume;
 pub mod snapshot;

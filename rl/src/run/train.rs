@@ -29,6 +29,7 @@ pub use crate::run::error::TrainError;
 use crate::run::error::io;
 pub use crate::run::evaluate::{agent_policy, evaluate_model};
 use crate::run::folder::{self, RunLock, Start, StartFlags};
+use crate::run::kickstart;
 use crate::run::metrics::{metrics_header, metrics_row};
 use crate::run::resume::{self, ResumeOptions};
 use crate::run::tensorboard::TensorBoardLog;
@@ -253,6 +254,14 @@ pub fn train_with(
     options: ResumeOptions,
     report: &mut dyn FnMut(Progress),
 ) -> Result<EvalReport, TrainError> {
+    // The teachers load before the run folder is touched: a wrong one changes nothing there.
+    let kickstart = match &config.kickstart {
+        Some(k) => {
+            let envs = config.env_configs().map_err(TrainError::Config)?;
+            Some(kickstart::load(k, &config.agent, &envs)?)
+        }
+        None => None,
+    };
     let flags = StartFlags {
         resume: options.resume,
         force: options.force,
@@ -323,6 +332,7 @@ pub fn train_with(
     if let Some(dir) = optimizer_from {
         ppo.optimizer = checkpoint::load_optimizer(&dir, ppo.optimizer)?;
     }
+    ppo.kickstart = kickstart;
     let mut run = Run {
         config,
         run_dir: run_dir.to_path_buf(),
