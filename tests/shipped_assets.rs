@@ -56,6 +56,7 @@ fn a_copied_binary_run_elsewhere_compares_the_built_in_policies_on_a_built_in_pr
         "residual_nudged",
         "residual_wrist_camera",
         "residual_heavy_slippery",
+        "residual_generalist",
         "pure_full",
         "residual_hard",
     ];

@@ -32,6 +32,9 @@ pub enum ShippedPolicy {
     ResidualWristCamera,
     /// The residual with the squeeze on `heavy_slippery` (cubes the script's grip cannot lift).
     ResidualHeavySlippery,
+    /// One residual with the squeeze for `full`, `nudged`, `wrist_camera` and `heavy_slippery`,
+    /// kickstarted from the three specialists above.
+    ResidualGeneralist,
 }
 
 /// A file of a shipped policy: its path inside the policy folder, and its bytes.
@@ -89,6 +92,7 @@ const RESIDUAL_MISCALIBRATED_B: &[File] = policy_files!("residual_miscalibrated_
 const RESIDUAL_NUDGED: &[File] = policy_files!("residual_nudged");
 const RESIDUAL_WRIST_CAMERA: &[File] = policy_files!("residual_wrist_camera");
 const RESIDUAL_HEAVY_SLIPPERY: &[File] = policy_files!("residual_heavy_slippery");
+const RESIDUAL_GENERALIST: &[File] = policy_files!("residual_generalist");
 
 /// A shipped policy that could not be unpacked.
 #[derive(Debug, thiserror::Error)]
@@ -101,12 +105,13 @@ pub struct ShippedError {
 
 impl ShippedPolicy {
     /// Every shipped policy.
-    pub const ALL: [ShippedPolicy; 8] = [
+    pub const ALL: [ShippedPolicy; 9] = [
         ShippedPolicy::ResidualMiscalibrated,
         ShippedPolicy::ResidualMiscalibratedB,
         ShippedPolicy::ResidualNudged,
         ShippedPolicy::ResidualWristCamera,
         ShippedPolicy::ResidualHeavySlippery,
+        ShippedPolicy::ResidualGeneralist,
         ShippedPolicy::PureFull,
         ShippedPolicy::ResidualHard,
         ShippedPolicy::PureHard,
@@ -134,6 +139,7 @@ impl ShippedPolicy {
             ShippedPolicy::ResidualNudged => "residual_nudged",
             ShippedPolicy::ResidualWristCamera => "residual_wrist_camera",
             ShippedPolicy::ResidualHeavySlippery => "residual_heavy_slippery",
+            ShippedPolicy::ResidualGeneralist => "residual_generalist",
         }
     }
 
@@ -147,6 +153,7 @@ impl ShippedPolicy {
             ShippedPolicy::ResidualNudged => RESIDUAL_NUDGED,
             ShippedPolicy::ResidualWristCamera => RESIDUAL_WRIST_CAMERA,
             ShippedPolicy::ResidualHeavySlippery => RESIDUAL_HEAVY_SLIPPERY,
+            ShippedPolicy::ResidualGeneralist => RESIDUAL_GENERALIST,
         }
     }
 

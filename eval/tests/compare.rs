@@ -216,3 +216,30 @@ fn the_shared_episode_queue_gives_each_method_its_own_evaluation_whatever_the_th
     let compared = three.get("closed-loop script", "nudged").unwrap();
     assert_eq!(compared.report.results, alone.results);
 }
+
+/// The generalist in a comparison: one policy that grasps on every family it was trained for,
+/// where each specialist fails outside its own (the wrist camera's specialist on `nudged`, the
+/// push's on heavy cubes): it uses the push, the wrist view and the squeeze as each comes.
+#[test]
+fn the_generalist_grasps_on_every_family_it_was_trained_for() {
+    let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rl-compare-generalist");
+    let dir = ShippedPolicy::ResidualGeneralist
+        .checkpoint_dir_in(&root)
+        .unwrap();
+    let learned = LearnedPolicy::load_all(&[dir]).unwrap();
+    let families = ["nudged", "wrist_camera", "heavy_slippery", "full"];
+    let mut s = spec(&families, 30);
+    s.replay_episodes = 0;
+    let out = run_comparison(&s, &learned, &|_| {}).unwrap();
+    let c = &out.comparison;
+    let learned_name = c.methods.last().unwrap().clone();
+    for family in families {
+        let rate = |method: &str| c.get(method, family).unwrap().report.success_rate;
+        let (generalist, script) = (rate(&learned_name), rate("scripted baseline"));
+        eprintln!("{family}: {learned_name} {generalist:.3}, open-loop script {script:.3}");
+        assert!(generalist >= 0.85, "{family}: {generalist}");
+        assert!(generalist >= script, "{family}: {generalist} vs {script}");
+    }
+    let heavy = |method: &str| c.get(method, "heavy_slippery").unwrap().report.success_rate;
+    assert!(heavy(&learned_name) >= heavy("oracle script") + 0.4);
+}

@@ -7,6 +7,7 @@ use fairgrasp_eval::burnpack::read_tensors;
 use fairgrasp_rl::agent::Mode;
 use fairgrasp_rl::run::checkpoint::load_model;
 use fairgrasp_rl::run::shipped::ShippedPolicy;
+use fairgrasp_rl::run::train::TrainConfig;
 use fairgrasp_types::paired::mcnemar_exact;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -42,10 +43,12 @@ fn every_shipped_policy_acts_the_same_without_burn_to_1e_5() {
     }
 }
 
-/// The preset each shipped policy was trained for (its name after the mode).
-fn family(policy: ShippedPolicy) -> &'static str {
-    let name = policy.name();
-    name.split_once('_').map_or(name, |(_, rest)| rest)
+/// The presets a shipped policy was trained on: its run's `preset`, then `mix` (a generalist's
+/// other families).
+fn families(policy: ShippedPolicy) -> Vec<String> {
+    let dir = policy.checkpoint_dir().unwrap();
+    let run = TrainConfig::from_toml_file(&dir.parent().unwrap().join("config.toml")).unwrap();
+    std::iter::once(run.preset).chain(run.mix).collect()
 }
 
 #[test]
@@ -57,11 +60,14 @@ fn every_shipped_policy_ends_300_episodes_the_same_without_burn() {
     use fairgrasp_rl::run::evaluate::agent_policy;
 
     let device = Device::flex();
-    for policy in ShippedPolicy::ALL {
+    let each = ShippedPolicy::ALL
+        .into_iter()
+        .flat_map(|p| families(p).into_iter().map(move |f| (p, f)));
+    for (policy, family) in each {
         let dir = policy.checkpoint_dir().unwrap();
         let (meta, model) = load_model(&dir, &device).unwrap();
         let (_, actor) = load_actor(&dir).unwrap();
-        let config = presets::load(family(policy)).unwrap();
+        let config = presets::load(&family).unwrap();
         let scenarios = scenario_set(&config, 7, 300).unwrap();
         let with_burn = evaluate(
             &config,
@@ -102,13 +108,13 @@ fn every_shipped_policy_ends_300_episodes_the_same_without_burn() {
             "{} on {}: {:.1} % with burn, {:.1} % without; {other_outcome} episodes end otherwise \
              ({only_burn} / {only_actor} successes of one only, McNemar p = {p:.3})",
             policy.name(),
-            family(policy),
+            family,
             100.0 * with_burn.success_rate,
             100.0 * without.success_rate,
         );
         if meta.agent.mode == Mode::Residual && !meta.agent.squeeze {
-            assert_eq!(other_outcome, 0, "{}", policy.name());
+            assert_eq!(other_outcome, 0, "{} on {family}", policy.name());
         }
-        assert!(p >= 0.05, "{}: p = {p}", policy.name());
+        assert!(p >= 0.05, "{} on {family}: p = {p}", policy.name());
     }
 }

@@ -20,8 +20,8 @@ use super::baseline::preset_config;
 #[derive(Args, Debug)]
 pub struct CompareArgs {
     /// Presets (or .toml env configs) to compare on; repeat the flag for several.
-    /// Default: seed, full, hard and the four scenario families (miscalibrated,
-    /// miscalibrated_b, nudged, wrist_camera).
+    /// Default: seed, full, hard, the four scenario families (miscalibrated,
+    /// miscalibrated_b, nudged, wrist_camera) and the contact family (heavy_slippery).
     #[arg(long = "preset", value_name = "NAME")]
     presets: Vec<String>,
     /// Episodes (scenarios) per preset; every method gets the same ones.
