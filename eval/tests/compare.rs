@@ -217,9 +217,9 @@ fn the_shared_episode_queue_gives_each_method_its_own_evaluation_whatever_the_th
     assert_eq!(compared.report.results, alone.results);
 }
 
-/// The generalist in a comparison: one policy that grasps on every family it was trained for,
-/// where each specialist fails outside its own (the wrist camera's specialist on `nudged`, the
-/// push's on heavy cubes): it uses the push, the wrist view and the squeeze as each comes.
+/// The generalist in a comparison: one policy that grasps on every family it was trained for
+/// (each specialist fails outside its own: docs/contact.md), using the push, the wrist view and
+/// the squeeze as each comes.
 #[test]
 fn the_generalist_grasps_on_every_family_it_was_trained_for() {
     let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rl-compare-generalist");

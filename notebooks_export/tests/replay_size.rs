@@ -1,5 +1,5 @@
-//! The 3D replay of a 20-episode comparison stays under 5 MB: nine methods (the three scripts
-//! and six learned policies, as `fairgrasp compare` runs by default) on 20 scenarios, every
+//! The 3D replay of a 20-episode comparison stays under 5 MB: twelve methods (the four scripts
+//! and eight learned policies, as `fairgrasp compare` runs by default) on 20 scenarios, every
 //! episode the longest there is (200 steps, a timeout), ten bodies moving at every step.
 
 use fairgrasp_report::replay3d::{ReplayEpisode, replay_html, three_version};
@@ -71,13 +71,13 @@ fn long_episode(k: usize) -> Trajectory {
 }
 
 #[test]
-fn a_20_episode_report_with_nine_methods_fits_in_5_mb() {
+fn a_20_episode_report_with_twelve_methods_fits_in_5_mb() {
     assert!(
         three_version().is_some(),
         "this build has no three.js: run scripts/install-browser.sh, then build again"
     );
     let trajectories: Vec<Trajectory> = (0..20).map(long_episode).collect();
-    let episodes: Vec<ReplayEpisode<'_>> = (0..9)
+    let episodes: Vec<ReplayEpisode<'_>> = (0..12)
         .flat_map(|m| {
             trajectories
                 .iter()
@@ -92,7 +92,7 @@ fn a_20_episode_report_with_nine_methods_fits_in_5_mb() {
         })
         .collect();
     let html = replay_html("size", &episodes).unwrap();
-    eprintln!("180 episodes × 201 steps: {} bytes", html.len());
+    eprintln!("240 episodes × 201 steps: {} bytes", html.len());
     assert!(html.len() < 5_000_000, "{} bytes", html.len());
     assert!(
         html.contains("three.js authors"),

@@ -79,13 +79,20 @@ fn outcome(dir: &std::path::Path) -> (Vec<u32>, Vec<String>) {
     let (_, model) =
         checkpoint::load_model(&dir.join("checkpoints/latest"), &Device::flex()).unwrap();
     let csv = std::fs::read_to_string(dir.join("metrics.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let clock = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let (wall, speed) = (clock("wall_time_s"), clock("steps_per_second"));
     let rows = csv
         .lines()
         .map(|row| {
-            let mut cells: Vec<&str> = row.split(',').collect();
-            cells.remove(cells.len() - 2); // steps_per_second, before kickstart_loss
-            cells.remove(2); // wall_time_s
-            cells.join(",")
+            let cells: Vec<&str> = row.split(',').collect();
+            let kept: Vec<&str> = cells
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| *i != wall && *i != speed)
+                .map(|(_, c)| *c)
+                .collect();
+            kept.join(",")
         })
         .collect();
     let bits = model

@@ -1,6 +1,7 @@
-//! Kickstarting: the teachers' term pulls the policy to their actions on the entries they label
-//! and ignores the entries they mask out; the generalist's teachers label what their agents command; a run with a
-//! teacher that does not fit is refused before its folder is touched.
+//! Kickstarting: the teachers' term pulls the policy to their actions on the entries they label,
+//! for the raw inputs the rollout met, and ignores the entries they mask out; the generalist's
+//! teachers label the entries their agents command; a run with a teacher that does not fit is
+//! refused before its folder is touched.
 
 use burn::tensor::Device;
 use fairgrasp_eval::checkpoint::load_actor;
@@ -27,10 +28,18 @@ impl Teacher for HalfOnEntryZero {
     }
 }
 
-/// The mean action for one of the free env's inputs after 30 updates, and the kickstarting
-/// loss of the first and last update.
-fn trained(kickstart: Option<Kickstart>) -> (Vec<f32>, f32, f32) {
-    let mut env = FreeEnv::new(4, 30, ACT_DIM);
+/// Labels entry 2 with the raw input's first value (its label depends on the state).
+struct EchoFirstInput;
+impl Teacher for EchoFirstInput {
+    fn label(&self, _env: usize, input: &[f32], target: &mut [f32], mask: &mut [f32]) {
+        target[2] = input[0];
+        mask[2] = 1.0;
+    }
+}
+
+/// PPO on the free env (30 inputs `((t + 7·e + d) mod 13) · 0.1`, a constant reward).
+fn free_ppo() -> (FreeEnv, Ppo) {
+    let env = FreeEnv::new(4, 30, ACT_DIM);
     let device = Device::flex().autodiff();
     let config = PpoConfig {
         n_steps: 32,
@@ -40,13 +49,32 @@ fn trained(kickstart: Option<Kickstart>) -> (Vec<f32>, f32, f32) {
         ..PpoConfig::default()
     };
     let model = ActorCritic::new(30, ACT_DIM, &ModelConfig::default(), 3, &device);
-    let mut ppo = Ppo::new(config, model, RunningNorm::new(30, true), device, 3);
+    (
+        env,
+        Ppo::new(config, model, RunningNorm::new(30, true), device, 3),
+    )
+}
+
+/// The free env's raw input at time `t` for env `e`.
+fn free_input(t: usize, e: usize) -> Vec<f32> {
+    (0..30)
+        .map(|d| ((t + 7 * e + d) % 13) as f32 * 0.1)
+        .collect()
+}
+
+/// The mean action for one of the free env's inputs after 30 updates, and the kickstarting
+/// loss of the first and last update.
+fn trained(kickstart: Option<Kickstart>) -> (Vec<f32>, f32, f32) {
+    let (mut env, mut ppo) = free_ppo();
     ppo.kickstart = kickstart;
     let losses: Vec<f32> = (0..30)
         .map(|_| ppo.iterate(&mut env, 0.0).unwrap().kickstart_loss)
         .collect();
-    let input: Vec<f32> = (0..30).map(|d| (d % 13) as f32 * 0.1).collect();
-    (ppo.mean_action(&input).unwrap(), losses[0], losses[29])
+    (
+        ppo.mean_action(&free_input(0, 0)).unwrap(),
+        losses[0],
+        losses[29],
+    )
 }
 
 #[test]
@@ -78,6 +106,31 @@ fn kickstarting_pulls_the_labelled_entry_to_the_teacher_and_ignores_masked_label
         taught[1] < 1.0,
         "entry 1 = {}: pulled by a masked label",
         taught[1]
+    );
+}
+
+#[test]
+fn the_rollout_labels_each_sample_with_its_teachers_action_for_that_samples_raw_input() {
+    // The label is the raw input's first value (0 to 1.2, by step and env). Labels from the
+    // normalised input, or rows shifted against the inputs, would teach another function.
+    let (mut env, mut ppo) = free_ppo();
+    ppo.kickstart = Some(Kickstart {
+        teacher: Box::new(EchoFirstInput),
+        weight: 5.0,
+        anneal: false,
+    });
+    for _ in 0..60 {
+        ppo.iterate(&mut env, 0.0).unwrap();
+    }
+    let mut worst = 0.0f32;
+    for (t, e) in [(0, 0), (3, 1), (5, 2), (11, 3), (8, 0), (12, 2)] {
+        let input = free_input(t, e);
+        let out = ppo.mean_action(&input).unwrap();
+        worst = worst.max((out[2] - input[0]).abs());
+    }
+    assert!(
+        worst < 0.1,
+        "entry 2 is {worst} away from the raw input's first value"
     );
 }
 
@@ -117,8 +170,11 @@ fn the_generalists_teachers_label_the_entries_their_agents_command_with_their_ow
             assert_eq!(targets[j], want, "env {e}, entry {}", j % ACT_DIM);
         }
     }
-    // The teachers differ: the wrist camera's specialist does not act as the push's does.
-    assert_ne!(&targets[..4], &targets[2 * ACT_DIM..2 * ACT_DIM + 4]);
+    // The teachers differ: on the wrist camera's env, the push's specialist would say otherwise.
+    let (meta, nudged) =
+        load_actor(&ShippedPolicy::ResidualNudged.checkpoint_dir().unwrap()).unwrap();
+    let other = nudged.mean(&meta.obs_norm.normalize(&raw[2 * dim..3 * dim]));
+    assert_ne!(&other[..4], &targets[2 * ACT_DIM..2 * ACT_DIM + 4]);
 }
 
 #[test]

@@ -68,10 +68,10 @@ pub(crate) fn line_mark(color: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(
     move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
 }
 
-/// Tableau 10: readable on white, distinguishable in greyscale print by lightness; ten methods
-/// (the four scripts and six shipped policies of the default comparison) get ten colours
-/// before any repeats.
-pub const PALETTE: [RGBColor; 10] = [
+/// Tableau 10 and two darker colours: readable on white, distinguishable in greyscale print by
+/// lightness; the twelve methods of the default comparison (the four scripts and eight shipped
+/// policies) get twelve colours before any repeats.
+pub const PALETTE: [RGBColor; 12] = [
     RGBColor(78, 121, 167),
     RGBColor(242, 142, 43),
     RGBColor(89, 161, 79),
@@ -82,6 +82,8 @@ pub const PALETTE: [RGBColor; 10] = [
     RGBColor(237, 201, 72),
     RGBColor(255, 157, 167),
     RGBColor(186, 176, 172),
+    RGBColor(64, 64, 64),
+    RGBColor(106, 61, 154),
 ];
 
 /// The colour of the `i`-th method or run (the same in every chart).

@@ -358,6 +358,7 @@ impl Ppo {
             ("policy loss", stats.policy_loss),
             ("value loss", stats.value_loss),
             ("entropy", stats.entropy),
+            ("kickstart loss", stats.kickstart_loss),
         ];
         if let Some((what, value)) = losses.into_iter().find(|(_, v)| !v.is_finite()) {
             return Err(PpoError::NonFiniteLoss { what, value });

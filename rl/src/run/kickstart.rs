@@ -4,10 +4,12 @@
 //! each env's teacher is the specialist of that env's preset.
 //!
 //! A teacher is a shipped policy's name (`residual_nudged`), a checkpoint folder or a run folder
-//! (its `checkpoints/best`). It must see
-//! the same policy input and command the same output as the student (the same agent, but for the
-//! squeeze); it labels only the output entries both use, so a teacher without the squeeze has
-//! no say in the student's squeeze.
+//! (its `checkpoints/best`). It must see the same policy input and command the same output as
+//! the student (the same agent, but for the squeeze); it labels only the output entries both
+//! use, so a teacher without the squeeze has no say in the student's squeeze.
+//!
+//! A teacher is named, not copied: a resumed run loads it again from the same name (a run folder
+//! as a teacher follows that run's `best`; a shipped name follows the binary's policy).
 
 use fairgrasp_env::EnvConfig;
 use fairgrasp_eval::actor::Actor;
