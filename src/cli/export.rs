@@ -58,7 +58,8 @@ pub struct ExportArgs {
     /// The script that grasps [default: open_loop, unless --policy].
     #[arg(long, conflicts_with = "policy", value_parser = clap::builder::PossibleValuesParser::new(SCRIPT_NAMES))]
     method: Option<String>,
-    /// A shipped policy by name (residual_nudged, pure_full, …) or a checkpoint folder.
+    /// A shipped policy by name (residual_nudged, pure_full, …), a checkpoint folder or a run
+    /// folder (its checkpoints/best).
     #[arg(long, value_name = "NAME")]
     policy: Option<String>,
     /// Servo period [s]: 0.001–0.016 (FAIRINO's driver).

@@ -18,8 +18,9 @@ use super::baseline::preset_config;
 #[derive(Args, Debug)]
 pub struct ReplayArgs {
     /// What acts: a script (open_loop, closed_loop, oracle, calibrated), a shipped policy by name
-    /// (residual_hard, pure_full, residual_miscalibrated, …) or a checkpoint folder. Repeat the
-    /// flag to run several on the same scenario (shown side by side in the page).
+    /// (residual_hard, pure_full, residual_miscalibrated, …), a checkpoint folder or a run folder
+    /// (its checkpoints/best). Repeat the flag to run several on the same scenario (shown side by
+    /// side in the page).
     #[arg(long = "policy", value_name = "P", required = true)]
     policies: Vec<String>,
     /// Preset name or a .toml env config.

@@ -1,11 +1,9 @@
 //! A method named on the command line (`fairgrasp replay --policy P`): one of the scripts
-//! (`open_loop`, `closed_loop`, `oracle`), a shipped policy by name (`residual_hard`, …), or a
-//! checkpoint folder.
-
-use std::path::{Path, PathBuf};
+//! (`open_loop`, `closed_loop`, `oracle`, `calibrated`), a shipped policy by name
+//! (`residual_hard`, …), a checkpoint folder or a run folder (its `checkpoints/best`).
 
 use crate::compare::{CompareError, LearnedPolicy, SCRIPTS};
-use crate::shipped::ShippedPolicy;
+use crate::shipped::checkpoint_folder;
 
 /// The command-line names of the scripts, in the order of [`SCRIPTS`].
 pub const SCRIPT_NAMES: [&str; 4] = ["open_loop", "closed_loop", "oracle", "calibrated"];
@@ -17,27 +15,18 @@ pub enum Method {
 }
 
 impl Method {
-    /// Resolves `name`: a script name, a shipped policy's name, or a checkpoint folder.
+    /// Resolves `name`: a script name, else what [`checkpoint_folder`] resolves (a shipped
+    /// policy's name, a checkpoint folder or a run folder's `checkpoints/best`).
     pub fn resolve(name: &str) -> Result<Method, CompareError> {
         if let Some(i) = SCRIPT_NAMES.iter().position(|s| *s == name) {
             return Ok(Method::Script(i));
         }
-        let dir = match ShippedPolicy::named(name) {
-            Some(p) => p.checkpoint_dir().map_err(|e| CompareError::Io {
-                path: e.path.clone(),
-                source: e.source,
-            })?,
-            None if Path::new(name).is_dir() => PathBuf::from(name),
-            None => {
-                let shipped: Vec<&str> = ShippedPolicy::ALL.iter().map(|p| p.name()).collect();
-                return Err(CompareError::Request(format!(
-                    "--policy {name}: not a script ({}), not a shipped policy ({}), and no \
-                     such checkpoint folder",
-                    SCRIPT_NAMES.join(", "),
-                    shipped.join(", ")
-                )));
-            }
-        };
+        let dir = checkpoint_folder(name).map_err(|e| {
+            CompareError::Request(format!(
+                "--policy {name}: not a script ({}), and {e}",
+                SCRIPT_NAMES.join(", ")
+            ))
+        })?;
         let mut loaded = LearnedPolicy::load_all(&[dir])?;
         Ok(Method::Learned(Box::new(loaded.remove(0))))
     }
