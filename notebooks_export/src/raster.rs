@@ -68,7 +68,7 @@ pub fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, png::E
         let mut encoder = png::Encoder::new(&mut out, width, height);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
-        encoder.set_compression(png::Compression::Best);
+        encoder.set_compression(png::Compression::Default);
         // The mark that lets a later command replace this file (fairgrasp_types::output).
         encoder.add_text_chunk("Software".into(), fairgrasp_types::output::GENERATOR.into())?;
         let mut writer = encoder.write_header()?;
@@ -137,6 +137,7 @@ pub fn render_gif(
         let mut indices = vec![0u8; (width * height) as usize];
         let mut previous = vec![u8::MAX; indices.len()];
         let mut delta = vec![0u8; indices.len()];
+        let mut cropped = Vec::with_capacity(indices.len());
         // Pixels equal to the previous frame's are written as this transparent index: long
         // runs of it compress to almost nothing.
         let unchanged = u8::try_from(palette.len()).map_err(|e| err(&e))?;
@@ -170,10 +171,21 @@ pub fn render_gif(
                 *d = if now == before { unchanged } else { *now };
             }
             previous.copy_from_slice(&indices);
+            let ((left, top), (cw, ch)) = changed_rect(&delta, w, unchanged);
+            cropped.clear();
+            for row in delta
+                .chunks_exact(usize::from(w))
+                .skip(usize::from(top))
+                .take(usize::from(ch))
+            {
+                cropped.extend_from_slice(&row[usize::from(left)..usize::from(left + cw)]);
+            }
             let mut frame = gif::Frame {
-                width: w,
-                height: h,
-                buffer: std::borrow::Cow::Borrowed(&delta),
+                left,
+                top,
+                width: cw,
+                height: ch,
+                buffer: std::borrow::Cow::Borrowed(&cropped),
                 transparent: Some(unchanged),
                 dispose: gif::DisposalMethod::Keep,
                 ..gif::Frame::default()
@@ -185,7 +197,88 @@ pub fn render_gif(
     write_file(path, &bytes)
 }
 
+/// The smallest rectangle of a `width`-wide frame of palette indices holding every pixel that
+/// is not `unchanged`: `((left, top), (width, height))` in pixels. A frame where nothing changed
+/// gets its top-left pixel (a GIF frame has at least one), which is `unchanged` and so draws
+/// nothing. Encoding only this rectangle gives the same picture (pixels outside it are kept
+/// from the previous frame, as transparent ones are) with far less LZW work.
+fn changed_rect(frame: &[u8], width: u16, unchanged: u8) -> ((u16, u16), (u16, u16)) {
+    let w = usize::from(width.max(1));
+    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+    for (y, row) in frame.chunks_exact(w).enumerate() {
+        let Some(first) = row.iter().position(|&p| p != unchanged) else {
+            continue;
+        };
+        let last = row.iter().rposition(|&p| p != unchanged).unwrap_or(first);
+        (x0, x1) = (x0.min(first), x1.max(last + 1));
+        (y0, y1) = (y0.min(y), y + 1);
+    }
+    if y0 == usize::MAX {
+        return ((0, 0), (1, 1));
+    }
+    // Every coordinate is below `width` or the frame's height, both u16.
+    let c = |v: usize| u16::try_from(v).unwrap_or(u16::MAX);
+    ((c(x0), c(y0)), (c(x1 - x0), c(y1 - y0)))
+}
+
 /// Turns any displayable drawing error into the `String` the render closures return.
 pub fn de<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A red 6 × 6 square (plotters fills the corners' half-open range) moving right over white, and a frame where nothing moves: each frame the
+    /// decoder rebuilds (frames drawn over the kept picture at their offsets) is exactly white
+    /// and red where the square was drawn.
+    #[test]
+    fn cropped_frames_rebuild_every_picture() {
+        let (w, h) = (40u32, 30u32);
+        let xs = [2i32, 2, 9, 20, 20, 31];
+        let path = std::env::temp_dir().join(format!("raster-crop-{}.gif", std::process::id()));
+        let palette = gif_palette(&[RED]);
+        render_gif(&path, (w, h), &[5; 6], &palette, |i, root| {
+            root.fill(&WHITE).map_err(de)?;
+            let x = xs[i];
+            root.draw(&Rectangle::new([(x, 10), (x + 6, 16)], RED.filled()))
+                .map_err(de)
+        })
+        .unwrap();
+        let mut options = gif::DecodeOptions::new();
+        options.set_color_output(gif::ColorOutput::RGBA);
+        let mut decoder = options
+            .read_info(std::fs::File::open(&path).unwrap())
+            .unwrap();
+        let mut picture = vec![[0u8; 3]; (w * h) as usize];
+        let mut sizes = Vec::new();
+        for &x in &xs {
+            let frame = decoder.read_next_frame().unwrap().unwrap();
+            sizes.push(usize::from(frame.width) * usize::from(frame.height));
+            for (k, px) in frame.buffer.chunks_exact(4).enumerate() {
+                let (fx, fy) = (k % usize::from(frame.width), k / usize::from(frame.width));
+                if px[3] == 255 {
+                    let at =
+                        (usize::from(frame.top) + fy) * w as usize + usize::from(frame.left) + fx;
+                    picture[at] = [px[0], px[1], px[2]];
+                }
+            }
+            for (k, px) in picture.iter().enumerate() {
+                let (px_x, px_y) = ((k % w as usize) as i32, (k / w as usize) as i32);
+                let inside = (x..x + 6).contains(&px_x) && (10..16).contains(&px_y);
+                let want = if inside { [255, 0, 0] } else { [255, 255, 255] };
+                assert_eq!(
+                    *px, want,
+                    "frame with the square at x = {x}, pixel ({px_x}, {px_y})"
+                );
+            }
+        }
+        assert!(decoder.read_next_frame().unwrap().is_none());
+        // The first frame is whole, an unchanged one a single pixel, a move only its band.
+        assert_eq!(sizes[0], (w * h) as usize);
+        assert_eq!(sizes[1], 1);
+        assert_eq!(sizes[2], (9 + 6 - 2) * 6);
+        std::fs::remove_file(&path).unwrap();
+    }
 }
