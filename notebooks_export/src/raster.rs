@@ -230,9 +230,10 @@ pub fn de<E: std::fmt::Display>(e: E) -> String {
 mod tests {
     use super::*;
 
-    /// A red 6 × 6 square (plotters fills the corners' half-open range) moving right over white, and a frame where nothing moves: each frame the
-    /// decoder rebuilds (frames drawn over the kept picture at their offsets) is exactly white
-    /// and red where the square was drawn.
+    /// A red 6 × 6 square (plotters fills the corners' half-open range) moving right over
+    /// white, with frames where nothing moves: each picture the decoder rebuilds (frames drawn
+    /// over the kept picture at their offsets) is exactly white, and red where the square was
+    /// drawn.
     #[test]
     fn cropped_frames_rebuild_every_picture() {
         let (w, h) = (40u32, 30u32);
