@@ -174,7 +174,7 @@ pub fn render_gif(
             let ((left, top), (cw, ch)) = changed_rect(&delta, w, unchanged);
             cropped.clear();
             for row in delta
-                .chunks_exact(usize::from(w))
+                .chunks_exact(usize::from(w.max(1)))
                 .skip(usize::from(top))
                 .take(usize::from(ch))
             {
