@@ -239,6 +239,7 @@ fn every_docs_page_with_commands_is_run() {
         "docs/index.md",
         "docs/kinematics.md",
         "docs/performance.md",
+        "docs/pure-ppo-in-ten-minutes.md",
         "docs/python.md",
         "docs/real_cell.md",
         "docs/reliability.md",
@@ -331,6 +332,14 @@ fn rl_commands_run_as_written() {
             "runs/res_miscalibrated_s0/metrics.csv",
             "runs/pure_full_s1/checkpoints/best/meta.json",
         ],
+    );
+}
+
+#[test]
+fn ten_minute_pure_ppo_commands_run_as_written() {
+    run_page("docs/pure-ppo-in-ten-minutes.md").has(
+        "docs/pure-ppo-in-ten-minutes.md",
+        &["runs/pure_full_10min_s1/checkpoints/best/meta.json"],
     );
 }
 

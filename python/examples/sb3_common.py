@@ -17,7 +17,8 @@ def recipe_file(name):
 
 def ppo_from_recipe(env, recipe, seed, zero_actor_output=None, **extra):
     """SB3 PPO with the recipe's [ppo] and [model]: separate tanh MLPs of `hidden` for actor and
-    critic, `log_std_init`, the learning rate annealed linearly to 0 when `anneal_lr`, the target
+    critic, `log_std_init`, the learning rate annealed linearly to 0 when `anneal_lr` (held until
+    the fraction `anneal_from` of training, as `PpoConfig::learning_rate_at` does), the target
     KL, advantage normalisation; `norm_obs` is the caller's VecNormalize. With
     `zero_actor_output` the actor's output layer starts at zero (the untrained residual is the
     script)."""
@@ -26,7 +27,12 @@ def ppo_from_recipe(env, recipe, seed, zero_actor_output=None, **extra):
 
     ppo, model = recipe["ppo"], recipe["model"]
     lr = ppo["learning_rate"]
-    learning_rate = (lambda progress: lr * progress) if ppo.get("anneal_lr", True) else lr
+    hold = ppo.get("anneal_from", 0.0)
+
+    def anneal(left):  # SB3 passes the fraction of training left, from 1 to 0
+        return lr * min(1.0, max(0.0, left / (1.0 - hold)))
+
+    learning_rate = anneal if ppo.get("anneal_lr", False) else lr
     agent = PPO(
         "MlpPolicy",
         env,

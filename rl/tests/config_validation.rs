@@ -32,6 +32,8 @@ fn each_reported_bad_training_value_is_refused_naming_its_field() {
         ("[ppo]\ntarget_kl = -0.01", "target_kl"),
         ("[ppo]\nlearning_rate = 1e30", "learning_rate"),
         ("[ppo]\nlearning_rate = nan", "learning_rate"),
+        ("[ppo]\nanneal_from = 1.0", "anneal_from"),
+        ("[ppo]\nanneal_from = -0.1", "anneal_from"),
         ("[agent]\nresidual_scale = inf", "residual_scale"),
         ("eval_episodes = 0", "eval_episodes"),
         ("max_wall_time_s = nan", "max_wall_time_s"),

@@ -124,6 +124,36 @@ fn a_rollout_that_is_not_a_multiple_of_the_batch_size_is_refused() {
     assert!(PpoConfig::default().validate(1).is_ok(), "SB3's 2048 / 64");
 }
 
+#[test]
+fn the_learning_rate_holds_until_anneal_from_then_falls_linearly_to_zero() {
+    let flat = PpoConfig {
+        learning_rate: 1e-3,
+        ..PpoConfig::default()
+    };
+    assert_eq!(flat.learning_rate_at(0.9), 1e-3, "no anneal_lr: constant");
+    let from_start = PpoConfig {
+        anneal_lr: true,
+        ..flat.clone()
+    };
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+    assert!(close(from_start.learning_rate_at(0.0), 1e-3));
+    assert!(close(from_start.learning_rate_at(0.25), 0.75e-3));
+    let held = PpoConfig {
+        anneal_from: 0.6,
+        ..from_start
+    };
+    for (progress, rate) in [
+        (0.0, 1e-3),
+        (0.6, 1e-3),
+        (0.8, 0.5e-3),
+        (1.0, 0.0),
+        (1.2, 0.0),
+    ] {
+        let got = held.learning_rate_at(progress);
+        assert!(close(got, rate), "at {progress}: {got}, not {rate}");
+    }
+}
+
 fn evaluate(ppo: &Ppo, episodes: usize) -> f32 {
     evaluate_with(&|o| ppo.mean_action(o).unwrap(), episodes)
 }

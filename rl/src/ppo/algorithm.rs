@@ -257,11 +257,7 @@ impl Ppo {
         let c = self.config.clone();
         let mut b = self.collect(env)?;
         b.compute_advantages(c.gamma, c.gae_lambda);
-        let lr = if c.anneal_lr {
-            c.learning_rate * (1.0 - progress).max(0.0)
-        } else {
-            c.learning_rate
-        };
+        let lr = c.learning_rate_at(progress);
         let (od, ad) = (b.shape.obs_dim, b.shape.act_dim);
         let mut b_inds: Vec<usize> = (0..b.shape.samples()).collect();
         let mut stats = UpdateStats {

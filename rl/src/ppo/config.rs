@@ -30,6 +30,10 @@ pub struct PpoConfig {
     pub learning_rate: f64,
     /// Decay the learning rate linearly to 0 over training.
     pub anneal_lr: bool,
+    /// With `anneal_lr`: the fraction of `total_timesteps`, in [0, 1), during which the
+    /// learning rate stays at `learning_rate` before it falls linearly to 0 at the end (0, the
+    /// default: from the first step, as SB3 and CleanRL anneal).
+    pub anneal_from: f64,
     /// Stop an update's epochs early once the approximate KL passes this.
     pub target_kl: Option<f32>,
     /// Normalise advantages per minibatch.
@@ -53,6 +57,7 @@ impl Default for PpoConfig {
             max_grad_norm: 0.5,
             learning_rate: 3e-4,
             anneal_lr: false,
+            anneal_from: 0.0,
             target_kl: None,
             norm_adv: true,
             norm_obs: true,
@@ -85,6 +90,17 @@ pub enum PpoConfigError {
 pub const MAX_ROLLOUT: usize = 1 << 22;
 
 impl PpoConfig {
+    /// The learning rate of the update at `progress` (the fraction of `total_timesteps` done,
+    /// in [0, 1]): `learning_rate`, or with `anneal_lr` that rate until `anneal_from` and then
+    /// falling linearly to 0 at `progress` 1.
+    pub fn learning_rate_at(&self, progress: f64) -> f64 {
+        if !self.anneal_lr {
+            return self.learning_rate;
+        }
+        let left = (1.0 - progress) / (1.0 - self.anneal_from);
+        self.learning_rate * left.clamp(0.0, 1.0)
+    }
+
     /// Checks the configuration for `n_envs` environments: every number finite and in its
     /// range, the rollout's size overflow-checked and capped at [`MAX_ROLLOUT`].
     pub fn validate(&self, n_envs: usize) -> Result<(), PpoConfigError> {
@@ -105,6 +121,13 @@ impl PpoConfig {
                 "learning_rate",
                 self.learning_rate.to_string(),
                 "must be in (0, 1] (SB3's default 3e-4)",
+            );
+        }
+        if !(0.0..1.0).contains(&self.anneal_from) {
+            return bad(
+                "anneal_from",
+                self.anneal_from.to_string(),
+                "must be in [0, 1): the fraction of training before the learning rate decays",
             );
         }
         let unit = [
