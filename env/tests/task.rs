@@ -50,3 +50,47 @@ fn an_object_below_the_table_top_or_past_its_edge_is_off_the_table() {
     s.object_xy_from_table_centre = [0.61, 0.0];
     assert!(is_off_table(&s));
 }
+
+#[test]
+fn a_success_after_a_collision_is_void_only_when_the_task_says_so() {
+    use fairgrasp_env::task::{Failure, judge, void_success_after_collision};
+    let mut cfg = TaskConfig {
+        terminate_on_collision: false,
+        ..TaskConfig::default()
+    };
+    let touch = || Some(Failure::Collision("table".into(), "finger_left_pad".into()));
+    let resting = state(0.625, [true, true]);
+    let lifted = state(0.656, [true, true]);
+    for voids in [false, true] {
+        cfg.collision_voids_success = voids;
+        let mut first = None;
+        // A clean episode's success stands either way.
+        let clean =
+            void_success_after_collision(judge(&lifted, None, &cfg), &mut first, &lifted, &cfg);
+        assert!(
+            clean.success && clean.terminated && clean.reward == 10.0,
+            "{voids}: {clean:?}"
+        );
+        // The table touched (the episode goes on), then the cube lifted.
+        let hit = void_success_after_collision(
+            judge(&resting, touch(), &cfg),
+            &mut first,
+            &resting,
+            &cfg,
+        );
+        assert!(!hit.terminated && hit.failure == touch());
+        assert_eq!(first, touch(), "the first collision is kept");
+        let after =
+            void_success_after_collision(judge(&lifted, None, &cfg), &mut first, &lifted, &cfg);
+        if voids {
+            assert!(!after.success && after.terminated, "{after:?}");
+            assert_eq!(after.failure, touch());
+            assert_eq!(after.reward, -1.0);
+        } else {
+            assert!(
+                after.success && after.terminated && after.reward == 10.0,
+                "{after:?}"
+            );
+        }
+    }
+}

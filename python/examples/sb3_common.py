@@ -21,7 +21,7 @@ def ppo_from_recipe(env, recipe, seed, zero_actor_output=None, **extra):
     the fraction `anneal_from` of training, as `PpoConfig::learning_rate_at` does), the target
     KL, advantage normalisation; `norm_obs` is the caller's VecNormalize. With
     `zero_actor_output` the actor's output layer starts at zero (the untrained residual is the
-    script)."""
+    script); `actor_output_bias`, when given, is that layer's initial bias."""
     import torch
     from stable_baselines3 import PPO
 
@@ -58,10 +58,13 @@ def ppo_from_recipe(env, recipe, seed, zero_actor_output=None, **extra):
         **extra,
     )
     zero = model.get("zero_actor_output", False) if zero_actor_output is None else zero_actor_output
-    if zero:
-        with torch.no_grad():
+    bias = model.get("actor_output_bias", [])
+    with torch.no_grad():
+        if zero:
             agent.policy.action_net.weight.zero_()
             agent.policy.action_net.bias.zero_()
+        if bias:
+            agent.policy.action_net.bias.copy_(torch.tensor(bias, dtype=torch.float32))
     return agent
 
 

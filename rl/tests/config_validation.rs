@@ -39,6 +39,11 @@ fn each_reported_bad_training_value_is_refused_naming_its_field() {
         ("max_wall_time_s = nan", "max_wall_time_s"),
         ("[model]\nhidden = [100000, 100000]", "model.hidden"),
         ("[model]\nlog_std_init = 100.0", "log_std_init"),
+        ("[model]\nactor_output_bias = [-0.5]", "actor_output_bias"),
+        (
+            "[model]\nactor_output_bias = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -2.0]",
+            "actor_output_bias",
+        ),
         ("n_envs = 100000000", "n_envs"),
         (
             "n_envs = 8\n[ppo]\nn_steps = 4611686018427387904",

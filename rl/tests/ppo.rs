@@ -260,3 +260,51 @@ fn the_ppo_ratio_is_exactly_one_on_the_first_minibatch_of_every_update() {
         );
     }
 }
+
+#[test]
+fn a_fresh_actor_starts_at_its_output_bias() {
+    // With a zero output layer the mean action is the bias alone, on any input; with the usual
+    // small output weights it is the bias plus a little. Without the field both start near 0.
+    let device = Device::flex();
+    let bias = vec![0.0, 0.25, 0.0, 0.0, 0.0, 0.0, -0.5];
+    let obs = Tensor::<2>::from_data(
+        TensorData::new(
+            (0..3 * 5).map(|i| i as f32 - 7.0).collect::<Vec<f32>>(),
+            [3, 5],
+        ),
+        &device,
+    );
+    for zero in [true, false] {
+        let config = ModelConfig {
+            zero_actor_output: zero,
+            actor_output_bias: bias.clone(),
+            ..ModelConfig::default()
+        };
+        config.check().unwrap();
+        let model = ActorCritic::new(5, ACT_DIM, &config, 4, &device);
+        let mean = model
+            .mean(obs.clone())
+            .into_data()
+            .try_to_vec::<f32>()
+            .unwrap();
+        for (k, m) in mean.iter().enumerate() {
+            let tolerance = if zero { 0.0 } else { 0.1 };
+            let want = bias[k % ACT_DIM];
+            assert!(
+                (m - want).abs() <= tolerance,
+                "zero {zero}, entry {k}: {m}, not {want}"
+            );
+        }
+        let plain = ModelConfig {
+            zero_actor_output: zero,
+            ..ModelConfig::default()
+        };
+        let model = ActorCritic::new(5, ACT_DIM, &plain, 4, &device);
+        let mean = model
+            .mean(obs.clone())
+            .into_data()
+            .try_to_vec::<f32>()
+            .unwrap();
+        assert!(mean[6].abs() < 0.1, "no bias: gripper mean {}", mean[6]);
+    }
+}

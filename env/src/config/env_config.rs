@@ -217,6 +217,11 @@ pub struct TaskConfig {
     pub distance_reward: f64,
     /// Does a collision end the episode?
     pub terminate_on_collision: bool,
+    /// With `terminate_on_collision = false` (training), is a success after a collision earlier
+    /// in the episode void? Then that step ends the episode as the collision's failure, paid
+    /// the collision's reward: what an evaluation, which ends the episode at the collision,
+    /// would have judged. Default false (the success counts).
+    pub collision_voids_success: bool,
     /// Which reward the task pays (the evaluation's success criterion is the same for all).
     pub reward: RewardKind,
     /// Protective stop threshold [N]: a contact between the robot (links, palm, finger struts,
@@ -261,6 +266,7 @@ impl Default for TaskConfig {
             collision_reward: -1.0,
             distance_reward: -0.005,
             terminate_on_collision: true,
+            collision_voids_success: false,
             reward: RewardKind::Seed,
             protective_stop_force: DEFAULT_PROTECTIVE_STOP_FORCE,
             staged: crate::config::reward::StagedReward::default(),

@@ -18,8 +18,8 @@ use crate::scenario::Scenario;
 use crate::scenario::nudge::{NudgeEvent, NudgeHook};
 use crate::sim::Sim;
 use crate::sim::contacts::{ContactReport, PairKind, TouchingPair};
+use crate::task::Failure;
 use crate::task::episode::EpisodeTracker;
-use crate::task::{Failure, judge, judge_protective_stop};
 use fairgrasp_kinematics::{ArmModel, Pose};
 use nalgebra::Isometry3;
 use rapier3d::prelude::PhysicsWorld;
@@ -52,6 +52,8 @@ pub struct GraspEnv {
     tracker: EpisodeTracker,
     steps: usize,
     done: bool,
+    /// This episode's first collision (`task.collision_voids_success`).
+    first_collision: Option<Failure>,
     scenario: Option<Scenario>,
     /// This episode's push of the cube (the `nudged` family).
     nudge: NudgeHook,
@@ -77,6 +79,7 @@ impl GraspEnv {
             tracker: EpisodeTracker::default(),
             steps: 0,
             done: true,
+            first_collision: None,
             scenario: None,
             nudge: NudgeHook::default(),
         })
@@ -183,6 +186,7 @@ impl GraspEnv {
         self.tracker = EpisodeTracker::start(rest_in_base, self.config.scene.cube_size);
         self.steps = 0;
         self.done = false;
+        self.first_collision = None;
         self.scenario = Some(*scenario);
         self.nudge.reset();
         let info = Info {
@@ -293,10 +297,7 @@ impl GraspEnv {
             collision_failure(&self.robot.model, a, b)
         });
         let state = self.task_state(&contacts);
-        let judgement = match stop {
-            Some(stop) => judge_protective_stop(&state, collision, stop, &self.config.task),
-            None => judge(&state, collision, &self.config.task),
-        };
+        let judgement = self.judge_step(&state, collision, stop);
         info.success = judgement.success;
         info.failure = judgement.failure;
         let truncated = !judgement.terminated && self.steps >= self.config.task.max_steps;

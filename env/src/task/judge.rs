@@ -89,6 +89,31 @@ pub fn judge(s: &TaskState, collision: Option<Failure>, cfg: &TaskConfig) -> Jud
     }
 }
 
+/// `judgement` of a step with `task.collision_voids_success`: a success after a collision earlier
+/// in the episode becomes that collision's failure, terminated and paid the collision's reward.
+/// `first` holds the episode's first collision (this records it; the caller clears it at each
+/// reset). A collision in the success step itself does not void it, as in an evaluation.
+pub fn void_success_after_collision(
+    judgement: Judgement,
+    first: &mut Option<Failure>,
+    s: &TaskState,
+    cfg: &TaskConfig,
+) -> Judgement {
+    let earlier = first.clone();
+    if first.is_none() && matches!(judgement.failure, Some(Failure::Collision(..))) {
+        *first = judgement.failure.clone();
+    }
+    match earlier {
+        Some(collision) if judgement.success && cfg.collision_voids_success => Judgement {
+            success: false,
+            failure: Some(collision),
+            terminated: true,
+            reward: reward(s, false, true, cfg),
+        },
+        _ => judgement,
+    }
+}
+
 /// Judges a step that a protective stop ended: never a success, always terminated (the robot
 /// has stopped, whatever `terminate_on_collision`), and paid `collision_reward`. The failure is
 /// the contact scan's `collision` if the stopped state has one (a part in the table or in the

@@ -97,14 +97,29 @@ impl ActorCritic {
         sizes.extend(&config.hidden);
         let actor_sizes: Vec<usize> = sizes.iter().copied().chain([act_dim]).collect();
         let critic_sizes: Vec<usize> = sizes.iter().copied().chain([1]).collect();
-        Self {
-            actor: mlp(
-                &actor_sizes,
-                0.01,
-                config.zero_actor_output,
-                &mut rng,
+        let mut actor = mlp(
+            &actor_sizes,
+            0.01,
+            config.zero_actor_output,
+            &mut rng,
+            device,
+        );
+        if !config.actor_output_bias.is_empty()
+            && let Some(last) = actor.last_mut()
+        {
+            // `ModelConfig::check` has made it one value per action entry.
+            assert_eq!(
+                config.actor_output_bias.len(),
+                act_dim,
+                "model.actor_output_bias"
+            );
+            last.bias = Some(Param::from_tensor(Tensor::from_data(
+                TensorData::new(config.actor_output_bias.clone(), [act_dim]),
                 device,
-            ),
+            )));
+        }
+        Self {
+            actor,
             critic: mlp(&critic_sizes, 1.0, false, &mut rng, device),
             log_std: Param::from_tensor(Tensor::<1>::full([act_dim], config.log_std_init, device)),
         }

@@ -9,9 +9,9 @@ use crate::env::step::{Action, EnvError, Info, ServoSetpoint, Step};
 use crate::scenario::perception::{observe_object, wrist_view};
 use crate::sim::contacts::ContactReport;
 use crate::sim::part::Part;
-use crate::task::Failure;
 use crate::task::episode::{Ending, StepFacts};
 use crate::task::state::TaskState;
+use crate::task::{Failure, Judgement, judge, judge_protective_stop, void_success_after_collision};
 use fairgrasp_kinematics::ArmModel;
 
 /// Gain of a servo step's feedback on the joints' distance from the setpoint [1/s]: a tenth of
@@ -79,6 +79,23 @@ impl GraspEnv {
         }
         self.push_if_due();
         self.advance(Drive::Servo(setpoints))
+    }
+
+    /// The task's judgement of a step that ended in `state`, with the contact scan's
+    /// `collision` and the protective `stop` if one tripped (then always terminated); with
+    /// `task.collision_voids_success`, a success after an earlier collision is that failure.
+    pub(super) fn judge_step(
+        &mut self,
+        state: &TaskState,
+        collision: Option<Failure>,
+        stop: Option<Failure>,
+    ) -> Judgement {
+        let task = &self.config.task;
+        let judgement = match stop {
+            Some(stop) => judge_protective_stop(state, collision, stop, task),
+            None => judge(state, collision, task),
+        };
+        void_success_after_collision(judgement, &mut self.first_collision, state, task)
     }
 
     /// Takes the step into the episode's tracker; on the terminal step (`self.done`), puts the
