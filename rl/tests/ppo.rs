@@ -274,20 +274,23 @@ fn a_fresh_actor_starts_at_its_output_bias() {
         ),
         &device,
     );
+    // The fresh network's mean actions on `obs`, 3 rows of ACT_DIM.
+    let mean_of = |config: &ModelConfig| {
+        config.check().unwrap();
+        let model = ActorCritic::new(5, ACT_DIM, config, 4, &device);
+        let mean = model.mean(obs.clone()).into_data();
+        mean.try_to_vec::<f32>().unwrap()
+    };
     for zero in [true, false] {
-        let config = ModelConfig {
+        let plain = ModelConfig {
             zero_actor_output: zero,
-            actor_output_bias: bias.clone(),
             ..ModelConfig::default()
         };
-        config.check().unwrap();
-        let model = ActorCritic::new(5, ACT_DIM, &config, 4, &device);
-        let mean = model
-            .mean(obs.clone())
-            .into_data()
-            .try_to_vec::<f32>()
-            .unwrap();
-        for (k, m) in mean.iter().enumerate() {
+        let biased = ModelConfig {
+            actor_output_bias: bias.clone(),
+            ..plain.clone()
+        };
+        for (k, m) in mean_of(&biased).iter().enumerate() {
             let tolerance = if zero { 0.0 } else { 0.1 };
             let want = bias[k % ACT_DIM];
             assert!(
@@ -295,16 +298,7 @@ fn a_fresh_actor_starts_at_its_output_bias() {
                 "zero {zero}, entry {k}: {m}, not {want}"
             );
         }
-        let plain = ModelConfig {
-            zero_actor_output: zero,
-            ..ModelConfig::default()
-        };
-        let model = ActorCritic::new(5, ACT_DIM, &plain, 4, &device);
-        let mean = model
-            .mean(obs.clone())
-            .into_data()
-            .try_to_vec::<f32>()
-            .unwrap();
-        assert!(mean[6].abs() < 0.1, "no bias: gripper mean {}", mean[6]);
+        let gripper = mean_of(&plain)[6];
+        assert!(gripper.abs() < 0.1, "no bias: gripper mean {gripper}");
     }
 }
