@@ -99,19 +99,22 @@ pub fn void_success_after_collision(
     s: &TaskState,
     cfg: &TaskConfig,
 ) -> Judgement {
-    let earlier = first.clone();
+    // A success step has no failure of its own, so `first` is still the earlier collision.
+    if judgement.success
+        && cfg.collision_voids_success
+        && let Some(collision) = first
+    {
+        return Judgement {
+            success: false,
+            failure: Some(collision.clone()),
+            terminated: true,
+            reward: reward(s, false, true, cfg),
+        };
+    }
     if first.is_none() && matches!(judgement.failure, Some(Failure::Collision(..))) {
         *first = judgement.failure.clone();
     }
-    match earlier {
-        Some(collision) if judgement.success && cfg.collision_voids_success => Judgement {
-            success: false,
-            failure: Some(collision),
-            terminated: true,
-            reward: reward(s, false, true, cfg),
-        },
-        _ => judgement,
-    }
+    judgement
 }
 
 /// Judges a step that a protective stop ended: never a success, always terminated (the robot
