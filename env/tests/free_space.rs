@@ -201,3 +201,43 @@ fn every_joint_reach_bounds_the_distance_of_the_points_it_moves() {
     assert!(reach.windows(2).all(|w| w[0] >= w[1]), "{reach:?}");
     assert!(reach[5] < 0.4 && reach[0] < 1.5, "{reach:?}");
 }
+
+/// `task.terminate_on_self_collision` in a training env (`terminate_on_collision = false`): the
+/// arm driven into itself ends the episode at the collision, the arm driven into the table goes
+/// on through it; without the option neither ends.
+#[test]
+fn only_a_self_collision_ends_a_training_episode_when_the_task_says_so() {
+    let into_table = [0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -1.0];
+    let into_itself = [0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0];
+    for ends_on_self in [false, true] {
+        let mut config = common::config(ArmSimulation::Servo);
+        config.task.terminate_on_collision = false;
+        config.task.terminate_on_self_collision = ends_on_self;
+        for (action, self_collision) in [(into_table, false), (into_itself, true)] {
+            let mut env = GraspEnv::new(config.clone()).unwrap();
+            env.reset(3).unwrap();
+            let mut step = || env.step(&Action(action)).unwrap();
+            let hit = (0..200)
+                .map(|_| step())
+                .find(|s| s.terminated || s.info.failure.is_some())
+                .unwrap_or_else(|| panic!("{action:?}: no collision in 200 steps"));
+            let Some(Failure::Collision(a, _)) = &hit.info.failure else {
+                panic!(
+                    "{action:?}: expected a collision, got {:?}",
+                    hit.info.failure
+                );
+            };
+            assert_eq!(
+                a != "table",
+                self_collision,
+                "{action:?}: {:?}",
+                hit.info.failure
+            );
+            let ends_here = ends_on_self && self_collision;
+            assert_eq!(hit.terminated, ends_here, "{action:?} {ends_on_self}");
+            if !ends_here {
+                assert!(!step().terminated, "{action:?}: the episode goes on");
+            }
+        }
+    }
+}

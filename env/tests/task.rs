@@ -94,3 +94,24 @@ fn a_success_after_a_collision_is_void_only_when_the_task_says_so() {
         }
     }
 }
+
+#[test]
+fn a_self_collision_is_two_robot_parts_and_only_it_can_end_a_training_episode() {
+    use fairgrasp_env::task::{Failure, judge};
+    let table = Failure::Collision("table".into(), "finger_left_pad".into());
+    let itself = Failure::Collision("upperarm_link".into(), "wrist1_link".into());
+    assert!(!table.is_self_collision() && itself.is_self_collision());
+    assert!(!Failure::ObjectOffTable.is_self_collision());
+    let resting = state(0.625, [false, false]);
+    for ends_on_self in [false, true] {
+        let cfg = TaskConfig {
+            terminate_on_collision: false,
+            terminate_on_self_collision: ends_on_self,
+            ..TaskConfig::default()
+        };
+        assert!(!judge(&resting, Some(table.clone()), &cfg).terminated);
+        let hit = judge(&resting, Some(itself.clone()), &cfg);
+        assert_eq!(hit.terminated, ends_on_self);
+        assert_eq!((hit.failure, hit.reward), (Some(itself.clone()), -1.0));
+    }
+}

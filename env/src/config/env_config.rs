@@ -222,6 +222,10 @@ pub struct TaskConfig {
     /// the collision's reward: what an evaluation, which ends the episode at the collision,
     /// would have judged. Default false (the success counts).
     pub collision_voids_success: bool,
+    /// With `terminate_on_collision = false` (training), does a self-collision (two robot parts:
+    /// the arm or the gripper against itself) still end the episode? A touch of the table then
+    /// goes on as before. Default false (no collision ends a training episode).
+    pub terminate_on_self_collision: bool,
     /// Which reward the task pays (the evaluation's success criterion is the same for all).
     pub reward: RewardKind,
     /// Protective stop threshold [N]: a contact between the robot (links, palm, finger struts,
@@ -267,6 +271,7 @@ impl Default for TaskConfig {
             distance_reward: -0.005,
             terminate_on_collision: true,
             collision_voids_success: false,
+            terminate_on_self_collision: false,
             reward: RewardKind::Seed,
             protective_stop_force: DEFAULT_PROTECTIVE_STOP_FORCE,
             staged: crate::config::reward::StagedReward::default(),

@@ -4,6 +4,9 @@
 use fairgrasp_kinematics::ArmModel;
 use rapier3d::prelude::ColliderHandle;
 
+/// The table's name in collision reports ([`Part::name`]).
+pub const TABLE_PART_NAME: &str = "table";
+
 /// What a collider belongs to, for collision reports and finger contacts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Part {
@@ -38,7 +41,7 @@ impl Part {
     /// The URDF link name (or "table", "cube").
     pub fn name(self, model: &ArmModel) -> &'static str {
         match self {
-            Part::Table => "table",
+            Part::Table => TABLE_PART_NAME,
             Part::Cube => "cube",
             Part::Link(i) => model.links[i],
             Part::Palm => "palm",

@@ -21,6 +21,15 @@ pub enum Failure {
     },
 }
 
+impl Failure {
+    /// A collision between two robot parts (arm or gripper against itself). A collision names
+    /// the table first when the table is in it (`GraspEnv`'s one order of parts), and the cube
+    /// is never in one.
+    pub fn is_self_collision(&self) -> bool {
+        matches!(self, Failure::Collision(first, _) if first != crate::sim::part::TABLE_PART_NAME)
+    }
+}
+
 /// Lifted at least `lift_height` above rest, with both pads on it and the TCP within 3 cm.
 pub fn is_success(s: &TaskState, cfg: &TaskConfig) -> bool {
     let lifted = s.object[2] - s.object_rest_z >= cfg.lift_height;
@@ -73,14 +82,15 @@ pub struct Judgement {
 pub fn judge(s: &TaskState, collision: Option<Failure>, cfg: &TaskConfig) -> Judgement {
     let success = is_success(s, cfg);
     let collided = collision.is_some();
+    let collision_ends = collision.as_ref().is_some_and(|c| {
+        cfg.terminate_on_collision || (cfg.terminate_on_self_collision && c.is_self_collision())
+    });
     let failure = if success {
         None
     } else {
         collision.or_else(|| is_off_table(s).then_some(Failure::ObjectOffTable))
     };
-    let terminated = success
-        || (collided && cfg.terminate_on_collision)
-        || failure == Some(Failure::ObjectOffTable);
+    let terminated = success || collision_ends || failure == Some(Failure::ObjectOffTable);
     Judgement {
         success,
         failure,
