@@ -10,13 +10,14 @@
 //! step gets the leader's episode without a simulation of its own, and those that ever answer
 //! differently are run again from the start, the same way among themselves (the first of them
 //! leads). The records are those each policy gets from
-//! [`run_episode`](crate::episode::run_episode) alone (`planner/tests/lockstep.rs` checks it on
+//! [`run_episode`] alone (`planner/tests/lockstep.rs` checks it on
 //! presets where the scripts agree and where they do not).
 
+use crate::env::obs::Observation;
 use crate::env::{Action, EnvError, GraspEnv};
-use crate::episode::evaluate::{EpisodeRecord, Policy};
+use crate::episode::evaluate::{EpisodeRecord, Outcome, Policy, run_episode};
 use crate::scenario::Scenario;
-use crate::scenario::perception::true_object;
+use crate::scenario::perception::ObservedObject;
 
 /// Are two answers (an action and the grip force asked with it) the same, bit for bit?
 fn same_answer(x: (&Action, Option<f64>), y: (&Action, Option<f64>)) -> bool {
@@ -34,7 +35,7 @@ fn same_answer(x: (&Action, Option<f64>), y: (&Action, Option<f64>)) -> bool {
 }
 
 /// One episode of each of `policies` from `scenario`, in their order: the records
-/// [`run_episode`](crate::episode::run_episode) gives each policy alone, with one simulation per
+/// [`run_episode`] gives each policy alone, with one simulation per
 /// group of policies whose actions agree at every step (see the module's text). With one policy
 /// it is `run_episode`.
 pub fn run_lockstep<P: Policy>(
@@ -61,39 +62,68 @@ fn simulate_group<P: Policy>(
     scenario: &Scenario,
     records: &mut [Option<EpisodeRecord>],
 ) -> Result<Vec<usize>, EnvError> {
-    let (leader, mut agreeing) = (group[0], group[1..].to_vec());
-    let mut parted = Vec::new();
-    let (mut obs, _) = env.reset_to(scenario);
-    for &i in group {
-        policies[i].reset(scenario.seed);
-    }
-    let shared = loop {
-        let truth = true_object(env.mount(), &env.object_in_base());
-        policies[leader].observe_truth(&truth);
-        let action = policies[leader].act(&obs);
-        let force = policies[leader].grip_force();
-        agreeing.retain(|&i| {
-            let p = &mut policies[i];
-            p.observe_truth(&truth);
-            let answer = p.act(&obs);
-            let same = same_answer((&answer, p.grip_force()), (&action, force));
-            if !same {
-                parted.push(i);
-            }
-            same
-        });
-        if let Some(force) = force {
-            env.set_grip_force(force)?;
-        }
-        let step = env.step(&action)?;
-        obs = step.obs;
-        if let Some(record) = step.info.episode {
-            break record;
-        }
+    let mut lead = Group {
+        policies,
+        leader: group[0],
+        agreeing: group[1..].to_vec(),
+        parted: Vec::new(),
     };
+    // The one episode loop (`run_episode`) drives the leader; `Group` shows the others its steps.
+    let shared = run_episode(env, &mut lead, scenario, None)?;
+    let Group {
+        policies,
+        leader,
+        agreeing,
+        mut parted,
+    } = lead;
     for &i in std::iter::once(&leader).chain(&agreeing) {
         records[i] = Some(shared.clone().with_policy_verdict(policies[i].gave_up()));
     }
     parted.sort_unstable();
     Ok(parted)
+}
+
+/// The leader as one policy: every call goes to it, and `reset`, `observe_truth` and `act` also
+/// to the followers still agreeing; `act` moves a follower whose answer differs to `parted`.
+struct Group<'a, P> {
+    policies: &'a mut [P],
+    leader: usize,
+    agreeing: Vec<usize>,
+    parted: Vec<usize>,
+}
+
+impl<P: Policy> Policy for Group<'_, P> {
+    fn reset(&mut self, seed: u64) {
+        for &i in std::iter::once(&self.leader).chain(&self.agreeing) {
+            self.policies[i].reset(seed);
+        }
+    }
+    fn act(&mut self, obs: &Observation) -> Action {
+        let action = self.policies[self.leader].act(obs);
+        let force = self.policies[self.leader].grip_force();
+        let (policies, parted) = (&mut *self.policies, &mut self.parted);
+        self.agreeing.retain(|&i| {
+            let answer = policies[i].act(obs);
+            let same = same_answer((&answer, policies[i].grip_force()), (&action, force));
+            if !same {
+                parted.push(i);
+            }
+            same
+        });
+        action
+    }
+    fn observe_truth(&mut self, truth: &ObservedObject) {
+        for &i in std::iter::once(&self.leader).chain(&self.agreeing) {
+            self.policies[i].observe_truth(truth);
+        }
+    }
+    fn gave_up(&self) -> Option<Outcome> {
+        self.policies[self.leader].gave_up()
+    }
+    fn phase(&self) -> Option<&'static str> {
+        self.policies[self.leader].phase()
+    }
+    fn grip_force(&self) -> Option<f64> {
+        self.policies[self.leader].grip_force()
+    }
 }
