@@ -13,6 +13,8 @@
 //! - [`correction`]: a task-space correction of the grasp and its map to joints (Jacobian).
 //! - [`residual`]: [`ResidualScript`], what a residual policy corrects the script through, and
 //!   [`OracleResidual`], the hand-written residual that uses the true pose through it.
+//! - [`tuned_grip`]: [`TunedGripScript`], the open-loop script with the grip force an engineer
+//!   tuned for the cell (the contact family's control).
 //! - [`stream`]: an episode's joints as a real controller's servo stream (resampled with
 //!   Ruckig, checked against the FR3's limits, JSON / CSV / `.npy`), and its playback in the env.
 
@@ -25,9 +27,11 @@ pub mod motion;
 pub mod phase;
 pub mod residual;
 pub mod stream;
+pub mod tuned_grip;
 
 pub use baseline::{BaselineConfig, CloseTiming, Phase, PlannedObject, ScriptedGrasp};
 pub use calibrated::{CalibratedScript, CameraCalibration};
 pub use closed_loop::{ClosedLoopConfig, ClosedLoopGrasp, CubeSource};
 pub use correction::{CorrectionLimits, TaskCorrection};
 pub use residual::{OracleResidual, ResidualScript};
+pub use tuned_grip::TunedGripScript;

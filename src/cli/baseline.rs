@@ -10,6 +10,7 @@ use fairgrasp_env::config::presets::{self, PRESETS};
 use fairgrasp_env::episode::{EvalReport, Policy, evaluate_seeded};
 use fairgrasp_planner::{
     BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
+    TunedGripScript,
 };
 use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -61,15 +62,38 @@ pub enum ScriptArg {
     Oracle,
     /// The open-loop script after a simulated camera calibration (8 touched marker spots).
     Calibrated,
+    /// The open-loop script squeezing the grip tuned for the preset (`[control] grip_force`;
+    /// `--grip-force` sets another, for a tuning grid).
+    #[value(name = "tuned_grip")]
+    TunedGrip,
 }
 
 #[derive(Args, Debug)]
 pub struct BaselineArgs {
     #[command(flatten)]
     scenarios: ScenarioArgs,
-    /// Which script: open_loop (the baseline), closed_loop, oracle or calibrated.
+    /// Which script: open_loop (the baseline), closed_loop, oracle, calibrated or tuned_grip.
     #[arg(long, value_enum, default_value = "open_loop")]
     script: ScriptArg,
+    /// With `--script tuned_grip`: squeeze this many newtons per finger (0–100] instead of the
+    /// preset's `[control] grip_force`: one point of the grid an engineer searches (run it on
+    /// a training seed, never on the seed results are reported on).
+    #[arg(long, value_name = "N", value_parser = grip_force)]
+    grip_force: Option<f64>,
+}
+
+/// A grip force [N] in (0, 100].
+fn grip_force(text: &str) -> Result<f64, String> {
+    let f: f64 = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number"))?;
+    if f > 0.0 && f <= 100.0 {
+        Ok(f)
+    } else {
+        Err(format!(
+            "{f} N: must be in (0, 100] N (gripper.force's range)"
+        ))
+    }
 }
 
 /// Runs a fresh policy from `make` on the scenario set of `a`, and prints the report (text, or
@@ -180,7 +204,21 @@ pub fn print_report(method: &str, preset: &str, arm: ArmSimulation, seed: u64, r
 
 pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
     let none = serde_json::json!({});
+    if a.grip_force.is_some() && a.script != ScriptArg::TunedGrip {
+        anyhow::bail!("--grip-force is the tuned_grip script's: add --script tuned_grip");
+    }
     match a.script {
+        ScriptArg::TunedGrip => {
+            let make = |config: &EnvConfig| {
+                let force = a.grip_force.or(config.control.grip_force);
+                TunedGripScript::with_grip(config, force)
+            };
+            let config = preset_config(&a.scenarios.preset, a.scenarios.arm)?;
+            let force = a.grip_force.or(config.control.grip_force);
+            let extra =
+                serde_json::json!({ "grip_force_n": force.unwrap_or(config.gripper.force) });
+            evaluate_and_print(&a.scenarios, "tuned_grip", &make, extra)
+        }
         ScriptArg::OpenLoop => {
             let make = |config: &EnvConfig| ScriptedGrasp::new(config, BaselineConfig::default());
             evaluate_and_print(&a.scenarios, "baseline", &make, none)

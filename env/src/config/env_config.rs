@@ -30,6 +30,28 @@ pub struct EnvConfig {
     pub scene: SceneConfig,
     pub task: TaskConfig,
     pub randomization: RandomizationConfig,
+    /// What an engineer tuned for this cell, read only by the hand-written controls.
+    #[serde(skip_serializing_if = "ControlConfig::is_untuned")]
+    pub control: ControlConfig,
+}
+
+/// Settings an engineer tuned for a cell, read only by the hand-written controls
+/// (`fairgrasp_planner`), never by the env's physics or by a learned policy.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(default, deny_unknown_fields)]
+pub struct ControlConfig {
+    /// Squeeze per finger [N] of the "script + tuned grip" control, found by a grid search on
+    /// training scenarios (docs/contact.md); `None`: the control squeezes `gripper.force`, as
+    /// the open-loop script does.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grip_force: Option<f64>,
+}
+
+impl ControlConfig {
+    /// Nothing tuned (the section is left out of a written config).
+    pub fn is_untuned(&self) -> bool {
+        self.grip_force.is_none()
+    }
 }
 
 /// Physics integration.

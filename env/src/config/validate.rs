@@ -155,6 +155,14 @@ impl EnvConfig {
             g.pad_friction,
             "must be in [0, 10]",
         )?;
+        if let Some(force) = self.control.grip_force {
+            check(
+                force > 0.0 && force <= 100.0,
+                "control.grip_force",
+                force,
+                "must be in (0, 100] N (gripper.force's range)",
+            )?;
+        }
         let s = &self.scene;
         check(
             (0.0..=2.0).contains(&s.table_height),
