@@ -122,9 +122,19 @@ impl ShippedPolicy {
         ShippedPolicy::ALL.into_iter().find(|p| p.name() == name)
     }
 
-    /// Whether `fairgrasp compare` compares it by default: every shipped policy but the pitfall
-    /// exhibit `pure_hard` (0 % everywhere; the guide's pitfall 2 evaluates it).
+    /// Whether `fairgrasp compare` compares it by default: the generalist residual and pure PPO
+    /// (one learned policy of each kind, on every preset). The specialists join with
+    /// `--policy all` ([`ShippedPolicy::compared_with_all`]) or by name.
     pub fn compared_by_default(self) -> bool {
+        matches!(
+            self,
+            ShippedPolicy::ResidualGeneralist | ShippedPolicy::PureFull
+        )
+    }
+
+    /// Whether `fairgrasp compare --policy all` compares it: every shipped policy but the
+    /// pitfall exhibit `pure_hard` (0 % everywhere; the guide's pitfall 2 evaluates it).
+    pub fn compared_with_all(self) -> bool {
         self != ShippedPolicy::PureHard
     }
 
@@ -198,10 +208,14 @@ pub fn checkpoint_folder(name_or_folder: &str) -> Result<PathBuf, String> {
     if path.join("checkpoints/best/meta.json").is_file() {
         return Ok(path.join("checkpoints/best"));
     }
+    // A policy folder as shipped in assets/policies/ (its checkpoint beside its run files).
+    if path.join("checkpoint/meta.json").is_file() {
+        return Ok(path.join("checkpoint"));
+    }
     let names: Vec<&str> = ShippedPolicy::ALL.iter().map(|p| p.name()).collect();
     let shown: String = name_or_folder.chars().take(120).collect();
     Err(format!(
-        "{shown:?} is neither a shipped policy ({}) nor a checkpoint folder (meta.json) nor a run folder (checkpoints/best)",
+        "{shown:?} is neither a shipped policy ({}) nor a checkpoint folder (meta.json) nor a policy folder (checkpoint/) nor a run folder (checkpoints/best)",
         names.join(", ")
     ))
 }
@@ -218,6 +232,16 @@ pub fn default_compare_policies() -> Result<Vec<PathBuf>, ShippedError> {
     ShippedPolicy::ALL
         .iter()
         .filter(|p| p.compared_by_default())
+        .map(|p| p.checkpoint_dir())
+        .collect()
+}
+
+/// The checkpoint folders `fairgrasp compare --policy all` compares
+/// ([`ShippedPolicy::compared_with_all`], in [`ShippedPolicy::ALL`]'s order).
+pub fn all_compare_policies() -> Result<Vec<PathBuf>, ShippedError> {
+    ShippedPolicy::ALL
+        .iter()
+        .filter(|p| p.compared_with_all())
         .map(|p| p.checkpoint_dir())
         .collect()
 }

@@ -102,7 +102,7 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
     let trajectory_of = |rec: &fairgrasp_types::RecordedEpisode| {
         out.episodes
             .iter()
-            .find(|t| rec.trajectory == format!("episodes/{}.json", t.stem))
+            .find(|t| rec.trajectory == format!("episodes/{}.json.gz", t.stem))
             .unwrap_or_else(|| panic!("no trajectory for {}", rec.trajectory))
     };
     for (i, rec) in c.recorded.iter().enumerate() {
@@ -118,12 +118,24 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
         );
         assert_eq!(traj.trajectory.outcome, Some(evaluated.outcome));
     }
-    // The replay: every method on scenarios 0 and 1 (and k), each replaying its evaluation.
-    let picked = if k < 2 { 2 } else { 3 };
-    assert_eq!(c.replay.len(), methods.len() * picked);
+    // The replay: every method on scenarios 0 and 1 of every preset (and that preset's first
+    // scenario where the baseline and the learned policy differ), each replaying its evaluation.
+    let mut replayed = 0;
+    for p in &c.presets {
+        let [base, agent] =
+            [0, SCRIPTS.len()].map(|i| &c.get(&c.methods[i], p).unwrap().report.results);
+        let k = (0..3)
+            .find(|&i| base[i].outcome != agent[i].outcome)
+            .unwrap_or(0);
+        let picked = if k < 2 { 2 } else { 3 };
+        let here = c.replay.iter().filter(|r| &r.preset == p).count();
+        assert_eq!(here, methods.len() * picked, "{p}");
+        replayed += here;
+    }
+    assert_eq!(c.replay.len(), replayed);
     assert_eq!(out.episodes.len(), c.replay.len());
     for rec in &c.replay {
-        let evaluated = &c.get(&rec.method, "seed").unwrap().report.results[rec.episode];
+        let evaluated = &c.get(&rec.method, &rec.preset).unwrap().report.results[rec.episode];
         let traj = &trajectory_of(rec).trajectory;
         assert_eq!(rec.outcome, evaluated.outcome, "{}", rec.trajectory);
         assert_eq!(traj.rows.len(), evaluated.steps + 1, "{}", rec.trajectory);
@@ -135,7 +147,21 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
     out.save_episodes(&dir).unwrap();
     for rec in &c.recorded {
         assert!(dir.join(&rec.trajectory).is_file(), "{}", rec.trajectory);
+        // The charts' episodes also as CSV, for a spreadsheet; the replay's only compact.
+        let csv = rec.trajectory.replace(".json.gz", ".csv");
+        assert!(dir.join(&csv).is_file(), "{csv}");
     }
+    let csvs = std::fs::read_dir(dir.join("episodes"))
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "csv")
+        })
+        .count();
+    assert_eq!(csvs, c.recorded.len());
 }
 
 #[test]

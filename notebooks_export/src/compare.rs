@@ -4,7 +4,7 @@
 use std::path::Path;
 
 pub use fairgrasp_types::{Comparison, EpisodeRecord, MethodResult, Outcome, RecordedEpisode};
-use fairgrasp_types::{PairedTest, learned_vs_scripts};
+use fairgrasp_types::{PairedTest, learned_vs_key_scripts, learned_vs_scripts};
 
 use crate::error::{ReportError, read_text};
 
@@ -124,6 +124,58 @@ const HEADER: [&str; 7] = [
     "failures",
 ];
 
+/// The result of `method` on `preset`, if the comparison ran it.
+fn result_of<'a>(c: &'a Comparison, method: &str, preset: &str) -> Option<&'a MethodResult> {
+    c.results
+        .iter()
+        .find(|r| r.method == method && r.preset == preset)
+}
+
+/// The pivot table as aligned text: one row per method, one column per preset, success in %
+/// (the intervals are in `compare.csv` and the Markdown pivot).
+pub fn pivot_text(c: &Comparison) -> String {
+    let mut header = vec!["success %"];
+    header.extend(c.presets.iter().map(String::as_str));
+    let rows: Vec<Vec<String>> = c
+        .methods
+        .iter()
+        .map(|m| {
+            std::iter::once(m.clone())
+                .chain(c.presets.iter().map(|p| {
+                    result_of(c, m, p).map_or("–".into(), |r| pct(r.report.success_rate))
+                }))
+                .collect()
+        })
+        .collect();
+    aligned(&header, &rows)
+}
+
+/// The pivot table in Markdown: one row per method, one column per preset, each cell the
+/// success rate in % over its 95 % Wilson interval.
+pub fn pivot_markdown(c: &Comparison) -> String {
+    let mut out = format!("| method | {} |\n", c.presets.join(" | "));
+    out += &format!("|{}\n", "---|".repeat(c.presets.len() + 1));
+    for m in &c.methods {
+        let cells: Vec<String> = c
+            .presets
+            .iter()
+            .map(|p| {
+                result_of(c, m, p).map_or("–".into(), |r| {
+                    let e = &r.report;
+                    format!(
+                        "**{}**<br>{}–{}",
+                        pct(e.success_rate),
+                        pct(e.ci_low),
+                        pct(e.ci_high)
+                    )
+                })
+            })
+            .collect();
+        out += &format!("| {} | {} |\n", m, cells.join(" | "));
+    }
+    out
+}
+
 /// The table as aligned text, one line per method and preset.
 pub fn text_table(c: &Comparison) -> String {
     let rows: Vec<Vec<String>> = c.results.iter().map(|r| cells(r).to_vec()).collect();
@@ -198,24 +250,41 @@ fn paired_cells(t: &PairedTest) -> [String; 6] {
 /// empty when the comparison has no learned method or no script. A result list that cannot be
 /// paired (another seed, another length) is a malformed comparison.
 pub fn paired_markdown(c: &Comparison) -> Result<String, fairgrasp_types::PairingError> {
-    let tests = learned_vs_scripts(c)?;
-    if tests.is_empty() {
-        return Ok(String::new());
-    }
-    let mut out = format!("| {} |\n", PAIRED_HEADER.join(" | "));
-    out += &format!("|{}\n", "---|".repeat(PAIRED_HEADER.len()));
-    for t in &tests {
-        out += &format!("| {} |\n", paired_cells(t).join(" | "));
-    }
-    Ok(out)
+    Ok(tests_markdown(&learned_vs_scripts(c)?))
 }
 
 /// The paired tests as aligned text (empty without a pair).
 pub fn paired_text(c: &Comparison) -> Result<String, fairgrasp_types::PairingError> {
-    let tests = learned_vs_scripts(c)?;
+    Ok(tests_text(&learned_vs_scripts(c)?))
+}
+
+/// The paired tests a report leads with ([`learned_vs_key_scripts`]: every learned method
+/// against the open-loop baseline and the preset's best script) as aligned text.
+pub fn key_paired_text(c: &Comparison) -> Result<String, fairgrasp_types::PairingError> {
+    Ok(tests_text(&learned_vs_key_scripts(c)?))
+}
+
+/// The paired tests a report leads with, as Markdown (empty without a pair).
+pub fn key_paired_markdown(c: &Comparison) -> Result<String, fairgrasp_types::PairingError> {
+    Ok(tests_markdown(&learned_vs_key_scripts(c)?))
+}
+
+fn tests_text(tests: &[PairedTest]) -> String {
     if tests.is_empty() {
-        return Ok(String::new());
+        return String::new();
     }
     let rows: Vec<Vec<String>> = tests.iter().map(|t| paired_cells(t).to_vec()).collect();
-    Ok(aligned(&PAIRED_HEADER, &rows))
+    aligned(&PAIRED_HEADER, &rows)
+}
+
+fn tests_markdown(tests: &[PairedTest]) -> String {
+    if tests.is_empty() {
+        return String::new();
+    }
+    let mut out = format!("| {} |\n", PAIRED_HEADER.join(" | "));
+    out += &format!("|{}\n", "---|".repeat(PAIRED_HEADER.len()));
+    for t in tests {
+        out += &format!("| {} |\n", paired_cells(t).join(" | "));
+    }
+    out
 }

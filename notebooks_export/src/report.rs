@@ -4,7 +4,9 @@ use std::path::{Path, PathBuf};
 
 use crate::charts::curves;
 use crate::charts::draw_all::draw_comparison_charts;
-use crate::compare::{Comparison, markdown_table, paired_markdown};
+use crate::compare::{
+    Comparison, key_paired_markdown, markdown_table, paired_markdown, pivot_markdown,
+};
 use crate::document::{Document, toml_block};
 use crate::error::{ReportError, write_file};
 use crate::notebook::to_notebook;
@@ -208,22 +210,30 @@ fn comparison_section(
         c.presets.join(", "),
         c.command
     ));
-    doc.markdown(markdown_table(c));
-    let paired = paired_markdown(c)
-        .map_err(|e| ReportError::malformed(&out.join("compare.json"), e.to_string()))?;
-    if !paired.is_empty() {
+    doc.markdown(format!(
+        "Success in % (bold) over its 95 % interval; every row's failures, collisions and \
+         steps are in the appendix and in `compare.csv`.\n\n{}",
+        pivot_markdown(c)
+    ));
+    let malformed = |e: fairgrasp_types::PairingError| {
+        ReportError::malformed(&out.join("compare.json"), e.to_string())
+    };
+    let key = key_paired_markdown(c).map_err(malformed)?;
+    if !key.is_empty() {
         doc.markdown(format!(
-            "### Paired tests\n\nEvery learned method against every script on the same \
+            "### Paired tests\n\nEach learned method against the open-loop baseline and \
+             against the best script of each preset that uses the same information (the \
+             oracle, which sees the true pose, is a ceiling, not a control), on the same \
              scenarios: McNemar's exact test counts the scenarios only one of the two solved; \
              p is the two-sided probability of a split at least this uneven if both were \
-             equally good.\n\n{paired}"
+             equally good. Every other pair is in the appendix.\n\n{key}"
         ));
     }
     let charts = draw_comparison_charts(c, trajectories, out, prefix, threads)?;
     written.push(charts.success.clone());
     doc.image(
         &charts.success,
-        "success rate per method and preset with 95 % CI",
+        "success rate per method and preset with 95 % CI (heatmap)",
     );
     doc.markdown(
         "**Discussion.** Which preset separates the methods? Are the intervals of two methods \
@@ -279,9 +289,27 @@ fn comparison_section(
          print(f\"{{r['preset']:>8}} {{r['method']:<32}} {{100 * float(r['success_rate']):5.1f}} %\")",
         python_string(&csv.to_string_lossy())
     ));
+    appendix(doc, c, out)?;
     doc.markdown("### Environment configs\n\nThe complete config of each preset (TOML; pass the file to `--preset` to rerun it).");
     for (preset, toml) in &c.preset_configs {
         doc.markdown(format!("**{preset}**\n\n{}", toml_block(toml)));
+    }
+    Ok(())
+}
+
+/// The appendix: every row of the comparison with its failures, and every learned method
+/// against every script.
+fn appendix(doc: &mut Document, c: &Comparison, out: &Path) -> Result<(), ReportError> {
+    doc.markdown(format!(
+        "### Appendix: every method on every preset\n\n{}",
+        markdown_table(c)
+    ));
+    let all = paired_markdown(c)
+        .map_err(|e| ReportError::malformed(&out.join("compare.json"), e.to_string()))?;
+    if !all.is_empty() {
+        doc.markdown(format!(
+            "### Appendix: every learned method against every script\n\n{all}"
+        ));
     }
     Ok(())
 }

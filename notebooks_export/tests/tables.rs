@@ -173,3 +173,70 @@ fn missing_and_malformed_run_folders_are_named() {
         .to_string();
     assert!(e.contains("without config.toml"), "{e}");
 }
+
+#[test]
+fn the_pivot_tables_numbers_are_compare_csvs() {
+    let dir = temp_dir("tables-pivot");
+    let c = write_comparison(&dir, Vec::new());
+    let csv = compare::to_csv(&c);
+    let lines: Vec<&str> = csv.lines().collect();
+    let header = fields(lines[0]);
+    let text = compare::pivot_text(&c);
+    let markdown = compare::pivot_markdown(&c);
+    // One row per method after the header and the rule, one column per preset.
+    assert_eq!(text.lines().count(), 2 + c.methods.len());
+    let head: Vec<&str> = text.lines().next().unwrap().split_whitespace().collect();
+    assert_eq!(
+        &head[2..],
+        c.presets.iter().map(String::as_str).collect::<Vec<_>>()
+    );
+    for line in &lines[1..] {
+        let row = fields(line);
+        let col = |name: &str| row[header.iter().position(|h| h == name).unwrap()].clone();
+        let (method, preset) = (col("method"), col("preset"));
+        let rate = 100.0 * col("success_rate").parse::<f64>().unwrap();
+        let column = c.presets.iter().position(|p| *p == preset).unwrap();
+        let printed = text.lines().find(|l| l.starts_with(&method)).unwrap();
+        let cells: Vec<&str> = printed[method.len()..].split_whitespace().collect();
+        assert_eq!(cells[column], format!("{rate:.1}"), "{method} on {preset}");
+        let md = markdown
+            .lines()
+            .find(|l| l.starts_with(&format!("| {method} |")))
+            .unwrap();
+        let cell = md.split(" | ").nth(1 + column).unwrap();
+        let low = 100.0 * col("ci_low").parse::<f64>().unwrap();
+        assert!(
+            cell.starts_with(&format!("**{rate:.1}**<br>{low:.1}–")),
+            "{cell}"
+        );
+    }
+}
+
+#[test]
+fn the_leading_paired_tests_are_against_the_baseline_and_the_best_script_without_the_oracle() {
+    let n = 40;
+    let mut learned = method_result("residual PPO: r", "seed", n, 30, 1);
+    learned.policy = Some("r/checkpoint".into());
+    let results = vec![
+        method_result("scripted baseline", "seed", n, 20, 2),
+        method_result("closed-loop script", "seed", n, 35, 3),
+        method_result("oracle script", "seed", n, 40, 4),
+        learned,
+    ];
+    let c = Comparison {
+        command: "test".into(),
+        presets: vec!["seed".into()],
+        methods: results.iter().map(|r| r.method.clone()).collect(),
+        preset_configs: Default::default(),
+        run_folders: vec![],
+        recorded: vec![],
+        replay: vec![],
+        results,
+    };
+    let key = fairgrasp_types::learned_vs_key_scripts(&c).unwrap();
+    let against: Vec<&str> = key.iter().map(|t| t.b.as_str()).collect();
+    assert_eq!(against, ["scripted baseline", "closed-loop script"]);
+    assert_eq!(fairgrasp_types::learned_vs_scripts(&c).unwrap().len(), 3);
+    let text = compare::key_paired_text(&c).unwrap();
+    assert!(!text.contains("oracle"), "{text}");
+}

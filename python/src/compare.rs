@@ -5,7 +5,8 @@
 use std::path::Path;
 
 use fairgrasp_eval::compare::{
-    ComparePreset, CompareSpec, DEFAULT_PRESETS, LearnedPolicy, default_threads, run_comparison,
+    ComparePreset, CompareSpec, DEFAULT_PRESETS, DEFAULT_REPLAY_EPISODES, LearnedPolicy,
+    default_threads, run_comparison,
 };
 use fairgrasp_eval::shipped;
 use fairgrasp_report::comparison_folder::write_comparison_folder;
@@ -47,7 +48,7 @@ fn spec(
         seed,
         threads,
         episode: None,
-        replay_episodes: 20.min(episodes),
+        replay_episodes: DEFAULT_REPLAY_EPISODES.min(episodes),
         command: command.to_string(),
     };
     spec.check().map_err(value_error)?;

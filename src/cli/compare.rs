@@ -7,7 +7,8 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 use fairgrasp_eval::compare::{
-    ComparePreset, CompareSpec, LearnedPolicy, default_threads, run_comparison,
+    ComparePreset, CompareSpec, DEFAULT_REPLAY_EPISODES, LearnedPolicy, default_threads,
+    run_comparison,
 };
 use fairgrasp_eval::shipped;
 use fairgrasp_report::compare;
@@ -27,12 +28,16 @@ pub struct CompareArgs {
     /// Episodes (scenarios) per preset; every method gets the same ones.
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
     episodes: u32,
-    /// Learned policies (checkpoint folders); repeat for several. Default: the shipped policies
-    /// (assets/policies/, built into the binary; all but the pitfall exhibit pure_hard). Every
-    /// comparison also runs the four scripts: the open-loop baseline, the closed-loop script,
-    /// the oracle and the open-loop script after a simulated camera calibration.
-    #[arg(long = "policy", value_name = "DIR")]
-    policies: Vec<PathBuf>,
+    /// Learned policies; repeat for several: a shipped policy's name (residual_nudged, …), a
+    /// policy folder (assets/policies/NAME), a checkpoint folder or a run folder (its
+    /// checkpoints/best), or `all` for every shipped policy (the specialists too; all but the
+    /// pitfall exhibit pure_hard). Default: the shipped generalist residual
+    /// (residual_generalist) and pure PPO (pure_full). Every comparison also runs the five
+    /// scripts: the open-loop baseline, the closed-loop script, the oracle, the open-loop
+    /// script after a simulated camera calibration and the open-loop script with the grip
+    /// tuned for the preset.
+    #[arg(long = "policy", value_name = "NAME|DIR|all")]
+    policies: Vec<String>,
     /// Seed of the scenario sets.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -59,13 +64,36 @@ pub struct CompareArgs {
     /// Default: the first one where the first two methods end differently, else 0.
     #[arg(long, value_name = "K")]
     episode: Option<usize>,
-    /// Scenarios of the last preset recorded for every method for the 3D replay
-    /// (replay.html: the first N of the set, and the --episode one). 0: no replay.
-    #[arg(long, value_name = "N", default_value_t = 20)]
+    /// Scenarios of every preset recorded for every method for the 3D replay (replay.html):
+    /// the first N of each set, and the first where the baseline and the first learned policy
+    /// end differently (on the last preset, the --episode one). 0: no replay.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_REPLAY_EPISODES)]
     replay_episodes: usize,
     /// Print compare.json on stdout instead of the table.
     #[arg(long)]
     json: bool,
+    /// Print every row (failures, collisions, steps), every paired test and every file written,
+    /// not only the pivot table and the tests against the baseline and the best script.
+    #[arg(long, short = 'v')]
+    verbose: bool,
+}
+
+/// The checkpoint folders `--policy` names (the default pair when none is given).
+fn policy_folders(names: &[String]) -> anyhow::Result<Vec<PathBuf>> {
+    if names.is_empty() {
+        return Ok(shipped::default_compare_policies()?);
+    }
+    let mut dirs = Vec::new();
+    for name in names {
+        if name == "all" {
+            dirs.extend(shipped::all_compare_policies()?);
+        } else {
+            dirs.push(
+                shipped::checkpoint_folder(name).map_err(|e| anyhow::anyhow!("--policy: {e}"))?,
+            );
+        }
+    }
+    Ok(dirs)
 }
 
 pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
@@ -76,11 +104,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     } else {
         a.presets.clone()
     };
-    let policy_paths = if a.policies.is_empty() {
-        shipped::default_compare_policies()?
-    } else {
-        a.policies.clone()
-    };
+    let policy_paths = policy_folders(&a.policies)?;
     let presets = names
         .iter()
         .map(|p| {
@@ -131,21 +155,76 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     }
     if a.json {
         println!("{}", comparison.to_json());
+    } else if a.verbose {
+        print_everything(a, comparison, &written)?;
     } else {
-        print!("{}", compare::text_table(comparison));
-        let paired = compare::paired_text(comparison)?;
-        if !paired.is_empty() {
-            println!("\nPaired tests (McNemar, exact, two-sided), learned method vs script:");
-            print!("{paired}");
-        }
-        println!(
-            "\n{} episodes per preset from seed {}, {} arm; 95 % Wilson intervals.",
-            a.episodes, a.seed, a.arm
-        );
-        println!("Written to {}:", a.out.display());
-        for n in written {
-            println!("  {n}");
-        }
+        print_summary(a, comparison, &written)?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The default output: the pivot table, the tests against the baseline and the best script,
+/// and where the rest is (under 60 lines for the default comparison).
+fn print_summary(
+    a: &CompareArgs,
+    comparison: &fairgrasp_types::Comparison,
+    written: &[String],
+) -> anyhow::Result<()> {
+    print!("{}", compare::pivot_text(comparison));
+    let key = compare::key_paired_text(comparison)?;
+    if !key.is_empty() {
+        println!(
+            "\nPaired tests (McNemar, exact, two-sided): each learned method vs the baseline and \
+             vs the preset's best script (the oracle sees the truth: not a control):"
+        );
+        print!("{key}");
+    }
+    println!(
+        "\n{} episodes per preset from seed {}, {} arm. Intervals, failures and every other \
+         test: {}/report.md, compare.csv (or --verbose).",
+        a.episodes,
+        a.seed,
+        a.arm,
+        a.out.display()
+    );
+    let charts = written
+        .iter()
+        .filter(|f| f.ends_with(".png") || f.ends_with(".gif"))
+        .count();
+    println!(
+        "Written to {}: report.md, report.ipynb{}, compare.csv, compare.json, {charts} charts \
+         and replays, episodes/.",
+        a.out.display(),
+        if written.iter().any(|f| f == "replay.html") {
+            ", replay.html (3D)"
+        } else {
+            ""
+        }
+    );
+    Ok(())
+}
+
+/// `--verbose`: every row, every paired test, every file.
+fn print_everything(
+    a: &CompareArgs,
+    comparison: &fairgrasp_types::Comparison,
+    written: &[String],
+) -> anyhow::Result<()> {
+    print!("{}", compare::pivot_text(comparison));
+    println!();
+    print!("{}", compare::text_table(comparison));
+    let paired = compare::paired_text(comparison)?;
+    if !paired.is_empty() {
+        println!("\nPaired tests (McNemar, exact, two-sided), learned method vs script:");
+        print!("{paired}");
+    }
+    println!(
+        "\n{} episodes per preset from seed {}, {} arm; 95 % Wilson intervals.",
+        a.episodes, a.seed, a.arm
+    );
+    println!("Written to {}:", a.out.display());
+    for n in written {
+        println!("  {n}");
+    }
+    Ok(())
 }

@@ -13,8 +13,9 @@ use fairgrasp_report::{Existing, RunFolder, build_report};
 #[derive(Args, Debug)]
 pub struct PlotArgs {
     /// Training run folders (from `fairgrasp train`: metrics.csv, config.toml), drawn together
-    /// as learning curves; or recorded episodes (episode_NNNN.json from `--record`), each drawn
-    /// as an episode chart (.png) and a replay (.gif) next to the file.
+    /// as learning curves; or recorded episodes (episode_NNNN.json from `--record`, or
+    /// `compare`'s episodes/*.json.gz), each drawn as an episode chart (.png) and a replay
+    /// (.gif) next to the file.
     #[arg(required = true, value_name = "RUN_OR_EPISODE")]
     inputs: Vec<PathBuf>,
     /// Learning-curve PNG. Default: <first run>/plots/learning_curves.png. An existing file is
@@ -34,6 +35,19 @@ pub struct PlotArgs {
     out_dir: Option<PathBuf>,
 }
 
+/// Is `path` a recorded episode (`.json`, or a comparison's compact `.json.gz`)?
+fn is_episode_file(path: &Path) -> bool {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    name.ends_with(".json") || name.ends_with(".json.gz")
+}
+
+/// An episode file's name without `.json` or `.json.gz`.
+fn episode_stem(episode: &Path) -> String {
+    let name = episode.file_name().unwrap_or_default().to_string_lossy();
+    let name = name.strip_suffix(".gz").unwrap_or(&name);
+    name.strip_suffix(".json").unwrap_or(name).to_string()
+}
+
 /// Where `plot` draws an episode's chart (`.png`), replay (`.gif`) and, with `--still N`, the
 /// still (`_stepN.png`): beside the episode file, or in `out_dir`.
 fn episode_outputs(
@@ -41,7 +55,7 @@ fn episode_outputs(
     out_dir: Option<&Path>,
     still: Option<usize>,
 ) -> (PathBuf, PathBuf, Option<PathBuf>) {
-    let stem = episode.file_stem().unwrap_or_default().to_string_lossy();
+    let stem = episode_stem(episode);
     let dir = out_dir.map_or_else(
         || episode.parent().unwrap_or(Path::new("")).to_path_buf(),
         Path::to_path_buf,
@@ -54,10 +68,8 @@ fn episode_outputs(
 }
 
 pub fn run_plot(a: &PlotArgs) -> anyhow::Result<ExitCode> {
-    let (episodes, run_paths): (Vec<&PathBuf>, Vec<&PathBuf>) = a
-        .inputs
-        .iter()
-        .partition(|p| p.extension().is_some_and(|e| e == "json"));
+    let (episodes, run_paths): (Vec<&PathBuf>, Vec<&PathBuf>) =
+        a.inputs.iter().partition(|p| is_episode_file(p));
     // Load everything first: a bad input stops the command before any file is written.
     let runs: Vec<RunFolder> = run_paths
         .iter()
@@ -106,7 +118,7 @@ pub fn run_plot(a: &PlotArgs) -> anyhow::Result<ExitCode> {
     for (path, t) in episodes.iter().zip(&trajectories) {
         let title = format!(
             "{} ({} steps, {:.1} s)",
-            path.file_stem().unwrap_or_default().to_string_lossy(),
+            episode_stem(path),
             t.rows.len(),
             t.rows.last().map_or(0.0, |r| r.time_s)
         );

@@ -30,4 +30,7 @@ pub use episode::{EpisodeFacts, EpisodeRecord};
 pub use eval::{EvalReport, wilson_interval};
 pub use fs::{read_bounded, read_text_bounded, write_atomic};
 pub use names::{ArmSimulation, Outcome, UnknownName};
-pub use paired::{PairedTest, PairingError, learned_vs_scripts, mcnemar_exact, paired_test};
+pub use paired::{
+    PairedTest, PairingError, best_script, learned_vs_key_scripts, learned_vs_scripts,
+    mcnemar_exact, paired_test, sees_the_truth,
+};

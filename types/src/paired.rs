@@ -131,6 +131,50 @@ pub fn learned_vs_scripts(c: &Comparison) -> Result<Vec<PairedTest>, PairingErro
     Ok(out)
 }
 
+/// Does `method` see the truth (the oracle script: the cube's true pose)? Such a method is a
+/// ceiling, never the control a learned method is measured against: that control uses the
+/// same information as the learned method.
+pub fn sees_the_truth(method: &str) -> bool {
+    method.starts_with("oracle")
+}
+
+/// The script a learned method must beat on one preset's results `here`: the one with the most
+/// successes among those that do not see the truth ([`sees_the_truth`]); on a tie the first in
+/// the comparison's order (the simplest, as the scripts are listed from the open loop up).
+pub fn best_script<'a>(here: &[&'a MethodResult]) -> Option<&'a MethodResult> {
+    let mut best: Option<&MethodResult> = None;
+    for r in here
+        .iter()
+        .filter(|r| r.policy.is_none() && !sees_the_truth(&r.method))
+    {
+        if best.is_none_or(|b| r.report.successes > b.report.successes) {
+            best = Some(r);
+        }
+    }
+    best
+}
+
+/// The paired tests a report leads with: every learned method against the open-loop baseline
+/// (the first script) and against the preset's best script ([`best_script`]; once when they
+/// are the same), preset by preset, in the comparison's order.
+pub fn learned_vs_key_scripts(c: &Comparison) -> Result<Vec<PairedTest>, PairingError> {
+    let mut out = Vec::new();
+    for preset in &c.presets {
+        let here: Vec<&MethodResult> = c.results.iter().filter(|r| &r.preset == preset).collect();
+        let baseline = here.iter().find(|r| r.policy.is_none());
+        let best = best_script(&here);
+        for learned in here.iter().filter(|r| r.policy.is_some()) {
+            if let Some(b) = baseline {
+                out.push(paired_test(learned, b)?);
+            }
+            if let Some(best) = best.filter(|s| baseline.is_none_or(|b| b.method != s.method)) {
+                out.push(paired_test(learned, best)?);
+            }
+        }
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

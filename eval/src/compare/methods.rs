@@ -1,12 +1,18 @@
 //! A method named on the command line (`fairgrasp replay --policy P`): one of the scripts
-//! (`open_loop`, `closed_loop`, `oracle`, `calibrated`), a shipped policy by name
+//! (`open_loop`, `closed_loop`, `oracle`, `calibrated`, `tuned_grip`), a shipped policy by name
 //! (`residual_hard`, …), a checkpoint folder or a run folder (its `checkpoints/best`).
 
 use crate::compare::{CompareError, LearnedPolicy, SCRIPTS};
 use crate::shipped::checkpoint_folder;
 
 /// The command-line names of the scripts, in the order of [`SCRIPTS`].
-pub const SCRIPT_NAMES: [&str; 4] = ["open_loop", "closed_loop", "oracle", "calibrated"];
+pub const SCRIPT_NAMES: [&str; 5] = [
+    "open_loop",
+    "closed_loop",
+    "oracle",
+    "calibrated",
+    "tuned_grip",
+];
 
 /// A method to run: a script (index into [`SCRIPTS`]) or a learned policy.
 pub enum Method {

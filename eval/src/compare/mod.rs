@@ -17,7 +17,10 @@ pub mod record;
 mod schedule;
 pub mod spec;
 
-pub use spec::{ComparePreset, CompareSpec, DEFAULT_PRESETS, MAX_THREADS, default_threads};
+pub use spec::{
+    ComparePreset, CompareSpec, DEFAULT_PRESETS, DEFAULT_REPLAY_EPISODES, MAX_THREADS,
+    default_threads,
+};
 
 use std::path::{Path, PathBuf};
 
@@ -27,6 +30,7 @@ use fairgrasp_env::scenario::{Scenario, scenario_set};
 use fairgrasp_env::{EnvConfig, EnvError};
 use fairgrasp_planner::{
     BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
+    TunedGripScript,
 };
 use fairgrasp_types::fs::slug;
 use fairgrasp_types::{Comparison, MethodResult, RecordedEpisode};
@@ -39,13 +43,16 @@ pub const BASELINE: &str = "scripted baseline";
 
 /// The scripts every comparison runs first, in order: the open-loop baseline, the closed-loop
 /// script (re-plans on the observed cube, retries once), the oracle (the closed loop on the
-/// true pose: the ceiling) and the open-loop script after a simulated camera calibration (the
-/// engineer's fix for a miscalibrated cell, [`fairgrasp_planner::calibrated`]).
-pub const SCRIPTS: [&str; 4] = [
+/// true pose: the ceiling), the open-loop script after a simulated camera calibration (the
+/// engineer's fix for a miscalibrated cell, [`fairgrasp_planner::calibrated`]) and the
+/// open-loop script with the grip tuned for the cell (the contact family's control,
+/// [`fairgrasp_planner::tuned_grip`]; the open-loop script where the preset tunes none).
+pub const SCRIPTS: [&str; 5] = [
     BASELINE,
     "closed-loop script",
     "oracle script",
     "script + calibration",
+    "script + tuned grip",
 ];
 
 /// Why a comparison could not run.
@@ -148,6 +155,8 @@ pub enum CompareEvent<'a> {
 pub struct RecordedTrajectory {
     pub stem: String,
     pub trajectory: Trajectory,
+    /// Also written as `<stem>.csv` (the episodes the charts show, for a spreadsheet).
+    pub csv: bool,
 }
 
 /// The comparison and the recorded trajectories it refers to.
@@ -161,16 +170,23 @@ pub struct CompareOutput {
 }
 
 impl CompareOutput {
-    /// Writes each recorded trajectory as `<out>/episodes/<stem>.csv` and `.json`.
+    /// Writes each recorded trajectory as `<out>/episodes/<stem>.json.gz` (compact,
+    /// [`Trajectory::save_compact`]), and the charts' episodes also as `<stem>.csv`.
     pub fn save_episodes(&self, out: &Path) -> Result<(), CompareError> {
         let dir = out.join("episodes");
+        let io = |source| CompareError::Io {
+            path: dir.clone(),
+            source,
+        };
         for e in &self.episodes {
-            e.trajectory
-                .save(&dir, &e.stem)
-                .map_err(|source| CompareError::Io {
-                    path: dir.clone(),
-                    source,
-                })?;
+            e.trajectory.save_compact(&dir, &e.stem).map_err(io)?;
+            if e.csv {
+                fairgrasp_types::write_atomic(
+                    &dir.join(format!("{}.csv", e.stem)),
+                    e.trajectory.to_csv().as_bytes(),
+                )
+                .map_err(io)?;
+            }
         }
         Ok(())
     }
@@ -189,6 +205,7 @@ pub(crate) fn make_policy(
         1 => Box::new(ClosedLoopGrasp::observed(config)),
         2 => Box::new(ClosedLoopGrasp::oracle(config)),
         3 => Box::new(CalibratedScript::new(config, calibration.clone())),
+        4 => Box::new(TunedGripScript::new(config)),
         i => {
             let l = &learned[i - SCRIPTS.len()];
             Box::new(actor_policy(&l.meta, &l.actor, config))
@@ -255,56 +272,8 @@ pub fn run_comparison(
             });
         }
     }
-    let last_scenarios = work.pop().map(|w| w.scenarios).unwrap_or_default();
-
-    // `check` refused an empty preset list, so there is a last preset.
-    let last = &spec.presets[spec.presets.len() - 1];
-    let on_last: Vec<&MethodResult> = results.iter().filter(|r| r.preset == last.name).collect();
-    let k = spec
-        .episode
-        .unwrap_or_else(|| first_disagreement(&on_last).unwrap_or(0));
-    let mut picked: Vec<usize> = (0..spec.replay_episodes.min(spec.episodes)).collect();
-    if !picked.contains(&k) {
-        picked.push(k);
-    }
-    let all: Vec<usize> = (0..methods.len()).collect();
-    progress(CompareEvent::Recording {
-        episodes: all.len() * picked.len(),
-    });
-    let recordings = record::record_episodes(
-        &last.config,
-        &last_scenarios,
-        &picked,
-        &all,
-        learned,
-        spec.threads,
-    )?;
-    let mut recorded = Vec::new();
-    let mut replay = Vec::new();
-    let mut episodes = Vec::new();
-    for r in recordings {
-        let method = &methods[r.method];
-        let stem = format!("{}_{}_ep{}", slug(method), slug(&last.name), r.scenario);
-        let entry = RecordedEpisode {
-            method: method.clone(),
-            preset: last.name.clone(),
-            episode: r.scenario,
-            outcome: r.outcome,
-            trajectory: format!("episodes/{stem}.json"),
-        };
-        if r.scenario == k {
-            recorded.push(entry.clone());
-        }
-        if spec.replay_episodes > 0 {
-            replay.push(entry);
-        }
-        if spec.replay_episodes > 0 || r.scenario == k {
-            episodes.push(RecordedTrajectory {
-                stem,
-                trajectory: r.trajectory,
-            });
-        }
-    }
+    let (recorded, replay, episodes) =
+        record_all(spec, &work, &methods, &results, learned, progress)?;
 
     let comparison = Comparison {
         command: spec.command.clone(),
@@ -332,6 +301,106 @@ pub fn run_comparison(
         episodes,
     })
 }
+
+/// The scenarios recorded on each preset (indices into its set): the first
+/// `spec.replay_episodes` and the one the charts show (`spec.episode` on the last preset, else
+/// the first where the baseline and the first learned method end differently), which is often
+/// a failure; only the charts' one when no replay is asked for, and then only on the last
+/// preset.
+/// Returns per preset the picked scenarios and the charts' one (`None`: nothing recorded).
+fn picked_scenarios(
+    spec: &CompareSpec,
+    results: &[MethodResult],
+) -> Vec<(Vec<usize>, Option<usize>)> {
+    let n = spec.presets.len();
+    spec.presets
+        .iter()
+        .enumerate()
+        .map(|(p, preset)| {
+            let last = p + 1 == n;
+            if spec.replay_episodes == 0 && !last {
+                return (Vec::new(), None);
+            }
+            let here: Vec<&MethodResult> =
+                results.iter().filter(|r| r.preset == preset.name).collect();
+            let first_differing = first_disagreement(&here).unwrap_or(0);
+            let k = if last {
+                spec.episode.unwrap_or(first_differing)
+            } else {
+                first_differing
+            };
+            let mut picked: Vec<usize> = (0..spec.replay_episodes.min(spec.episodes)).collect();
+            if !picked.contains(&k) {
+                picked.push(k);
+            }
+            (picked, Some(k))
+        })
+        .collect()
+}
+
+/// Records every method on the picked scenarios of every preset ([`picked_scenarios`]): the
+/// charts' episodes (`recorded`, on the last preset), the replay's (every preset) and their
+/// trajectories.
+fn record_all(
+    spec: &CompareSpec,
+    work: &[schedule::PresetWork<'_>],
+    methods: &[String],
+    results: &[MethodResult],
+    learned: &[LearnedPolicy],
+    progress: &(dyn Fn(CompareEvent<'_>) + Sync),
+) -> Result<RecordedSets, CompareError> {
+    let picked = picked_scenarios(spec, results);
+    let all: Vec<usize> = (0..methods.len()).collect();
+    progress(CompareEvent::Recording {
+        episodes: all.len() * picked.iter().map(|(p, _)| p.len()).sum::<usize>(),
+    });
+    let (mut recorded, mut replay, mut episodes) = (Vec::new(), Vec::new(), Vec::new());
+    for (p, (preset, w)) in spec.presets.iter().zip(work).enumerate() {
+        let (scenarios, Some(charts)) = &picked[p] else {
+            continue;
+        };
+        let last = p + 1 == spec.presets.len();
+        let recordings = record::record_episodes(
+            &preset.config,
+            &w.scenarios,
+            scenarios,
+            &all,
+            learned,
+            spec.threads,
+        )?;
+        for r in recordings {
+            let method = &methods[r.method];
+            let stem = format!("{}_{}_ep{}", slug(method), slug(&preset.name), r.scenario);
+            let in_charts = last && r.scenario == *charts;
+            let entry = RecordedEpisode {
+                method: method.clone(),
+                preset: preset.name.clone(),
+                episode: r.scenario,
+                outcome: r.outcome,
+                trajectory: format!("episodes/{stem}.json.gz"),
+            };
+            if in_charts {
+                recorded.push(entry.clone());
+            }
+            if spec.replay_episodes > 0 {
+                replay.push(entry);
+            }
+            episodes.push(RecordedTrajectory {
+                stem,
+                trajectory: r.trajectory,
+                csv: in_charts,
+            });
+        }
+    }
+    Ok((recorded, replay, episodes))
+}
+
+/// The charts' recorded episodes, the replay's, and every trajectory they refer to.
+type RecordedSets = (
+    Vec<RecordedEpisode>,
+    Vec<RecordedEpisode>,
+    Vec<RecordedTrajectory>,
+);
 
 /// The first scenario where the baseline and the first learned method (without one, the
 /// closed-loop script) end differently.

@@ -15,7 +15,7 @@ pub struct ComparePreset {
 /// What to compare and how.
 #[derive(Clone, Debug)]
 pub struct CompareSpec {
-    /// Presets in run order; the recorded episode is taken on the last one.
+    /// Presets in run order; the charts' recorded episode is taken on the last one.
     pub presets: Vec<ComparePreset>,
     /// Scenarios per preset; every method meets the same ones.
     pub episodes: usize,
@@ -26,12 +26,17 @@ pub struct CompareSpec {
     /// Scenario index recorded on the last preset. `None`: the first where the first two methods
     /// end differently, else 0.
     pub episode: Option<usize>,
-    /// Scenarios of the last preset recorded for every method for the 3D replay (the first
-    /// ones of the set, at most `episodes`; the recorded `episode` is always among them).
+    /// Scenarios of every preset recorded for every method for the 3D replay (the first ones of
+    /// each set, at most `episodes`, and the first where the baseline and the first learned
+    /// method end differently; on the last preset the charts' `episode` is always among them).
     pub replay_episodes: usize,
     /// The command line kept in the result.
     pub command: String,
 }
+
+/// Scenarios per preset the 3D replay records by default (with 7 methods on 8 presets: about
+/// 220 episodes, a replay.html of a few MB).
+pub const DEFAULT_REPLAY_EPISODES: usize = 3;
 
 /// The most worker threads a comparison takes.
 pub const MAX_THREADS: usize = 256;

@@ -8,14 +8,14 @@ use std::path::Path;
 use fairgrasp_types::fs::slug;
 use fairgrasp_types::work_queue::run_in_order;
 
-use crate::charts::{episode, replay, success, workspace};
+use crate::charts::{episode, heatmap, replay, workspace};
 use crate::compare::Comparison;
 use crate::error::ReportError;
 use crate::trajectory::Trajectory;
 
 /// The chart files of one comparison section, relative to the report folder.
 pub(crate) struct ComparisonCharts {
-    /// Success rate per method and preset.
+    /// Success rate per method and preset (a heatmap).
     pub success: String,
     /// A workspace map per preset: (file, preset).
     pub workspaces: Vec<(String, String)>,
@@ -68,7 +68,7 @@ pub(crate) fn draw_comparison_charts(
     let episodes = charts.episodes.len();
     let draw = |_: &mut (), j: usize| -> Result<(), ReportError> {
         if j == 0 {
-            return success::success_chart(c, &out.join(&charts.success));
+            return heatmap::success_heatmap(c, &out.join(&charts.success));
         }
         if let Some((file, preset)) = charts.workspaces.get(j - 1) {
             return workspace::workspace_map(c, preset, &out.join(file));

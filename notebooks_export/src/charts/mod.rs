@@ -12,6 +12,7 @@ pub mod axis;
 pub mod curves;
 pub(crate) mod draw_all;
 pub mod episode;
+pub mod heatmap;
 pub mod replay;
 pub mod squeeze;
 pub mod success;
