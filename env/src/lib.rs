@@ -24,6 +24,6 @@ pub mod task;
 pub mod vec;
 
 pub use cell::mount::Mount;
-pub use config::{ArmSimulation, ConfigError, EnvConfig, HOME_JOINTS};
+pub use config::{ArmSimulation, ConfigError, EnvConfig, HOME_JOINTS, TaskKind};
 pub use env::obs::Observation;
 pub use env::{Action, EnvError, GraspEnv, Info, ServoSetpoint, Step};

@@ -114,6 +114,7 @@ fn a_protective_stop_is_never_a_success_even_when_lifted_and_held() {
         table_height: 0.6,
         object_xy_from_table_centre: [0.3, 0.0],
         table_half_size: [0.6, 0.6],
+        place: None,
     };
     assert!(fairgrasp_env::task::is_success(&lifted_and_held, &cfg));
     let stop = Failure::ProtectiveStop {

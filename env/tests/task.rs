@@ -14,6 +14,7 @@ fn state(object_z: f64, pads: [bool; 2]) -> TaskState {
         table_height: 0.6,
         object_xy_from_table_centre: [0.3, 0.0],
         table_half_size: [0.6, 0.6],
+        place: None,
     }
 }
 

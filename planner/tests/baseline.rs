@@ -60,6 +60,7 @@ fn an_unreachable_object_is_an_ik_failure_not_a_panic() {
         observed_yaw_error: 0.0,
         nudge: None,
         camera_offset: None,
+        fixture: None,
     };
     let mut policy = ScriptedGrasp::new(&config, BaselineConfig::default());
     let result = run_episode(&mut env, &mut policy, &far, None).unwrap();

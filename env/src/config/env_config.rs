@@ -223,10 +223,16 @@ impl Default for SceneConfig {
     }
 }
 
-/// Success, reward and time limit.
+/// The task, its success, reward and time limit.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct TaskConfig {
+    /// `lift` (the default) or `place` (seat the cube in the fixture, `[task.place]`).
+    #[serde(skip_serializing_if = "is_lift")]
+    pub kind: crate::config::place::TaskKind,
+    /// The place task's fixture and seated criterion (used when `kind = "place"`).
+    #[serde(skip_serializing_if = "is_default_place")]
+    pub place: crate::config::place::PlaceConfig,
     /// Steps before the episode is truncated (the seed's 200).
     pub max_steps: usize,
     /// Lift above the resting height that counts as success [m].
@@ -283,9 +289,19 @@ pub enum RewardKind {
 /// Default protective stop threshold [N] (see [`TaskConfig::protective_stop_force`]).
 pub const DEFAULT_PROTECTIVE_STOP_FORCE: f64 = 35.0;
 
+fn is_lift(kind: &crate::config::place::TaskKind) -> bool {
+    *kind == crate::config::place::TaskKind::Lift
+}
+
+fn is_default_place(place: &crate::config::place::PlaceConfig) -> bool {
+    *place == crate::config::place::PlaceConfig::default()
+}
+
 impl Default for TaskConfig {
     fn default() -> Self {
         Self {
+            kind: crate::config::place::TaskKind::Lift,
+            place: crate::config::place::PlaceConfig::default(),
             max_steps: 200,
             lift_height: 0.03,
             success_reward: 10.0,

@@ -15,13 +15,16 @@ pub mod env_config;
 pub mod error;
 pub mod families;
 pub mod numbers;
+pub mod place;
 pub mod presets;
 pub mod range;
 pub mod reward;
 pub mod toml_lines;
 pub mod validate;
 mod validate_families;
+mod validate_place;
 
 pub use env_config::*;
+pub use place::{PlaceConfig, TaskKind};
 pub use error::ConfigError;
 pub use range::Range;

@@ -1,13 +1,13 @@
 //! Named configurations: `fixed`, `seed`, `wide`, `full`, `hard` and the scenario families
 //! `miscalibrated`, `miscalibrated_b`, `wrist_camera`, `nudged` ([`crate::scenario::families`])
-//! and the contact family `heavy_slippery`, shipped as TOML files in
+//! the contact family `heavy_slippery` and the place task's `place`, shipped as TOML files in
 //! `assets/configs/` and built into the binary, so `--preset NAME` works from any folder.
 
 use crate::config::EnvConfig;
 use crate::config::validate::ConfigError;
 
 /// Every preset: name, TOML text, one-line description.
-pub const PRESETS: [(&str, &str, &str); 10] = [
+pub const PRESETS: [(&str, &str, &str); 11] = [
     (
         "fixed",
         include_str!("../../../assets/configs/fixed.toml"),
@@ -57,6 +57,11 @@ pub const PRESETS: [(&str, &str, &str); 10] = [
         "heavy_slippery",
         include_str!("../../../assets/configs/heavy_slippery.toml"),
         "full with cubes of 0.3–1.0 kg and friction 0.05–0.3: heavier and more slippery than the script's 5 N grip holds",
+    ),
+    (
+        "place",
+        include_str!("../../../assets/configs/place.toml"),
+        "the place task: seat the cube in a pocket with 2 mm clearance per side, the fixture drawn per scenario; no perception error",
     ),
 ];
 

@@ -273,6 +273,14 @@ impl EnvConfig {
                 "must be a number in [-10000, 10000]",
             )?;
         }
+        crate::config::validate_place::check_place(&t.place, self.scene.cube_size)?;
+        check(
+            !(t.kind == crate::config::TaskKind::Place
+                && t.reward == crate::config::RewardKind::Staged),
+            "task.reward",
+            "staged",
+            "the staged reward is the lift task's (reach, grasp, lift): with task.kind = \"place\" use \"seed\"",
+        )?;
         let r = &self.randomization;
         check_range(&r.radius, "randomization.radius", 0.0)?;
         check_range(&r.angle, "randomization.angle", -std::f64::consts::PI)?;

@@ -175,6 +175,11 @@ impl GraspEnv {
         );
         self.sim
             .place_object(&object, scenario.friction, scenario.mass);
+        if let Some(f) = &scenario.fixture {
+            let on_table = Pose::from_xyz_rpy([f.xy[0], f.xy[1], 0.0], [0.0, 0.0, f.yaw]);
+            let in_world = self.cell.mount.table_in_world.iso * on_table.iso;
+            self.sim.place_fixture(&in_world);
+        }
         self.robot.teleport(&mut self.sim, &scenario.start_joints);
         self.robot.set_grip_force(self.config.gripper.force);
         for _ in 0..SETTLE_SUBSTEPS {

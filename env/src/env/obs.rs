@@ -60,6 +60,10 @@ pub struct Observation {
     /// ([`OBS_NAMES`]): the task-space residual's features carry it
     /// (`fairgrasp_planner::residual`).
     pub wrist_camera: Option<ObservedObject>,
+    /// The place task's fixture as the fixed camera sees it (the same calibration error and
+    /// per-episode noise as the cube): the pocket's centre on the table top in `base_link` [m]
+    /// and its yaw; `None` for the lift task. Not part of the flat view ([`OBS_NAMES`]).
+    pub fixture: Option<ObservedObject>,
 }
 
 impl Observation {
@@ -86,6 +90,7 @@ impl Observation {
             tcp_position: [f(18), f(19), f(20)],
             pad_contact: [a[21] > 0.5, a[22] > 0.5],
             wrist_camera: None,
+            fixture: None,
         }
     }
 

@@ -3,6 +3,7 @@
 
 pub mod curriculum;
 pub mod families;
+pub mod fixture;
 pub mod graspable;
 pub mod nudge;
 pub mod perception;

@@ -42,6 +42,8 @@ pub struct Scenario {
     /// The cell's camera calibration error (`randomization.camera_offset`, the same for every
     /// episode of a config), applied to what is observed.
     pub camera_offset: Option<crate::scenario::families::CameraOffset>,
+    /// Where the place task's fixture stands (`None` for the lift task).
+    pub fixture: Option<crate::scenario::fixture::FixturePose>,
 }
 
 /// The object pose in `base_link` for a scenario: resting on the table top at `xy` in the table
@@ -118,6 +120,12 @@ impl Scenario {
             observed_yaw_error: 0.0,
             nudge: None,
             camera_offset: None,
+            fixture: (config.task.kind == crate::config::TaskKind::Place).then_some(
+                crate::scenario::fixture::FixturePose {
+                    xy: config.task.place.fixture_xy,
+                    yaw: 0.0,
+                },
+            ),
         }
     }
 
@@ -176,6 +184,23 @@ impl Scenario {
             let observed_position_error = [gauss(&mut rng, p), gauss(&mut rng, p), 0.0];
             let observed_yaw_error = gauss(&mut rng, r.observed_yaw_noise);
             let pose = mount.resting_object_in_base(object_xy, object_yaw, config.scene.cube_size);
+            let fixture = match config.task.kind {
+                crate::config::TaskKind::Lift => None,
+                crate::config::TaskKind::Place => {
+                    match crate::scenario::fixture::draw_fixture(
+                        config,
+                        model,
+                        &mount,
+                        seed,
+                        object_xy,
+                        &start_joints,
+                    ) {
+                        Some(f) => Some(f),
+                        None if r.position => continue,
+                        None => break,
+                    }
+                }
+            };
             if top_down_grasp(model, &mount, &pose, &start_joints).is_some() {
                 let nudge = r.nudge.as_ref().and_then(|n| {
                     crate::scenario::families::draw_nudge(
@@ -200,6 +225,7 @@ impl Scenario {
                     observed_yaw_error,
                     nudge,
                     camera_offset: r.camera_offset,
+                    fixture,
                 });
             }
             if !r.position {

@@ -56,6 +56,7 @@ fn group_bit(part: Part) -> u32 {
         Part::Finger(f) | Part::Pad(f) => 8 + f as u32,
         Part::Table => 10,
         Part::Cube => 11,
+        Part::Fixture => 12,
     }
 }
 
@@ -66,7 +67,10 @@ pub fn set_collision_groups(world: &mut PhysicsWorld, parts: &ColliderParts, mod
     let filter = CollisionFilter::new(model);
     for (handle, part) in parts.iter() {
         let mut allowed = 0u32;
-        for other in ROBOT_PARTS.iter().chain(&[Part::Table, Part::Cube]) {
+        for other in ROBOT_PARTS
+            .iter()
+            .chain(&[Part::Table, Part::Fixture, Part::Cube])
+        {
             if !filter.ignores(part, *other) {
                 allowed |= 1 << group_bit(*other);
             }

@@ -8,6 +8,7 @@ pub mod collision_filter;
 pub mod contacts;
 pub mod convert;
 pub mod finger_drive;
+pub mod fixture;
 pub mod part;
 pub mod scene;
 pub mod shapes;

@@ -11,6 +11,8 @@ pub const TABLE_PART_NAME: &str = "table";
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Part {
     Table,
+    /// The place task's fixture: the pocket's walls, bolted to the table.
+    Fixture,
     Cube,
     /// Arm link by index: 0 = base_link … 6 = wrist3_link.
     Link(usize),
@@ -42,6 +44,7 @@ impl Part {
     pub fn name(self, model: &ArmModel) -> &'static str {
         match self {
             Part::Table => TABLE_PART_NAME,
+            Part::Fixture => "fixture",
             Part::Cube => "cube",
             Part::Link(i) => model.links[i],
             Part::Palm => "palm",
@@ -54,15 +57,17 @@ impl Part {
 
     /// Arm or gripper: the parts whose contacts can be collisions.
     pub fn is_robot(self) -> bool {
-        !matches!(self, Part::Table | Part::Cube)
+        !matches!(self, Part::Table | Part::Fixture | Part::Cube)
     }
 
     /// Is this part a body that never responds to forces in the servo arm's world: the links and
-    /// the palm (kinematic, placed by FK) and the table (fixed)? Rapier does not compute contacts
-    /// between two such parts ([`crate::sim::scene::build`]); the env checks those pairs with the
-    /// exact shapes instead ([`crate::sim::shapes::RobotShapes`]).
+    /// the palm (kinematic, placed by FK), the table and the fixture (fixed)? Rapier does not
+    /// compute contacts between two such parts ([`crate::sim::scene::build`]); the env checks the
+    /// links' and palm's pairs with the table on the exact shapes instead
+    /// ([`crate::sim::shapes::RobotShapes`]). The fixture's walls stand below anything but the
+    /// fingers reach (which are dynamic, so rapier computes their contacts with it).
     pub fn never_moved_by_forces(self) -> bool {
-        matches!(self, Part::Table | Part::Link(_) | Part::Palm)
+        matches!(self, Part::Table | Part::Fixture | Part::Link(_) | Part::Palm)
     }
 }
 

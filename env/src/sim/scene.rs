@@ -29,6 +29,8 @@ pub struct SceneHandles {
     pub table_collider: ColliderHandle,
     /// Multibody joint handles j1 … j6 (multibody arm only).
     pub arm_joints: Option<[MultibodyJointHandle; 6]>,
+    /// The place task's fixture (a fixed body; `None` for the lift task).
+    pub fixture: Option<RigidBodyHandle>,
     /// Which part each collider is.
     pub parts: ColliderParts,
 }
@@ -190,6 +192,13 @@ pub fn build(
         .insert_with_parent(cube_collider, cube, &mut world.bodies);
     parts.insert(cube_collider, Part::Cube);
 
+    // The place task's fixture, beside the arm until a scenario moves it.
+    let fixture = (config.task.kind == crate::config::TaskKind::Place).then(|| {
+        let p = config.task.place.fixture_xy;
+        let at = Isometry3::translation(p[0] + base_xy[0], p[1] + base_xy[1], s.table_height);
+        crate::sim::fixture::insert_fixture(&mut world, &mut parts, config, to_rapier(&at))
+    });
+
     // Arm links at their FK poses, one capsule each.
     let link_poses = model.link_poses(q);
     let dynamic = config.arm.model == ArmSimulation::Multibody;
@@ -284,6 +293,7 @@ pub fn build(
         cube_collider,
         table_collider,
         arm_joints,
+        fixture,
         parts,
     };
     (world, handles)

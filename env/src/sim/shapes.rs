@@ -316,7 +316,7 @@ impl CheckedPairs {
     fn slot(part: Part) -> Option<usize> {
         match part {
             Part::Table => Some(ROBOT_SHAPES),
-            Part::Cube => None,
+            Part::Cube | Part::Fixture => None,
             p => RobotShapes::PARTS.iter().position(|q| *q == p),
         }
     }

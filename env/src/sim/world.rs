@@ -74,6 +74,20 @@ impl Sim {
         }
     }
 
+    /// Moves the place task's fixture to `pose` (`world`: its origin is the pocket's centre on
+    /// the table top); does nothing without a fixture.
+    pub fn place_fixture(&mut self, pose: &Isometry3<f64>) {
+        if let Some(body) = self.handles.fixture.and_then(|h| self.world.bodies.get_mut(h)) {
+            body.set_position(to_rapier(pose), true);
+        }
+    }
+
+    /// The fixture's pose in `world`, if the scene has one.
+    pub fn fixture_pose(&self) -> Option<Isometry3<f64>> {
+        let body = self.world.bodies.get(self.handles.fixture?)?;
+        Some(from_rapier(body.position()))
+    }
+
     /// Places the kinematic links and the palm at FK(q) on `base` for the next step; with
     /// `teleport`, also as the current pose (no motion in between).
     pub fn place_kinematic_arm(

@@ -30,8 +30,13 @@ impl Failure {
     }
 }
 
-/// Lifted at least `lift_height` above rest, with both pads on it and the TCP within 3 cm.
+/// The task's success: for the lift task lifted at least `lift_height` above rest, with both
+/// pads on it and the TCP within 3 cm; for the place task seated, released and clear
+/// ([`crate::task::place::is_placed`]).
 pub fn is_success(s: &TaskState, cfg: &TaskConfig) -> bool {
+    if let Some(f) = &s.place {
+        return crate::task::place::is_placed(s, f, &cfg.place);
+    }
     let lifted = s.object[2] - s.object_rest_z >= cfg.lift_height;
     lifted && s.pad_contact[0] && s.pad_contact[1] && tcp_object_distance(s) < 0.03
 }
@@ -53,14 +58,19 @@ pub fn reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -
 }
 
 /// The seed's rescaled reward: `success_reward` on success, `collision_reward` on a collision,
-/// else `distance_reward · |TCP − object|`.
+/// else `distance_reward ·` the distance still to go: `|TCP − object|` (lift), plus the cube's
+/// distance from its seat in the pocket (place, [`crate::task::place::distance_to_go`]).
 pub fn seed_reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
     if success {
         cfg.success_reward
     } else if collision {
         cfg.collision_reward
     } else {
-        cfg.distance_reward * tcp_object_distance(s)
+        let to_go = match &s.place {
+            Some(f) => crate::task::place::distance_to_go(s, f),
+            None => tcp_object_distance(s),
+        };
+        cfg.distance_reward * to_go
     }
 }
 

@@ -1,7 +1,9 @@
-//! Success, failure and reward: pure functions of the state, testable without physics.
+//! Success, failure and reward: pure functions of the state, testable without physics. The
+//! lift task's rules are in [`judge`] and [`reward`], the place task's in [`place`].
 
 pub mod episode;
 pub mod judge;
+pub mod place;
 pub mod reward;
 pub mod state;
 

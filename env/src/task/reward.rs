@@ -64,6 +64,7 @@ mod tests {
             table_height: 0.6,
             object_xy_from_table_centre: [0.4, 0.0],
             table_half_size: [0.6, 0.6],
+            place: None,
         }
     }
 

@@ -20,6 +20,8 @@ pub struct TaskState {
     /// Horizontal distance of the object from the table centre, per axis, and the half sizes.
     pub object_xy_from_table_centre: [f64; 2],
     pub table_half_size: [f64; 2],
+    /// The place task's facts (`None` for the lift task).
+    pub place: Option<crate::task::place::PlaceFacts>,
 }
 
 /// Distance from the TCP to the object centre [m].

@@ -193,7 +193,36 @@ impl GraspEnv {
             table_height: self.config.scene.table_height,
             object_xy_from_table_centre: [object.x - base_xy[0], object.y - base_xy[1]],
             table_half_size: self.config.scene.table_size.map(|s| s / 2.0),
+            place: self.place_facts(),
         }
+    }
+
+    /// The place task's facts about the cube and the fixture (`None` for the lift task), world.
+    fn place_facts(&self) -> Option<crate::task::place::PlaceFacts> {
+        let fixture = self.sim.fixture_pose()?;
+        let cube = self.sim.object_pose();
+        let offset = fixture.inverse() * cube.translation.vector;
+        // The cube's face normals; the one nearest the vertical says how far it leans.
+        let r = cube.rotation.to_rotation_matrix();
+        let upright = (0..3).map(|i| r[(2, i)].abs()).fold(0.0, f64::max);
+        let h = 0.5 * self.config.scene.cube_size;
+        let lowest = (0..8)
+            .map(|k| {
+                let corner = nalgebra::Vector3::new(
+                    if k & 1 == 0 { -h } else { h },
+                    if k & 2 == 0 { -h } else { h },
+                    if k & 4 == 0 { -h } else { h },
+                );
+                (cube * nalgebra::Point3::from(corner)).z
+            })
+            .fold(f64::INFINITY, f64::min);
+        let f = fixture.translation.vector;
+        Some(crate::task::place::PlaceFacts {
+            offset_in_fixture: [offset.x, offset.y],
+            bottom_above_table: lowest - self.config.scene.table_height,
+            tilt: upright.clamp(-1.0, 1.0).acos(),
+            fixture: [f.x, f.y, f.z],
+        })
     }
 
     /// The observation: the robot's state and the object as the perception model reports it,
@@ -208,6 +237,9 @@ impl GraspEnv {
         let seen = observe_object(&self.cell.mount, &truth, self.scenario.as_ref());
         let wrist = self.config.randomization.wrist_camera.as_ref();
         let wrist_camera = wrist_view(wrist, &self.cell.mount, &truth, tcp);
+        let fixture = self.fixture_in_base().map(|truth| {
+            observe_object(&self.cell.mount, &truth, self.scenario.as_ref())
+        });
         Observation {
             joints: self.robot.q,
             joint_velocities,
@@ -217,7 +249,17 @@ impl GraspEnv {
             tcp_position: tcp,
             pad_contact: contacts.pad_contact,
             wrist_camera,
+            fixture,
         }
+    }
+
+    /// The fixture's true pose in `base_link` (its origin: the pocket's centre on the table
+    /// top), if the task has one.
+    pub fn fixture_in_base(&self) -> Option<fairgrasp_kinematics::Pose> {
+        let fixture = self.sim.fixture_pose()?;
+        Some(fairgrasp_kinematics::Pose {
+            iso: self.cell.mount.base_in_world.iso.inverse() * fixture,
+        })
     }
 }
 

@@ -1,0 +1,82 @@
+//! The place task's settings (`[task.place]`): the fixture, where it stands, and what counts as
+//! seated. Plain data; the task's rules are in `env/src/task/place.rs`, the fixture's bodies in
+//! `env/src/sim/fixture.rs`.
+//!
+//! Frames: the table frame ([`crate::Mount`]: on the table top under the base, z up, x along
+//! the base's heading). Units: metres, radians.
+
+use serde::{Deserialize, Serialize};
+
+use crate::config::range::Range;
+
+/// Which task an env runs (`[task] kind`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum TaskKind {
+    /// Grasp the cube and lift it (the seed's task).
+    #[default]
+    Lift,
+    /// Grasp the cube, carry it and seat it in the fixture's pocket, release it, move clear.
+    Place,
+}
+
+/// The fixture and the seated criterion (`[task.place]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PlaceConfig {
+    /// Gap between the cube and each wall of the square pocket [m] (the pocket's side is the
+    /// cube's edge plus twice this).
+    pub clearance: f64,
+    /// Height of the pocket's walls above the table top [m]; the pocket's floor is the table.
+    pub wall_height: f64,
+    /// Thickness of each wall [m].
+    pub wall_thickness: f64,
+    /// Draw the fixture's position in `fixture_radius` × `fixture_angle` (else `fixture_xy`).
+    pub randomize: bool,
+    /// The fixture's centre when not randomised, table frame x, y [m].
+    pub fixture_xy: [f64; 2],
+    /// Sector the fixture's centre is drawn in: distance from under the base origin [m] and
+    /// angle from the base's heading [rad].
+    pub fixture_radius: Range,
+    pub fixture_angle: Range,
+    /// Draw the fixture's yaw in [0, π/2) (else 0; the pocket repeats every 90°).
+    pub random_yaw: bool,
+    /// The fixture's centre is drawn at least this far from the cube's start [m].
+    pub min_distance_from_cube: f64,
+    /// Seated: the cube's bottom at most this far above the table top [m] and tilted at most
+    /// `max_tilt` [rad].
+    pub seated_height: f64,
+    pub max_tilt: f64,
+    /// Clear: the TCP at least this far above the cube's top [m], neither pad touching it.
+    pub clear_height: f64,
+    /// Where the TCP holds the cube: this far above its centre [m] (the grasp the place script
+    /// plans, so that the cube stands out below the pads and the pads pass over the walls).
+    pub grasp_height: f64,
+}
+
+impl Default for PlaceConfig {
+    fn default() -> Self {
+        Self {
+            clearance: 0.002,
+            wall_height: 0.010,
+            wall_thickness: 0.010,
+            randomize: false,
+            fixture_xy: [0.30, 0.20],
+            fixture_radius: [0.25, 0.40],
+            fixture_angle: [-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2],
+            random_yaw: false,
+            min_distance_from_cube: 0.12,
+            seated_height: 0.002,
+            max_tilt: 5f64.to_radians(),
+            clear_height: 0.03,
+            grasp_height: 0.012,
+        }
+    }
+}
+
+impl PlaceConfig {
+    /// The pocket's inner half side for a cube of edge `cube_size` [m].
+    pub fn pocket_half_side(&self, cube_size: f64) -> f64 {
+        0.5 * cube_size + self.clearance
+    }
+}

@@ -1,0 +1,44 @@
+//! Checking `[task.place]` ([`PlaceConfig`]). Called by `EnvConfig::validate`.
+
+use crate::config::check::{check, check_range};
+use crate::config::error::ConfigError;
+use crate::config::place::PlaceConfig;
+
+/// Refuses a fixture or criterion that cannot mean what it says, naming the field.
+pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
+    for (value, field, lo, hi, rule) in [
+        (p.clearance, "task.place.clearance", 0.0, 0.02, "must be in (0, 0.02] m"),
+        (p.wall_height, "task.place.wall_height", 0.0, 0.05, "must be in (0, 0.05] m"),
+        (p.wall_thickness, "task.place.wall_thickness", 0.0, 0.05, "must be in (0, 0.05] m"),
+        (p.seated_height, "task.place.seated_height", 0.0, 0.02, "must be in (0, 0.02] m"),
+        (p.max_tilt, "task.place.max_tilt", 0.0, 0.5, "must be in (0, 0.5] rad"),
+        (p.clear_height, "task.place.clear_height", 0.0, 0.3, "must be in (0, 0.3] m"),
+        (
+            p.min_distance_from_cube,
+            "task.place.min_distance_from_cube",
+            0.0,
+            1.0,
+            "must be in (0, 1] m",
+        ),
+    ] {
+        check(value > lo && value <= hi, field, value, rule)?;
+    }
+    check(
+        p.grasp_height.abs() < 0.5 * cube_size,
+        "task.place.grasp_height",
+        p.grasp_height,
+        "must hold the cube: less than half its edge above or below its centre",
+    )?;
+    check(
+        p.fixture_xy.iter().all(|v| v.abs() <= 2.0),
+        "task.place.fixture_xy",
+        p.fixture_xy,
+        "must be within 2 m of the base [m]",
+    )?;
+    check_range(&p.fixture_radius, "task.place.fixture_radius", 0.0)?;
+    check_range(
+        &p.fixture_angle,
+        "task.place.fixture_angle",
+        -std::f64::consts::PI,
+    )
+}

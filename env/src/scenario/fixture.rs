@@ -1,0 +1,66 @@
+//! Where the place task's fixture stands in a scenario: drawn from the scenario's seed (its own
+//! generator, so the rest of the scenario is the one the lift task draws), checked to be far
+//! enough from the cube and reachable top-down with the cube held.
+
+use std::f64::consts::FRAC_PI_2;
+
+use fairgrasp_kinematics::ArmModel;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde::Serialize;
+
+use crate::cell::mount::Mount;
+use crate::config::EnvConfig;
+use crate::scenario::graspable::top_down_grasp;
+
+/// The fixture's pose in one scenario: the pocket's centre on the table top, table frame.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct FixturePose {
+    /// Centre x, y [m].
+    pub xy: [f64; 2],
+    /// Yaw about the world vertical, relative to the base's heading [rad] (the pocket repeats
+    /// every 90°).
+    pub yaw: f64,
+}
+
+/// Fixture poses tried before a scenario is given up.
+const FIXTURE_DRAWS: usize = 200;
+
+/// The fixture pose of scenario `seed` whose cube starts at `cube_xy` (table frame): the fixed
+/// one, or one drawn in the configured sector; `None` if no draw is at least
+/// `min_distance_from_cube` from the cube and admits a top-down placing of the cube from
+/// `start_joints`.
+pub fn draw_fixture(
+    config: &EnvConfig,
+    model: &ArmModel,
+    mount: &Mount,
+    seed: u64,
+    cube_xy: [f64; 2],
+    start_joints: &[f64; 6],
+) -> Option<FixturePose> {
+    let p = &config.task.place;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x6669_7874_7572_6531);
+    let draws = if p.randomize { FIXTURE_DRAWS } else { 1 };
+    for _ in 0..draws {
+        let xy = if p.randomize {
+            let r = rng
+                .random_range(p.fixture_radius[0].powi(2)..=p.fixture_radius[1].powi(2))
+                .sqrt();
+            let a = rng.random_range(p.fixture_angle[0]..=p.fixture_angle[1]);
+            [r * a.cos(), r * a.sin()]
+        } else {
+            p.fixture_xy
+        };
+        let yaw = if p.random_yaw {
+            rng.random_range(0.0..FRAC_PI_2)
+        } else {
+            0.0
+        };
+        let apart = (xy[0] - cube_xy[0]).hypot(xy[1] - cube_xy[1]) >= p.min_distance_from_cube;
+        let seated = mount.resting_object_in_base(xy, yaw, config.scene.cube_size);
+        if apart && top_down_grasp(model, mount, &seated, start_joints).is_some() {
+            return Some(FixturePose { xy, yaw });
+        }
+    }
+    None
+}
