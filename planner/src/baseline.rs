@@ -46,6 +46,9 @@ pub struct BaselineConfig {
     /// Env steps a residual may hold the gripper open after the descent arrived
     /// ([`CloseTiming::Wait`]).
     pub max_close_delay_steps: usize,
+    /// Where the TCP grasps the cube: this far above its centre along the vertical [m] (0: at
+    /// the centre; the place task grasps higher so that the cube stands out below the pads).
+    pub grasp_height: f64,
 }
 
 impl Default for BaselineConfig {
@@ -60,6 +63,7 @@ impl Default for BaselineConfig {
             close_steps: 8,
             phase_slack_steps: 24,
             max_close_delay_steps: 12,
+            grasp_height: 0.0,
         }
     }
 }
@@ -206,8 +210,9 @@ impl ScriptedGrasp {
 
     fn plan_joints(&self, obs: &Observation, object: [f64; 3]) -> Option<GraspJoints> {
         let c = &self.config;
+        let up = (self.mount.table_in_base).transform_vector([0.0, 0.0, c.grasp_height]);
         let target = GraspTarget {
-            object,
+            object: [0, 1, 2].map(|i| object[i] + up[i]),
             object_yaw: obs.object_yaw,
             mount: self.mount,
         };

@@ -6,6 +6,8 @@
 //! - [`baseline`]: [`ScriptedGrasp`], a [`fairgrasp_env::episode::Policy`]: approach → descend →
 //!   close → lift → hold, each phase with a timeout.
 //! - [`phase`]: [`Phase`], where the script is (plan, approach, descend, close, lift, hold).
+//! - [`place`]: [`ScriptedPlace`], the place task's open-loop script (the grasp, then carry,
+//!   lower, release, retreat).
 //! - [`closed_loop`]: [`ClosedLoopGrasp`], the closed-loop script (re-plans, retries once) and
 //!   the oracle (the same on the true cube pose).
 //! - [`calibrated`]: [`CalibratedScript`], the open-loop script after a (simulated) camera
@@ -25,6 +27,7 @@ pub mod correction;
 pub mod grasp;
 pub mod motion;
 pub mod phase;
+pub mod place;
 pub mod residual;
 pub mod stream;
 pub mod tuned_grip;
@@ -33,5 +36,6 @@ pub use baseline::{BaselineConfig, CloseTiming, Phase, PlannedObject, ScriptedGr
 pub use calibrated::{CalibratedScript, CameraCalibration};
 pub use closed_loop::{ClosedLoopConfig, ClosedLoopGrasp, CubeSource};
 pub use correction::{CorrectionLimits, TaskCorrection};
+pub use place::ScriptedPlace;
 pub use residual::{OracleResidual, ResidualScript};
 pub use tuned_grip::TunedGripScript;

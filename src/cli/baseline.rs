@@ -5,12 +5,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
-use fairgrasp_env::EnvConfig;
 use fairgrasp_env::config::presets::{self, PRESETS};
 use fairgrasp_env::episode::{EvalReport, Policy, evaluate_seeded};
+use fairgrasp_env::{EnvConfig, TaskKind};
 use fairgrasp_planner::{
     BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
-    TunedGripScript,
+    ScriptedPlace, TunedGripScript,
 };
 use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -206,6 +206,18 @@ pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
     let none = serde_json::json!({});
     if a.grip_force.is_some() && a.script != ScriptArg::TunedGrip {
         anyhow::bail!("--grip-force is the tuned_grip script's: add --script tuned_grip");
+    }
+    let config = preset_config(&a.scenarios.preset, a.scenarios.arm)?;
+    if config.task.kind == TaskKind::Place {
+        if a.script != ScriptArg::OpenLoop {
+            anyhow::bail!(
+                "--preset {}: the place task has the open-loop script only so far (--script \
+                 open_loop); the other controls are lift scripts",
+                a.scenarios.preset
+            );
+        }
+        let make = |config: &EnvConfig| ScriptedPlace::new(config);
+        return evaluate_and_print(&a.scenarios, "place script", &make, none);
     }
     match a.script {
         ScriptArg::TunedGrip => {

@@ -201,7 +201,8 @@ impl GraspEnv {
     fn place_facts(&self) -> Option<crate::task::place::PlaceFacts> {
         let fixture = self.sim.fixture_pose()?;
         let cube = self.sim.object_pose();
-        let offset = fixture.inverse() * cube.translation.vector;
+        let offset =
+            fixture.inverse_transform_point(&nalgebra::Point3::from(cube.translation.vector));
         // The cube's face normals; the one nearest the vertical says how far it leans.
         let r = cube.rotation.to_rotation_matrix();
         let upright = (0..3).map(|i| r[(2, i)].abs()).fold(0.0, f64::max);
@@ -237,9 +238,9 @@ impl GraspEnv {
         let seen = observe_object(&self.cell.mount, &truth, self.scenario.as_ref());
         let wrist = self.config.randomization.wrist_camera.as_ref();
         let wrist_camera = wrist_view(wrist, &self.cell.mount, &truth, tcp);
-        let fixture = self.fixture_in_base().map(|truth| {
-            observe_object(&self.cell.mount, &truth, self.scenario.as_ref())
-        });
+        let fixture = self
+            .fixture_in_base()
+            .map(|truth| observe_object(&self.cell.mount, &truth, self.scenario.as_ref()));
         Observation {
             joints: self.robot.q,
             joint_velocities,

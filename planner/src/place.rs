@@ -1,0 +1,276 @@
+//! The scripted place ([`ScriptedPlace`]): the scripted grasp ([`ScriptedGrasp`], grasping
+//! `task.place.grasp_height` above the cube's centre so that the cube stands out below the
+//! pads), then carry → lower → release → retreat, planned once from the first observation of
+//! the fixture after the lift: the place task's open-loop baseline.
+//!
+//! The place pose puts the cube's centre above the pocket's observed centre, its bottom
+//! [`DROP_HEIGHT`] above the floor, turned to the pocket's observed yaw (of the yaws
+//! `fixture_yaw + k·90°`, the one the wrist turns least to; the grasp holds the cube square to
+//! the fingers). The motions are jerk-limited joint trajectories between IK targets, followed
+//! as the grasp's are (feedforward plus a feedback term on the joint error).
+
+use fairgrasp_env::cell::Cell;
+use fairgrasp_env::episode::{Outcome, Policy};
+use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
+use fairgrasp_kinematics::ArmModel;
+
+use crate::baseline::{BaselineConfig, Phase, ScriptedGrasp};
+use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
+use crate::motion::{JointTrajectory, MotionLimits};
+
+/// The cube's bottom above the pocket's floor when the gripper opens [m].
+pub const DROP_HEIGHT: f64 = 0.002;
+/// Height of the carry above the place pose [m]: low, because the lower that follows is a joint
+/// trajectory, whose TCP path bows away from the vertical (6 mm off over a 10 cm lower, more
+/// than the pocket's clearance; about a tenth of that over 3 cm).
+pub const CARRY_HEIGHT: f64 = 0.03;
+/// Height of the retreat above the place pose [m].
+pub const RETREAT_HEIGHT: f64 = 0.06;
+/// Env steps the gripper is given to open before the retreat.
+pub const RELEASE_STEPS: usize = 8;
+/// The carry has arrived when every joint is within this of its target [rad]: 0.2 mm at the
+/// TCP for the FR3's 0.6 m reach (the grasp's 0.01 rad is 6 mm: far more than the clearance).
+pub const CARRY_TOLERANCE: f64 = 3e-4;
+/// The lower moves at this fraction of the script's velocity, acceleration and jerk limits, so
+/// that the feedback keeps the TCP on its path (at full speed it lags 2–3 mm, more than the
+/// pocket's clearance).
+pub const LOWER_SPEED: f64 = 0.25;
+
+/// Where the place script is after the grasp.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlacePhase {
+    /// The grasp script runs (approach … lift).
+    Grasp,
+    Carry,
+    Lower,
+    Release,
+    Retreat,
+    Done,
+    Failed,
+}
+
+impl PlacePhase {
+    fn name(self) -> &'static str {
+        match self {
+            PlacePhase::Grasp => "grasp",
+            PlacePhase::Carry => "carry",
+            PlacePhase::Lower => "lower",
+            PlacePhase::Release => "release",
+            PlacePhase::Retreat => "retreat",
+            PlacePhase::Done => "done",
+            PlacePhase::Failed => "failed",
+        }
+    }
+}
+
+/// The scripted place, as a [`Policy`].
+pub struct ScriptedPlace {
+    grasp: ScriptedGrasp,
+    config: BaselineConfig,
+    model: ArmModel,
+    mount: Mount,
+    limits: MotionLimits,
+    action_scale: f64,
+    /// Duration of one env step [s].
+    step_dt: f64,
+    cube_size: f64,
+    grasp_height: f64,
+    phase: PlacePhase,
+    steps_in_phase: usize,
+    /// Carry (above the pocket), place and retreat joints, once planned.
+    targets: Option<GraspJoints>,
+    trajectory: Option<JointTrajectory>,
+    gave_up: Option<Outcome>,
+}
+
+impl ScriptedPlace {
+    /// The place script for the env `env` (its `[task.place]`).
+    pub fn new(env: &EnvConfig) -> Self {
+        let grasp_height = env.task.place.grasp_height;
+        let config = BaselineConfig {
+            grasp_height,
+            ..BaselineConfig::default()
+        };
+        let grasp = ScriptedGrasp::new(env, config.clone());
+        let Cell { model, mount, .. } = Cell::from_config(env);
+        Self {
+            limits: *grasp.limits(),
+            grasp,
+            config,
+            model,
+            mount,
+            action_scale: env.arm.action_scale,
+            step_dt: env.physics.dt * env.physics.substeps as f64,
+            cube_size: env.scene.cube_size,
+            grasp_height,
+            phase: PlacePhase::Grasp,
+            steps_in_phase: 0,
+            targets: None,
+            trajectory: None,
+            gave_up: None,
+        }
+    }
+
+    /// Where the script is.
+    pub fn place_phase(&self) -> PlacePhase {
+        self.phase
+    }
+
+    /// The carry, place and retreat joints for the fixture in `obs`, from the arm's joints.
+    fn plan(&self, obs: &Observation) -> Option<GraspJoints> {
+        let fixture = obs.fixture?;
+        let up = self.mount.table_in_base.transform_vector([
+            0.0,
+            0.0,
+            0.5 * self.cube_size + DROP_HEIGHT + self.grasp_height,
+        ]);
+        let target = GraspTarget {
+            object: [0, 1, 2].map(|i| fixture.position[i] + up[i]),
+            object_yaw: fixture.yaw,
+            mount: self.mount,
+        };
+        // `plan_grasp_joints` names them pre-grasp, grasp, lift: carry, place, retreat here.
+        plan_grasp_joints(
+            &self.model,
+            &target,
+            &obs.joints,
+            CARRY_HEIGHT,
+            RETREAT_HEIGHT,
+        )
+    }
+
+    fn enter(&mut self, phase: PlacePhase, obs: &Observation, target: Option<[f64; 6]>) {
+        self.phase = phase;
+        self.steps_in_phase = 0;
+        let limits = match phase {
+            PlacePhase::Lower => MotionLimits {
+                max_velocity: self.limits.max_velocity.map(|v| v * LOWER_SPEED),
+                max_acceleration: self.limits.max_acceleration.map(|a| a * LOWER_SPEED),
+                max_jerk: self.limits.max_jerk.map(|j| j * LOWER_SPEED),
+            },
+            _ => self.limits,
+        };
+        self.trajectory = target.and_then(|t| {
+            let qd0 = std::array::from_fn(|i| {
+                let v = limits.max_velocity[i];
+                obs.joint_velocities[i].clamp(-v, v)
+            });
+            JointTrajectory::plan(&obs.joints, &qd0, &t, &limits)
+                .or_else(|_| JointTrajectory::plan(&obs.joints, &[0.0; 6], &t, &limits))
+                .ok()
+        });
+        if target.is_some() && self.trajectory.is_none() {
+            self.phase = PlacePhase::Failed;
+        }
+    }
+
+    /// The action following the current trajectory (holding still without one).
+    fn follow(&self, obs: &Observation, gripper: f64) -> Action {
+        let mut a = [0.0; 7];
+        a[6] = gripper;
+        if let Some(traj) = &self.trajectory {
+            let t = self.steps_in_phase as f64 * self.step_dt;
+            let (q_now, _, _) = traj.sample(t);
+            let (q_next, _, _) = traj.sample(t + self.step_dt);
+            for i in 0..6 {
+                let feedforward = (q_next[i] - q_now[i]) / self.step_dt;
+                let feedback = self.config.feedback_gain * (q_now[i] - obs.joints[i]);
+                a[i] = ((feedforward + feedback) / self.action_scale).clamp(-1.0, 1.0);
+            }
+        }
+        Action(a)
+    }
+
+    /// The current motion is over and every joint is within `tolerance` [rad] of its target.
+    fn arrived(&self, obs: &Observation, tolerance: f64) -> bool {
+        let Some(traj) = &self.trajectory else {
+            return true;
+        };
+        let error = traj
+            .target()
+            .iter()
+            .zip(&obs.joints)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        self.steps_in_phase as f64 * self.step_dt >= traj.duration() && error < tolerance
+    }
+
+    fn timed_out(&self) -> bool {
+        let budget = self.trajectory.as_ref().map_or(0.0, |t| t.duration()) / self.step_dt;
+        self.steps_in_phase as f64 > budget + self.config.phase_slack_steps as f64
+    }
+}
+
+impl Policy for ScriptedPlace {
+    fn reset(&mut self, seed: u64) {
+        self.grasp.reset(seed);
+        self.phase = PlacePhase::Grasp;
+        self.steps_in_phase = 0;
+        self.targets = None;
+        self.trajectory = None;
+        self.gave_up = None;
+    }
+
+    fn act(&mut self, obs: &Observation) -> Action {
+        if self.phase == PlacePhase::Grasp {
+            if self.grasp.phase() != Phase::Hold {
+                return self.grasp.act(obs);
+            }
+            match self.plan(obs) {
+                Some(t) => {
+                    self.targets = Some(t);
+                    self.enter(PlacePhase::Carry, obs, Some(t.pre_grasp));
+                }
+                None => {
+                    self.phase = PlacePhase::Failed;
+                    self.gave_up = Some(Outcome::IkFailure);
+                }
+            }
+        }
+        let tolerance = match self.phase {
+            PlacePhase::Carry => CARRY_TOLERANCE,
+            _ => 0.01,
+        };
+        let arrived = self.arrived(obs, tolerance);
+        let targets = self.targets;
+        match (self.phase, targets) {
+            (PlacePhase::Carry, Some(t)) if arrived => {
+                self.enter(PlacePhase::Lower, obs, Some(t.grasp))
+            }
+            (PlacePhase::Lower, _) if arrived => self.enter(PlacePhase::Release, obs, None),
+            (PlacePhase::Release, Some(t)) if self.steps_in_phase >= RELEASE_STEPS => {
+                self.enter(PlacePhase::Retreat, obs, Some(t.lift))
+            }
+            (PlacePhase::Retreat, _) if arrived => self.enter(PlacePhase::Done, obs, None),
+            (PlacePhase::Carry | PlacePhase::Lower | PlacePhase::Retreat, _)
+                if self.timed_out() =>
+            {
+                self.phase = PlacePhase::Failed;
+                self.trajectory = None;
+            }
+            _ => {}
+        }
+        let gripper = match self.phase {
+            PlacePhase::Grasp | PlacePhase::Carry | PlacePhase::Lower => 1.0,
+            PlacePhase::Failed => 1.0,
+            PlacePhase::Release | PlacePhase::Retreat | PlacePhase::Done => -1.0,
+        };
+        let action = match self.phase {
+            PlacePhase::Failed => Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, gripper]),
+            _ => self.follow(obs, gripper),
+        };
+        self.steps_in_phase += 1;
+        action
+    }
+
+    fn gave_up(&self) -> Option<Outcome> {
+        self.grasp.gave_up().or(self.gave_up)
+    }
+
+    fn phase(&self) -> Option<&'static str> {
+        match self.phase {
+            PlacePhase::Grasp => Policy::phase(&self.grasp),
+            p => Some(p.name()),
+        }
+    }
+}
