@@ -68,7 +68,10 @@ fn a_cube_dropped_within_the_clearance_seats_on_the_pocket_floor() {
     for (dx, yaw) in [(0.0, 0.0), (0.0015, 0.0), (-0.0015, 0.02)] {
         let (centre, bottom, tilt) = drop_cube(dx, yaw, 0.015);
         assert!(tilt < 1f64.to_radians(), "dx {dx}: tilted {tilt} rad");
-        assert!(bottom.abs() < 0.001, "dx {dx}: bottom {bottom} m above the table");
+        assert!(
+            bottom.abs() < 0.001,
+            "dx {dx}: bottom {bottom} m above the table"
+        );
         assert!(
             centre[0].abs() <= 0.002 + 1e-3 && centre[1].abs() <= 0.002 + 1e-3,
             "dx {dx}: centre {centre:?} outside the clearance"
@@ -81,10 +84,16 @@ fn a_cube_off_by_more_than_the_clearance_rests_on_the_rim() {
     // 8 mm off: the cube's edge overlaps the wall by 6 mm of the wall's 10 mm. Its centre of
     // mass is over the pocket, so it tips in and comes to rest leaning on the wall's rim.
     let (centre, bottom, tilt) = drop_cube(0.008, 0.0, 0.015);
-    assert!(tilt > 5f64.to_radians(), "it stands upright: tilt {tilt} rad");
+    assert!(
+        tilt > 5f64.to_radians(),
+        "it stands upright: tilt {tilt} rad"
+    );
     // 32 mm off: the centre of mass is over the wall (27–37 mm out): it sits on top of it.
     let (_, on_top, _) = drop_cube(0.032, 0.0, 0.015);
-    assert!(on_top > 0.009, "it sank to {on_top} m above the table: it should sit on the wall");
+    assert!(
+        on_top > 0.009,
+        "it sank to {on_top} m above the table: it should sit on the wall"
+    );
     assert!(bottom > -0.001 && centre[0] > 0.0, "{centre:?} {bottom}");
 }
 

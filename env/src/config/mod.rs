@@ -25,6 +25,6 @@ mod validate_families;
 mod validate_place;
 
 pub use env_config::*;
-pub use place::{PlaceConfig, TaskKind};
 pub use error::ConfigError;
+pub use place::{PlaceConfig, TaskKind};
 pub use range::Range;

@@ -7,12 +7,48 @@ use crate::config::place::PlaceConfig;
 /// Refuses a fixture or criterion that cannot mean what it says, naming the field.
 pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
     for (value, field, lo, hi, rule) in [
-        (p.clearance, "task.place.clearance", 0.0, 0.02, "must be in (0, 0.02] m"),
-        (p.wall_height, "task.place.wall_height", 0.0, 0.05, "must be in (0, 0.05] m"),
-        (p.wall_thickness, "task.place.wall_thickness", 0.0, 0.05, "must be in (0, 0.05] m"),
-        (p.seated_height, "task.place.seated_height", 0.0, 0.02, "must be in (0, 0.02] m"),
-        (p.max_tilt, "task.place.max_tilt", 0.0, 0.5, "must be in (0, 0.5] rad"),
-        (p.clear_height, "task.place.clear_height", 0.0, 0.3, "must be in (0, 0.3] m"),
+        (
+            p.clearance,
+            "task.place.clearance",
+            0.0,
+            0.02,
+            "must be in (0, 0.02] m",
+        ),
+        (
+            p.wall_height,
+            "task.place.wall_height",
+            0.0,
+            0.05,
+            "must be in (0, 0.05] m",
+        ),
+        (
+            p.wall_thickness,
+            "task.place.wall_thickness",
+            0.0,
+            0.05,
+            "must be in (0, 0.05] m",
+        ),
+        (
+            p.seated_height,
+            "task.place.seated_height",
+            0.0,
+            0.02,
+            "must be in (0, 0.02] m",
+        ),
+        (
+            p.max_tilt,
+            "task.place.max_tilt",
+            0.0,
+            0.5,
+            "must be in (0, 0.5] rad",
+        ),
+        (
+            p.clear_height,
+            "task.place.clear_height",
+            0.0,
+            0.3,
+            "must be in (0, 0.3] m",
+        ),
         (
             p.min_distance_from_cube,
             "task.place.min_distance_from_cube",

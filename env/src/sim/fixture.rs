@@ -35,7 +35,11 @@ pub fn insert_fixture(
     let body = world.bodies.insert(RigidBodyBuilder::fixed().pose(pose));
     for (half, centre) in wall_boxes(&config.task.place, config.scene.cube_size) {
         let wall = ColliderBuilder::cuboid(half[0] as f32, half[1] as f32, half[2] as f32)
-            .translation(Vector::new(centre[0] as f32, centre[1] as f32, centre[2] as f32))
+            .translation(Vector::new(
+                centre[0] as f32,
+                centre[1] as f32,
+                centre[2] as f32,
+            ))
             .friction(config.scene.table_friction as f32)
             .build();
         let h = world

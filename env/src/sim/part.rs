@@ -67,7 +67,10 @@ impl Part {
     /// ([`crate::sim::shapes::RobotShapes`]). The fixture's walls stand below anything but the
     /// fingers reach (which are dynamic, so rapier computes their contacts with it).
     pub fn never_moved_by_forces(self) -> bool {
-        matches!(self, Part::Table | Part::Fixture | Part::Link(_) | Part::Palm)
+        matches!(
+            self,
+            Part::Table | Part::Fixture | Part::Link(_) | Part::Palm
+        )
     }
 }
 

@@ -77,7 +77,11 @@ impl Sim {
     /// Moves the place task's fixture to `pose` (`world`: its origin is the pocket's centre on
     /// the table top); does nothing without a fixture.
     pub fn place_fixture(&mut self, pose: &Isometry3<f64>) {
-        if let Some(body) = self.handles.fixture.and_then(|h| self.world.bodies.get_mut(h)) {
+        if let Some(body) = self
+            .handles
+            .fixture
+            .and_then(|h| self.world.bodies.get_mut(h))
+        {
             body.set_position(to_rapier(pose), true);
         }
     }

@@ -42,7 +42,11 @@ pub fn is_placed(s: &TaskState, f: &PlaceFacts, p: &PlaceConfig) -> bool {
 /// How far the task still has to go [m]: the TCP to the cube, plus the cube to where it sits
 /// seated in the pocket (what the seed reward's distance term pays for in this task).
 pub fn distance_to_go(s: &TaskState, f: &PlaceFacts) -> f64 {
-    let seated = [f.fixture[0], f.fixture[1], f.fixture[2] + 0.5 * s.object_size];
+    let seated = [
+        f.fixture[0],
+        f.fixture[1],
+        f.fixture[2] + 0.5 * s.object_size,
+    ];
     let to = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
     to(s.tcp, s.object) + to(s.object, seated)
 }
@@ -93,6 +97,9 @@ mod tests {
         let f = facts(0.0, 0.0005, 0.0);
         assert!(is_placed(&state(0.06, false), &f, &p));
         assert!(!is_placed(&state(0.06, true), &f, &p), "a pad still on it");
-        assert!(!is_placed(&state(0.04, false), &f, &p), "TCP 1.5 cm above the top");
+        assert!(
+            !is_placed(&state(0.04, false), &f, &p),
+            "TCP 1.5 cm above the top"
+        );
     }
 }
