@@ -39,3 +39,54 @@ fn the_place_script_seats_the_cube_on_the_noise_free_preset() {
     assert_eq!(lift.successes, 0, "{:?}", lift.outcomes);
     assert!(lift.results.iter().all(|r| r.outcome != Outcome::Success));
 }
+
+/// The open-loop script's episode of `seed` on `preset`: whether it succeeded, and the largest
+/// upward and downward wrist forces [N] while it lowered the cube and while it carried it.
+fn forces_while_placing(preset: &str, seed: u64) -> (bool, f64, f64, f64) {
+    use fairgrasp_env::GraspEnv;
+    use fairgrasp_env::episode::Policy;
+    let config = presets::load(preset).unwrap();
+    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut script = ScriptedPlace::new(&config);
+    let (mut obs, _) = env.reset(seed).unwrap();
+    script.reset(seed);
+    let (mut up_lowering, mut down, mut carrying) = (0.0f64, 0.0f64, 0.0f64);
+    loop {
+        let action = script.act(&obs);
+        let step = env.step(&action).unwrap();
+        obs = step.obs;
+        let f = obs.wrist_force.expect("a place env has a wrist sensor");
+        match script.phase() {
+            Some("lower") => up_lowering = up_lowering.max(f[2]),
+            Some("carry") => carrying = carrying.max(f[2].abs()),
+            _ => {}
+        }
+        down = down.min(f[2]);
+        if step.terminated || step.truncated {
+            return (step.info.success, up_lowering, down, carrying);
+        }
+    }
+}
+
+#[test]
+fn the_wrist_sensor_feels_the_rim_push_up_on_a_misplaced_cube_and_nothing_in_the_air() {
+    // The pocket known to 3 mm: some scenarios set the cube down on the rim.
+    let mut rims = 0;
+    for seed in 0..8 {
+        let (success, up, down, carrying) = forces_while_placing("place_fixture_error", seed);
+        assert!(carrying < 0.05, "seed {seed}: {carrying} N in the air");
+        assert!(down > -0.05, "seed {seed}: pulled down by {down} N");
+        if !success {
+            // The 0.1 kg cube pressed on the rim by the arm: more than its weight.
+            assert!(
+                up > 1.0,
+                "seed {seed}: only {up} N up while lowering onto the rim"
+            );
+            rims += 1;
+        }
+    }
+    assert!(rims >= 2, "only {rims} of 8 scenarios landed on the rim");
+    // Seated cleanly (2 mm above the floor when released): nothing touched while lowering.
+    let (success, up, _, _) = forces_while_placing("place", 2);
+    assert!(success && up < 0.05, "{success} {up}");
+}

@@ -52,6 +52,12 @@ pub struct PlaceConfig {
     /// Where the TCP holds the cube: this far above its centre [m] (the grasp the place script
     /// plans, so that the cube stands out below the pads and the pads pass over the walls).
     pub grasp_height: f64,
+    /// How well the cell knows where the fixture is (its layout's tolerance, or a second
+    /// camera): a per-episode error on the *observed* fixture's position, table plane [m], and
+    /// yaw [rad] (standard deviations; 0 = exact). The physics is unaffected; the cube's own
+    /// camera errors (`[randomization]`) do not apply to the fixture.
+    pub observed_position_noise: f64,
+    pub observed_yaw_noise: f64,
 }
 
 impl Default for PlaceConfig {
@@ -70,6 +76,8 @@ impl Default for PlaceConfig {
             max_tilt: 5f64.to_radians(),
             clear_height: 0.03,
             grasp_height: 0.012,
+            observed_position_noise: 0.0,
+            observed_yaw_noise: 0.0,
         }
     }
 }

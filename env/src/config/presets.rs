@@ -1,13 +1,14 @@
 //! Named configurations: `fixed`, `seed`, `wide`, `full`, `hard` and the scenario families
 //! `miscalibrated`, `miscalibrated_b`, `wrist_camera`, `nudged` ([`crate::scenario::families`])
-//! the contact family `heavy_slippery` and the place task's `place`, shipped as TOML files in
+//! the contact family `heavy_slippery` and the place task's `place`, `place_grasp_error` and
+//! `place_fixture_error`, shipped as TOML files in
 //! `assets/configs/` and built into the binary, so `--preset NAME` works from any folder.
 
 use crate::config::EnvConfig;
 use crate::config::validate::ConfigError;
 
 /// Every preset: name, TOML text, one-line description.
-pub const PRESETS: [(&str, &str, &str); 11] = [
+pub const PRESETS: [(&str, &str, &str); 13] = [
     (
         "fixed",
         include_str!("../../../assets/configs/fixed.toml"),
@@ -62,6 +63,16 @@ pub const PRESETS: [(&str, &str, &str); 11] = [
         "place",
         include_str!("../../../assets/configs/place.toml"),
         "the place task: seat the cube in a pocket with 2 mm clearance per side, the fixture drawn per scenario; no perception error",
+    ),
+    (
+        "place_grasp_error",
+        include_str!("../../../assets/configs/place_grasp_error.toml"),
+        "place with the cube seen off by N(0, 3 mm), N(0, 2°): the grasp is off-centre, unobserved",
+    ),
+    (
+        "place_fixture_error",
+        include_str!("../../../assets/configs/place_fixture_error.toml"),
+        "place with the fixture known to N(0, 3 mm), N(0, 1.5°) (its layout's tolerance)",
     ),
 ];
 

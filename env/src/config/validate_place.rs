@@ -60,6 +60,18 @@ pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigE
         check(value > lo && value <= hi, field, value, rule)?;
     }
     check(
+        (0.0..=0.05).contains(&p.observed_position_noise),
+        "task.place.observed_position_noise",
+        p.observed_position_noise,
+        "must be in [0, 0.05] m",
+    )?;
+    check(
+        (0.0..=0.5).contains(&p.observed_yaw_noise),
+        "task.place.observed_yaw_noise",
+        p.observed_yaw_noise,
+        "must be in [0, 0.5] rad",
+    )?;
+    check(
         p.grasp_height.abs() < 0.5 * cube_size,
         "task.place.grasp_height",
         p.grasp_height,

@@ -60,10 +60,17 @@ pub struct Observation {
     /// ([`OBS_NAMES`]): the task-space residual's features carry it
     /// (`fairgrasp_planner::residual`).
     pub wrist_camera: Option<ObservedObject>,
-    /// The place task's fixture as the fixed camera sees it (the same calibration error and
-    /// per-episode noise as the cube): the pocket's centre on the table top in `base_link` [m]
-    /// and its yaw; `None` for the lift task. Not part of the flat view ([`OBS_NAMES`]).
+    /// The place task's fixture as the cell knows it (its pose with the scenario's error,
+    /// `task.place.observed_*_noise`; the cube's camera errors do not apply): the pocket's
+    /// centre on the table top in `base_link` [m] and its yaw; `None` for the lift task. Not
+    /// part of the flat view ([`OBS_NAMES`]).
     pub fixture: Option<ObservedObject>,
+    /// The place task's force sensing: what a wrist force/torque sensor reads, tared, in
+    /// `base_link` [N] — the push of the table and the fixture on the gripper and on the cube
+    /// while both pads hold it (`crate::sim::contacts::wrist_load`), after the step's last
+    /// physics substep (zero after a step without physics: nothing touched). `None` for the
+    /// lift task. Not part of the flat view ([`OBS_NAMES`]).
+    pub wrist_force: Option<[f64; 3]>,
 }
 
 impl Observation {
@@ -91,6 +98,7 @@ impl Observation {
             pad_contact: [a[21] > 0.5, a[22] > 0.5],
             wrist_camera: None,
             fixture: None,
+            wrist_force: None,
         }
     }
 

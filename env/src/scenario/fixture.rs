@@ -21,6 +21,22 @@ pub struct FixturePose {
     /// Yaw about the world vertical, relative to the base's heading [rad] (the pocket repeats
     /// every 90°).
     pub yaw: f64,
+    /// The error on the observed position, table plane x, y [m], and yaw [rad]
+    /// (`task.place.observed_position_noise`, `observed_yaw_noise`).
+    pub observed_xy_error: [f64; 2],
+    pub observed_yaw_error: f64,
+}
+
+/// A draw from N(0, σ²) (0 without noise; no draw is taken then, so a noise-free config's
+/// fixtures are those drawn before the noise existed).
+fn gauss(rng: &mut ChaCha8Rng, sigma: f64) -> f64 {
+    if sigma > 0.0 {
+        rand_distr::Normal::new(0.0, sigma)
+            .map(|n| rand_distr::Distribution::sample(&n, rng))
+            .unwrap_or(0.0)
+    } else {
+        0.0
+    }
 }
 
 /// Fixture poses tried before a scenario is given up.
@@ -56,10 +72,20 @@ pub fn draw_fixture(
         } else {
             0.0
         };
+        let observed_xy_error = [
+            gauss(&mut rng, p.observed_position_noise),
+            gauss(&mut rng, p.observed_position_noise),
+        ];
+        let observed_yaw_error = gauss(&mut rng, p.observed_yaw_noise);
         let apart = (xy[0] - cube_xy[0]).hypot(xy[1] - cube_xy[1]) >= p.min_distance_from_cube;
         let seated = mount.resting_object_in_base(xy, yaw, config.scene.cube_size);
         if apart && top_down_grasp(model, mount, &seated, start_joints).is_some() {
-            return Some(FixturePose { xy, yaw });
+            return Some(FixturePose {
+                xy,
+                yaw,
+                observed_xy_error,
+                observed_yaw_error,
+            });
         }
     }
     None

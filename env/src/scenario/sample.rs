@@ -124,6 +124,8 @@ impl Scenario {
                 crate::scenario::fixture::FixturePose {
                     xy: config.task.place.fixture_xy,
                     yaw: 0.0,
+                    observed_xy_error: [0.0; 2],
+                    observed_yaw_error: 0.0,
                 },
             ),
         }

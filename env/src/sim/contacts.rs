@@ -166,3 +166,35 @@ pub fn strongest_robot_contact(
     }
     strongest
 }
+
+/// The force [N, world] the table and the fixture push with, over the last physics step of `dt`
+/// [s], on the gripper (palm, fingers, pads) and, when `holding`, on the cube: what a wrist
+/// force/torque sensor between the flange and the gripper reads once the held load's weight is
+/// tared (a real FR3 cell reads it from FAIRINO's F/T option, or estimates it from the joint
+/// torques: docs/place.md). Each pair's net contact impulse (normal impulses along its
+/// manifolds' normals, which point from its first collider to its second: the impulse the
+/// second receives) divided by `dt`.
+pub fn wrist_load(world: &PhysicsWorld, parts: &ColliderParts, dt: f64, holding: bool) -> [f64; 3] {
+    let fixed = |p: Part| matches!(p, Part::Table | Part::Fixture);
+    let carried = |p: Part| {
+        matches!(p, Part::Palm | Part::Finger(_) | Part::Pad(_)) || (holding && p == Part::Cube)
+    };
+    let mut force = [0.0; 3];
+    for pair in world.narrow_phase.contact_pairs() {
+        let (Some(a), Some(b)) = (parts.get(&pair.collider1), parts.get(&pair.collider2)) else {
+            continue;
+        };
+        let sign = if fixed(a) && carried(b) {
+            1.0
+        } else if fixed(b) && carried(a) {
+            -1.0
+        } else {
+            continue;
+        };
+        let impulse = pair.total_impulse();
+        for (f, i) in force.iter_mut().zip([impulse.x, impulse.y, impulse.z]) {
+            *f += sign * f64::from(i) / dt;
+        }
+    }
+    force
+}

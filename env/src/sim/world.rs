@@ -306,6 +306,13 @@ impl Sim {
         (&mut self.world, &self.handles)
     }
 
+    /// What a wrist force/torque sensor reads after the last physics step, tared, in `world`
+    /// [N] ([`crate::sim::contacts::wrist_load`]).
+    pub fn wrist_load(&self, holding: bool) -> [f64; 3] {
+        let dt = f64::from(self.world.integration_parameters.dt);
+        crate::sim::contacts::wrist_load(&self.world, &self.handles.parts, dt, holding)
+    }
+
     /// The strongest robot–cube or robot–table contact force of the last physics step
     /// ([`crate::sim::contacts::strongest_robot_contact`]): what a cobot's collision detection watches.
     pub fn strongest_robot_contact(&self) -> Option<crate::sim::contacts::RobotContactForce> {

@@ -238,9 +238,8 @@ impl GraspEnv {
         let seen = observe_object(&self.cell.mount, &truth, self.scenario.as_ref());
         let wrist = self.config.randomization.wrist_camera.as_ref();
         let wrist_camera = wrist_view(wrist, &self.cell.mount, &truth, tcp);
-        let fixture = self
-            .fixture_in_base()
-            .map(|truth| observe_object(&self.cell.mount, &truth, self.scenario.as_ref()));
+        let fixture = self.observed_fixture();
+        let wrist_force = fixture.is_some().then(|| self.wrist_force(contacts));
         Observation {
             joints: self.robot.q,
             joint_velocities,
@@ -251,7 +250,43 @@ impl GraspEnv {
             pad_contact: contacts.pad_contact,
             wrist_camera,
             fixture,
+            wrist_force,
         }
+    }
+
+    /// The wrist force/torque sensor's reading in `base_link` [N] ([`Observation::wrist_force`]):
+    /// zero when the step ran no physics (the simulator's contacts are then stale).
+    fn wrist_force(&self, contacts: &ContactReport) -> [f64; 3] {
+        if !self.sim_in_sync {
+            return [0.0; 3];
+        }
+        let holding = contacts.pad_contact[0] && contacts.pad_contact[1];
+        let world = self.sim.wrist_load(holding);
+        self.cell
+            .mount
+            .base_in_world
+            .inverse()
+            .transform_vector(world)
+    }
+
+    /// The fixture as the cell knows it: its true pose moved by the scenario's error
+    /// (`task.place.observed_*_noise`), in `base_link`; `None` without a fixture.
+    fn observed_fixture(&self) -> Option<crate::scenario::perception::ObservedObject> {
+        let truth = self.fixture_in_base()?;
+        let seen = crate::scenario::perception::true_object(&self.cell.mount, &truth);
+        let Some(f) = self.scenario.as_ref().and_then(|s| s.fixture) else {
+            return Some(seen);
+        };
+        let e = &f.observed_xy_error;
+        let error = self
+            .cell
+            .mount
+            .table_in_base
+            .transform_vector([e[0], e[1], 0.0]);
+        Some(crate::scenario::perception::ObservedObject {
+            position: [0, 1, 2].map(|i| seen.position[i] + error[i]),
+            yaw: seen.yaw + f.observed_yaw_error,
+        })
     }
 
     /// The fixture's true pose in `base_link` (its origin: the pocket's centre on the table
