@@ -7,7 +7,8 @@
 //!   close → lift → hold, each phase with a timeout.
 //! - [`phase`]: [`Phase`], where the script is (plan, approach, descend, close, lift, hold).
 //! - [`place`]: [`ScriptedPlace`], the place task's open-loop script (the grasp, then carry,
-//!   lower, release, retreat).
+//!   lower, release, retreat); [`place_search`]: the force-guided search that replaces the
+//!   lower in the engineer's control.
 //! - [`closed_loop`]: [`ClosedLoopGrasp`], the closed-loop script (re-plans, retries once) and
 //!   the oracle (the same on the true cube pose).
 //! - [`calibrated`]: [`CalibratedScript`], the open-loop script after a (simulated) camera
@@ -28,6 +29,7 @@ pub mod grasp;
 pub mod motion;
 pub mod phase;
 pub mod place;
+pub mod place_search;
 pub mod residual;
 pub mod stream;
 pub mod tuned_grip;
@@ -37,5 +39,6 @@ pub use calibrated::{CalibratedScript, CameraCalibration};
 pub use closed_loop::{ClosedLoopConfig, ClosedLoopGrasp, CubeSource};
 pub use correction::{CorrectionLimits, TaskCorrection};
 pub use place::ScriptedPlace;
+pub use place_search::SearchParams;
 pub use residual::{OracleResidual, ResidualScript};
 pub use tuned_grip::TunedGripScript;

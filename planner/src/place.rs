@@ -17,6 +17,7 @@ use fairgrasp_kinematics::ArmModel;
 use crate::baseline::{BaselineConfig, Phase, ScriptedGrasp};
 use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
 use crate::motion::{JointTrajectory, MotionLimits};
+use crate::place_search::{ForceSearch, SearchParams};
 
 /// The cube's bottom above the pocket's floor when the gripper opens [m].
 pub const DROP_HEIGHT: f64 = 0.002;
@@ -43,6 +44,8 @@ pub enum PlacePhase {
     Grasp,
     Carry,
     Lower,
+    /// The force-guided search instead of the lower ([`crate::place_search`]).
+    Search,
     Release,
     Retreat,
     Done,
@@ -55,6 +58,7 @@ impl PlacePhase {
             PlacePhase::Grasp => "grasp",
             PlacePhase::Carry => "carry",
             PlacePhase::Lower => "lower",
+            PlacePhase::Search => "search",
             PlacePhase::Release => "release",
             PlacePhase::Retreat => "retreat",
             PlacePhase::Done => "done",
@@ -81,6 +85,10 @@ pub struct ScriptedPlace {
     targets: Option<GraspJoints>,
     trajectory: Option<JointTrajectory>,
     gave_up: Option<Outcome>,
+    /// The force-guided search's settings, if this script searches instead of lowering.
+    search_params: Option<SearchParams>,
+    search: Option<ForceSearch>,
+    wall_height: f64,
 }
 
 impl ScriptedPlace {
@@ -108,6 +116,18 @@ impl ScriptedPlace {
             targets: None,
             trajectory: None,
             gave_up: None,
+            search_params: None,
+            search: None,
+            wall_height: env.task.place.wall_height,
+        }
+    }
+
+    /// The place script with the force-guided search ([`crate::place_search`]) in place of the
+    /// open-loop lower.
+    pub fn with_search(env: &EnvConfig, params: SearchParams) -> Self {
+        Self {
+            search_params: Some(params),
+            ..Self::new(env)
         }
     }
 
@@ -209,6 +229,7 @@ impl Policy for ScriptedPlace {
         self.targets = None;
         self.trajectory = None;
         self.gave_up = None;
+        self.search = None;
     }
 
     fn act(&mut self, obs: &Observation) -> Action {
@@ -234,8 +255,21 @@ impl Policy for ScriptedPlace {
         let arrived = self.arrived(obs, tolerance);
         let targets = self.targets;
         match (self.phase, targets) {
-            (PlacePhase::Carry, Some(t)) if arrived => {
-                self.enter(PlacePhase::Lower, obs, Some(t.grasp))
+            (PlacePhase::Carry, Some(t)) if arrived => match self.search_params {
+                Some(params) => {
+                    self.search = Some(ForceSearch::new(
+                        params,
+                        t.pre_grasp,
+                        CARRY_HEIGHT,
+                        self.wall_height,
+                        self.step_dt,
+                    ));
+                    self.enter(PlacePhase::Search, obs, None);
+                }
+                None => self.enter(PlacePhase::Lower, obs, Some(t.grasp)),
+            },
+            (PlacePhase::Search, _) if self.search.as_ref().is_some_and(ForceSearch::done) => {
+                self.enter(PlacePhase::Release, obs, None)
             }
             (PlacePhase::Lower, _) if arrived => self.enter(PlacePhase::Release, obs, None),
             (PlacePhase::Release, Some(t)) if self.steps_in_phase >= RELEASE_STEPS => {
@@ -251,12 +285,21 @@ impl Policy for ScriptedPlace {
             _ => {}
         }
         let gripper = match self.phase {
-            PlacePhase::Grasp | PlacePhase::Carry | PlacePhase::Lower => 1.0,
+            PlacePhase::Grasp | PlacePhase::Carry | PlacePhase::Lower | PlacePhase::Search => 1.0,
             PlacePhase::Failed => 1.0,
             PlacePhase::Release | PlacePhase::Retreat | PlacePhase::Done => -1.0,
         };
-        let action = match self.phase {
-            PlacePhase::Failed => Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, gripper]),
+        let action = match (self.phase, self.search.as_mut()) {
+            (PlacePhase::Failed, _) => Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, gripper]),
+            (PlacePhase::Search, Some(search)) => {
+                let target = search.step(obs, &self.model, &self.mount.table_in_base);
+                let mut a = [gripper; 7];
+                for i in 0..6 {
+                    let v = (target[i] - obs.joints[i]) / self.step_dt;
+                    a[i] = (v / self.action_scale).clamp(-1.0, 1.0);
+                }
+                Action(a)
+            }
             _ => self.follow(obs, gripper),
         };
         self.steps_in_phase += 1;
@@ -268,9 +311,10 @@ impl Policy for ScriptedPlace {
     }
 
     fn phase(&self) -> Option<&'static str> {
-        match self.phase {
-            PlacePhase::Grasp => Policy::phase(&self.grasp),
-            p => Some(p.name()),
+        match (self.phase, &self.search) {
+            (PlacePhase::Grasp, _) => Policy::phase(&self.grasp),
+            (PlacePhase::Search, Some(search)) => Some(search.stage_name()),
+            (p, _) => Some(p.name()),
         }
     }
 }

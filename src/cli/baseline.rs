@@ -10,7 +10,7 @@ use fairgrasp_env::episode::{EvalReport, Policy, evaluate_seeded};
 use fairgrasp_env::{EnvConfig, TaskKind};
 use fairgrasp_planner::{
     BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
-    ScriptedPlace, TunedGripScript,
+    ScriptedPlace, SearchParams, TunedGripScript,
 };
 use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -66,6 +66,10 @@ pub enum ScriptArg {
     /// `--grip-force` sets another, for a tuning grid).
     #[value(name = "tuned_grip")]
     TunedGrip,
+    /// The place task: the open-loop script with a force-guided spiral search in place of the
+    /// lower (`--search-*` set its parameters, for a tuning grid).
+    #[value(name = "force_search")]
+    ForceSearch,
 }
 
 #[derive(Args, Debug)]
@@ -80,6 +84,63 @@ pub struct BaselineArgs {
     /// a training seed, never on the seed results are reported on).
     #[arg(long, value_name = "N", value_parser = grip_force)]
     grip_force: Option<f64>,
+    /// With `--script force_search`: the touch threshold of the wrist force [N].
+    #[arg(long, value_name = "N", value_parser = crate::cli::args::finite_number)]
+    search_force: Option<f64>,
+    /// With `--script force_search`: the spiral's pitch [m per turn].
+    #[arg(long, value_name = "M", value_parser = crate::cli::args::finite_number)]
+    search_pitch: Option<f64>,
+    /// With `--script force_search`: the spiral's speed [m/s].
+    #[arg(long, value_name = "M_PER_S", value_parser = crate::cli::args::finite_number)]
+    search_speed: Option<f64>,
+    /// With `--script force_search`: the press's admittance while spiralling [m/s per N].
+    #[arg(long, value_name = "M_PER_S_PER_N", value_parser = crate::cli::args::finite_number)]
+    search_admittance: Option<f64>,
+}
+
+impl BaselineArgs {
+    /// The force search's parameters: the defaults with the `--search-*` flags given.
+    fn search_params(&self) -> anyhow::Result<SearchParams> {
+        let mut p = SearchParams::default();
+        for (flag, given, slot, lo, hi) in [
+            (
+                "--search-force",
+                self.search_force,
+                &mut p.contact_force,
+                0.1,
+                30.0,
+            ),
+            (
+                "--search-pitch",
+                self.search_pitch,
+                &mut p.pitch,
+                0.0005,
+                0.02,
+            ),
+            (
+                "--search-speed",
+                self.search_speed,
+                &mut p.speed,
+                0.001,
+                0.1,
+            ),
+            (
+                "--search-admittance",
+                self.search_admittance,
+                &mut p.admittance,
+                0.0001,
+                0.05,
+            ),
+        ] {
+            if let Some(v) = given {
+                if !(lo..=hi).contains(&v) {
+                    anyhow::bail!("{flag} {v}: must be in [{lo}, {hi}]");
+                }
+                *slot = v;
+            }
+        }
+        Ok(p)
+    }
 }
 
 /// A grip force [N] in (0, 100].
@@ -209,17 +270,28 @@ pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
     }
     let config = preset_config(&a.scenarios.preset, a.scenarios.arm)?;
     if config.task.kind == TaskKind::Place {
-        if a.script != ScriptArg::OpenLoop {
-            anyhow::bail!(
-                "--preset {}: the place task has the open-loop script only so far (--script \
-                 open_loop); the other controls are lift scripts",
+        let params = a.search_params()?;
+        return match a.script {
+            ScriptArg::OpenLoop => {
+                let make = |config: &EnvConfig| ScriptedPlace::new(config);
+                evaluate_and_print(&a.scenarios, "place script", &make, none)
+            }
+            ScriptArg::ForceSearch => {
+                let make = |config: &EnvConfig| ScriptedPlace::with_search(config, params);
+                let extra = serde_json::json!({ "search": params });
+                evaluate_and_print(&a.scenarios, "place script + force search", &make, extra)
+            }
+            _ => anyhow::bail!(
+                "--preset {}: the place task's scripts are open_loop and force_search; the \
+                 other controls are lift scripts",
                 a.scenarios.preset
-            );
-        }
-        let make = |config: &EnvConfig| ScriptedPlace::new(config);
-        return evaluate_and_print(&a.scenarios, "place script", &make, none);
+            ),
+        };
     }
     match a.script {
+        ScriptArg::ForceSearch => {
+            anyhow::bail!("--script force_search is the place task's: give a place preset")
+        }
         ScriptArg::TunedGrip => {
             let make = |config: &EnvConfig| {
                 let force = a.grip_force.or(config.control.grip_force);
