@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Installs what the 3D replay (replay.html) and its browser test need, each only if missing:
 # - Debian's chromium-headless-shell (apt-get; needs root), which the browser test drives;
-# - the npm packages pinned in notebooks_export/web/package-lock.json (npm ci): three.js, which
-#   every replay.html inlines (bundled at build time by notebooks_export/build.rs), esbuild,
-#   which bundles it, and playwright-core, which drives the browser in the test.
-# Run it before `cargo build` (a build without three.js cannot write replays and says so).
+# - the npm packages pinned in notebooks_export/web/package-lock.json (npm ci): playwright-core,
+#   which drives the browser in the test, and three.js and esbuild, from which
+#   scripts/check-three-bundle.sh rebuilds the committed bundle to compare.
+# The build needs neither: every build inlines the three.js bundle committed in
+# notebooks_export/web/vendor/, so replay.html is written without node or a browser.
 # Usage: scripts/install-browser.sh
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"

@@ -24,7 +24,7 @@ pub enum ReportError {
     /// plotters or the image encoder failed, or the chart cannot be drawn from these data.
     #[error("chart {path}: {what}")]
     Chart { path: PathBuf, what: String },
-    /// The 3D replay cannot be made (this build has no three.js, or nothing to replay).
+    /// The 3D replay cannot be made (nothing to replay, or an episode it cannot pack).
     #[error("replay: {0}")]
     ReplayUnavailable(String),
 }

@@ -49,12 +49,6 @@ pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
             a.out.display()
         );
     }
-    if replay3d::three_version().is_none() {
-        bail!(
-            "this fairgrasp was built without three.js, which the replay inlines: run \
-             scripts/install-browser.sh, then build again"
-        );
-    }
     let config =
         preset_config(&a.preset, a.arm).with_context(|| format!("preset `{}`", a.preset))?;
     let scenarios = scenario_set(&config, a.seed, a.episode + 1)

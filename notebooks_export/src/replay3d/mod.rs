@@ -1,8 +1,8 @@
 //! The interactive 3D replay: one self-contained HTML file (`replay.html`) that opens from disk
-//! with no network. three.js (from the npm registry, the version pinned in
-//! `web/package-lock.json`, its licence kept in the file) is inlined; so are the viewer
-//! (`scene.js`: data and 3D scene; `viewer.js`: controls, timeline, URL fragment, the state a
-//! test reads; `viewer.css`) and the episodes ([`pack`]).
+//! with no network. three.js (the bundle committed in `web/vendor/`, built from the npm package
+//! at the version pinned in `web/package-lock.json`, its licence kept in the file) is inlined;
+//! so are the viewer (`scene.js`: data and 3D scene; `viewer.js`: controls, timeline, URL
+//! fragment, the state a test reads; `viewer.css`) and the episodes ([`pack`]).
 //!
 //! The viewer draws the FR3 from the simulation's shapes on the recorded bodies (capsules for
 //! the links, boxes for the palm, finger struts and pads), the table, the cube and the base's
@@ -23,10 +23,14 @@ use serde_json::json;
 
 use crate::error::{ReportError, write_file};
 
-/// three.js bundled by `build.rs` (empty when it was not installed at build time).
-const THREE_JS: &str = include_str!(concat!(env!("OUT_DIR"), "/three.min.js"));
-const THREE_LICENSE: &str = include_str!(concat!(env!("OUT_DIR"), "/three-LICENSE.txt"));
-const THREE_VERSION: &str = include_str!(concat!(env!("OUT_DIR"), "/three-version.txt"));
+/// The parts of three.js the viewer uses (`web/src/three-subset.js`), bundled and minified by
+/// esbuild into a script that defines the global `THREE`. Committed in `web/vendor/` with
+/// three.js's licence and version, so every build has it without node;
+/// `scripts/check-three-bundle.sh` rebuilds it from the npm packages pinned in
+/// `web/package-lock.json` and fails if it differs.
+const THREE_JS: &str = include_str!("../../web/vendor/three.min.js");
+const THREE_LICENSE: &str = include_str!("../../web/vendor/three-LICENSE.txt");
+const THREE_VERSION: &str = include_str!("../../web/vendor/three-version.txt");
 const SCENE_JS: &str = include_str!("scene.js");
 const VIEWER_JS: &str = include_str!("viewer.js");
 const VIEWER_CSS: &str = include_str!("viewer.css");
@@ -47,9 +51,10 @@ pub struct ReplayEpisode<'a> {
     pub trajectory: &'a Trajectory,
 }
 
-/// The three.js version inlined into replays, or `None` if this build has none.
+/// The three.js version inlined into replays (`0.187.0`). Every build has the committed bundle,
+/// so this is always `Some`; the `Option` remains for callers written when a build could lack it.
 pub fn three_version() -> Option<&'static str> {
-    (!THREE_JS.is_empty()).then_some(THREE_VERSION.trim())
+    Some(THREE_VERSION.trim())
 }
 
 /// Is `path` a replay that fairgrasp wrote (so it may be replaced)?
@@ -103,13 +108,7 @@ fn html_text(text: &str) -> String {
 
 /// The replay page for `episodes` under `title`.
 pub fn replay_html(title: &str, episodes: &[ReplayEpisode<'_>]) -> Result<String, ReportError> {
-    let Some(version) = three_version() else {
-        return Err(ReportError::ReplayUnavailable(
-            "this fairgrasp was built without three.js: run scripts/install-browser.sh (npm ci \
-             in notebooks_export/web), then build again"
-                .into(),
-        ));
-    };
+    let version = THREE_VERSION.trim();
     if episodes.is_empty() {
         return Err(ReportError::ReplayUnavailable(
             "no recorded episode to replay".into(),

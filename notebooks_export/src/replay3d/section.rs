@@ -7,12 +7,11 @@ use std::path::Path;
 use crate::compare::Comparison;
 use crate::document::Document;
 use crate::error::ReportError;
-use crate::replay3d::{ReplayEpisode, three_version, write_replay};
+use crate::replay3d::{ReplayEpisode, write_replay};
 use crate::trajectory::{self, Trajectory};
 
 /// Writes `<prefix>replay.html` into `out` for the comparison `c` read from `dir`
 /// (`recorded`: the trajectories of `c.recorded`, already loaded) and links it from `doc`.
-/// Without three.js in this build the section says so and no file is written.
 pub fn replay_section(
     doc: &mut Document,
     (dir, c, recorded): (&Path, &Comparison, &[Trajectory]),
@@ -29,14 +28,6 @@ pub fn replay_section(
         return Ok(());
     }
     let file = format!("{prefix}replay.html");
-    if three_version().is_none() {
-        doc.markdown(format!(
-            "### Watch it in 3D\n\n`{file}` was not written: this fairgrasp was built without \
-             three.js (run `scripts/install-browser.sh`, build again, and rerun `fairgrasp \
-             report` on this folder)."
-        ));
-        return Ok(());
-    }
     let loaded: Vec<Trajectory> = if c.replay.is_empty() {
         recorded.to_vec()
     } else {
