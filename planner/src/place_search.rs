@@ -45,7 +45,7 @@ impl Default for SearchParams {
             contact_force: 1.5,
             admittance: 0.004,
             pitch: 0.003,
-            speed: 0.015,
+            speed: 0.01,
             max_radius: 0.009,
         }
     }
