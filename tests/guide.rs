@@ -239,6 +239,7 @@ fn every_docs_page_with_commands_is_run() {
         "docs/index.md",
         "docs/kinematics.md",
         "docs/performance.md",
+        "docs/place.md",
         "docs/pure-ppo-in-ten-minutes.md",
         "docs/python.md",
         "docs/real_cell.md",
@@ -322,6 +323,11 @@ fn env_commands_run_as_written() {
 #[test]
 fn baseline_commands_run_as_written() {
     run_page("docs/baseline.md");
+}
+
+#[test]
+fn place_commands_run_as_written() {
+    run_page("docs/place.md");
 }
 
 #[test]
