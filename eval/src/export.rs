@@ -12,7 +12,7 @@ use fairgrasp_planner::stream::{
 };
 
 use crate::compare::methods::Method;
-use crate::compare::{CompareError, LearnedPolicy, SCRIPTS, calibration_of, make_policy};
+use crate::compare::{CompareError, LearnedPolicy, calibration_of, make_policy, scripts_for};
 
 /// An exported episode: the stream and the episode it came from.
 pub struct ExportedEpisode {
@@ -77,7 +77,7 @@ pub fn export_episode(
 ) -> Result<ExportedEpisode, ExportError> {
     let (index, learned): (usize, Vec<LearnedPolicy>) = match method {
         Method::Script(i) => (i, Vec::new()),
-        Method::Learned(l) => (SCRIPTS.len(), vec![*l]),
+        Method::Learned(l) => (scripts_for(config).len(), vec![*l]),
     };
     let calibration = calibration_of(config, "the exported preset")?;
     let mut policy = make_policy(index, &learned, config, &calibration);

@@ -269,3 +269,23 @@ fn the_generalist_grasps_on_every_family_it_was_trained_for() {
     let heavy = |method: &str| c.get(method, "heavy_slippery").unwrap().report.success_rate;
     assert!(heavy(&learned_name) >= heavy("oracle script") + 0.4);
 }
+
+#[test]
+fn a_place_comparison_runs_the_place_scripts_and_refuses_a_lift_preset_beside_them() {
+    let out = run_comparison(&spec(&["place", "place_fixture_error"], 4), &[], &|_| {}).unwrap();
+    let c = &out.comparison;
+    assert_eq!(c.methods, fairgrasp_eval::compare::PLACE_SCRIPTS.to_vec());
+    // Seated on the noise-free preset; the replay records the place task's episodes.
+    let seated = &c.get("place script", "place").unwrap().report;
+    assert_eq!(seated.successes, 4, "{:?}", seated.outcomes);
+    assert!(c.replay.iter().any(|r| r.preset == "place_fixture_error"));
+    let mixed = run_comparison(&spec(&["place", "seed"], 2), &[], &|_| {});
+    let message = mixed
+        .err()
+        .expect("a place and a lift preset together")
+        .to_string();
+    assert!(
+        message.contains("place") && message.contains("seed"),
+        "{message}"
+    );
+}

@@ -6,6 +6,8 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
+use fairgrasp_env::TaskKind;
+use fairgrasp_env::config::presets;
 use fairgrasp_eval::compare::{
     ComparePreset, CompareSpec, DEFAULT_REPLAY_EPISODES, LearnedPolicy, default_threads,
     run_comparison,
@@ -104,7 +106,14 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     } else {
         a.presets.clone()
     };
-    let policy_paths = policy_folders(&a.policies)?;
+    // The shipped policies are the lift task's: a place comparison runs its scripts alone
+    // unless policies are named.
+    let lift = presets::load(&names[0]).is_ok_and(|c| c.task.kind == TaskKind::Lift);
+    let policy_paths = if lift || !a.policies.is_empty() {
+        policy_folders(&a.policies)?
+    } else {
+        Vec::new()
+    };
     let presets = names
         .iter()
         .map(|p| {

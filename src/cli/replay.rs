@@ -9,7 +9,7 @@ use clap::Args;
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_eval::compare::methods::Method;
 use fairgrasp_eval::compare::record::record_episodes;
-use fairgrasp_eval::compare::{LearnedPolicy, SCRIPTS};
+use fairgrasp_eval::compare::{LearnedPolicy, scripts_for};
 use fairgrasp_report::replay3d::{self, ReplayEpisode};
 use fairgrasp_types::ArmSimulation;
 
@@ -62,7 +62,7 @@ pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
         match method {
             Method::Script(i) => methods.push(i),
             Method::Learned(l) => {
-                methods.push(SCRIPTS.len() + learned.len());
+                methods.push(scripts_for(&config).len() + learned.len());
                 learned.push(*l);
             }
         }

@@ -27,10 +27,10 @@ use std::path::{Path, PathBuf};
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::episode::trajectory::Trajectory;
 use fairgrasp_env::scenario::{Scenario, scenario_set};
-use fairgrasp_env::{EnvConfig, EnvError};
+use fairgrasp_env::{EnvConfig, EnvError, TaskKind};
 use fairgrasp_planner::{
     BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
-    TunedGripScript,
+    ScriptedPlace, SearchParams, TunedGripScript,
 };
 use fairgrasp_types::fs::slug;
 use fairgrasp_types::{Comparison, MethodResult, RecordedEpisode};
@@ -54,6 +54,21 @@ pub const SCRIPTS: [&str; 5] = [
     "script + calibration",
     "script + tuned grip",
 ];
+
+/// The place task's scripts, in order: the open-loop place script and the same with the
+/// force-guided search, tuned on training scenarios, in place of its lower
+/// ([`fairgrasp_planner::place_search`]).
+pub const PLACE_SCRIPTS: [&str; 2] = ["place script", "place script + force search"];
+
+/// The scripts a comparison on presets of `config`'s task runs first: [`SCRIPTS`] for the lift
+/// task, [`PLACE_SCRIPTS`] for the place task. Method `i` of a comparison is script `i` while `i`
+/// is below their number, then the learned policies in order ([`make_policy`]).
+pub fn scripts_for(config: &EnvConfig) -> &'static [&'static str] {
+    match config.task.kind {
+        TaskKind::Lift => &SCRIPTS,
+        TaskKind::Place => &PLACE_SCRIPTS,
+    }
+}
 
 /// Why a comparison could not run.
 #[derive(Debug, thiserror::Error)]
@@ -192,24 +207,31 @@ impl CompareOutput {
     }
 }
 
-/// A fresh policy of method `i` (the [`SCRIPTS`], then `learned` in order) for `config`, whose
-/// camera calibration is `calibration`.
+/// A fresh policy of method `i` (the task's scripts, [`scripts_for`], then `learned` in order)
+/// for `config`, whose camera calibration is `calibration`.
 pub(crate) fn make_policy(
     i: usize,
     learned: &[LearnedPolicy],
     config: &EnvConfig,
     calibration: &CameraCalibration,
 ) -> Box<dyn Policy> {
+    let scripts = scripts_for(config).len();
+    if i >= scripts {
+        let l = &learned[i - scripts];
+        return Box::new(actor_policy(&l.meta, &l.actor, config));
+    }
+    if config.task.kind == TaskKind::Place {
+        return match i {
+            0 => Box::new(ScriptedPlace::new(config)),
+            _ => Box::new(ScriptedPlace::with_search(config, SearchParams::default())),
+        };
+    }
     match i {
         0 => Box::new(ScriptedGrasp::new(config, BaselineConfig::default())),
         1 => Box::new(ClosedLoopGrasp::observed(config)),
         2 => Box::new(ClosedLoopGrasp::oracle(config)),
         3 => Box::new(CalibratedScript::new(config, calibration.clone())),
-        4 => Box::new(TunedGripScript::new(config)),
-        i => {
-            let l = &learned[i - SCRIPTS.len()];
-            Box::new(actor_policy(&l.meta, &l.actor, config))
-        }
+        _ => Box::new(TunedGripScript::new(config)),
     }
 }
 
@@ -244,7 +266,8 @@ pub fn run_comparison(
     progress: &(dyn Fn(CompareEvent<'_>) + Sync),
 ) -> Result<CompareOutput, CompareError> {
     spec.check()?;
-    let mut methods: Vec<String> = SCRIPTS.iter().map(|s| s.to_string()).collect();
+    let scripts = scripts_for(&spec.presets[0].config);
+    let mut methods: Vec<String> = scripts.iter().map(|s| s.to_string()).collect();
     methods.extend(learned.iter().map(|l| l.name.clone()));
     let mut work = Vec::with_capacity(spec.presets.len());
     for preset in &spec.presets {
@@ -266,7 +289,7 @@ pub fn run_comparison(
                 arm: preset.config.arm.model,
                 seed: spec.seed,
                 policy: i
-                    .checked_sub(SCRIPTS.len())
+                    .checked_sub(scripts.len())
                     .map(|j| learned[j].dir.display().to_string()),
                 report: reports.next().expect("a report per preset and method"),
             });
@@ -406,7 +429,8 @@ type RecordedSets = (
 /// closed-loop script) end differently.
 fn first_disagreement(on_last: &[&MethodResult]) -> Option<usize> {
     let a = on_last.first()?;
-    let b = on_last.get(SCRIPTS.len()).or_else(|| on_last.get(1))?;
+    let scripts = on_last.iter().take_while(|r| r.policy.is_none()).count();
+    let b = on_last.get(scripts).or_else(|| on_last.get(1))?;
     a.report
         .results
         .iter()

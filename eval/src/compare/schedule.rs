@@ -21,7 +21,7 @@ use fairgrasp_env::{EnvConfig, GraspEnv};
 use fairgrasp_planner::CameraCalibration;
 use fairgrasp_types::work_queue::run_in_order;
 
-use crate::compare::{CompareError, CompareEvent, LearnedPolicy, SCRIPTS, make_policy};
+use crate::compare::{CompareError, CompareEvent, LearnedPolicy, make_policy, scripts_for};
 
 /// One preset's share of a comparison: its name, config, scenario set and camera calibration.
 pub(crate) struct PresetWork<'a> {
@@ -40,8 +40,8 @@ type WorkerState = (
 
 /// The units of `methods` (the scripts first, then the learned policies, as [`make_policy`]
 /// numbers them): the scripts together, then each learned policy alone; as ranges of methods.
-fn units(methods: usize) -> Vec<Range<usize>> {
-    let scripts = SCRIPTS.len().min(methods);
+fn units(methods: usize, scripts: usize) -> Vec<Range<usize>> {
+    let scripts = scripts.min(methods);
     std::iter::once(0..scripts)
         .chain((scripts..methods).map(|m| m..m + 1))
         .filter(|u| !u.is_empty())
@@ -62,7 +62,8 @@ pub(crate) fn evaluate_all(
     // Every preset's set has the spec's episode count.
     let episodes = presets.first().map_or(0, |p| p.scenarios.len());
     debug_assert!(presets.iter().all(|p| p.scenarios.len() == episodes));
-    let units = units(methods.len());
+    let scripts = presets.first().map_or(0, |p| scripts_for(p.config).len());
+    let units = units(methods.len(), scripts);
     let cells = presets.len() * methods.len();
     // Job j is (preset, unit, scenario) in that nesting.
     let locate = |j: usize| {

@@ -62,6 +62,17 @@ impl CompareSpec {
         }) {
             return request(format!("--preset {} is given twice", dup.name));
         }
+        if let Some(p) = self
+            .presets
+            .iter()
+            .find(|p| p.config.task.kind != self.presets[0].config.task.kind)
+        {
+            return request(format!(
+                "--preset {} is a {:?} preset and {} a {:?} one: the two tasks have different \
+                 scripts; compare each task's presets on their own",
+                self.presets[0].name, self.presets[0].config.task.kind, p.name, p.config.task.kind
+            ));
+        }
         if self.episodes == 0 {
             return request("at least one episode per preset is needed".into());
         }
