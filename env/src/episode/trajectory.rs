@@ -109,7 +109,10 @@ fn push(t: &mut Trajectory, env: &GraspEnv, action: [f64; 7], reward: f64, openi
             .iter()
             .map(|c| [c.a[0], c.a[1], c.a[2], c.b[0], c.b[1], c.b[2], c.radius])
             .collect(),
-        bodies: body_poses(env.model(), &env.joints(), env.finger_travel()),
+        bodies: body_poses(env.model(), &env.joints(), env.finger_travel())
+            .into_iter()
+            .chain(env.fixture_in_base().map(|f| pose7(&f.iso)))
+            .collect(),
         pad_contact: env.contacts().pad_contact,
         events: Vec::new(),
         phase: None,
@@ -209,7 +212,34 @@ fn scene_of(env: &GraspEnv, capsule_names: Vec<String>) -> TrajectoryScene {
             centre,
             half_extents,
         }),
-        bodies: body_names(env.model()),
-        shapes: body_shapes(env.model()),
+        bodies: body_names(env.model())
+            .into_iter()
+            .chain(env.fixture_in_base().map(|_| "fixture".to_string()))
+            .collect(),
+        shapes: body_shapes(env.model())
+            .into_iter()
+            .chain(fixture_shapes(env))
+            .collect(),
     }
+}
+
+/// The place task's fixture walls, on the body after the robot's (none for the lift task).
+fn fixture_shapes(env: &GraspEnv) -> Vec<BodyShape> {
+    if env.fixture_in_base().is_none() {
+        return Vec::new();
+    }
+    let config = env.config();
+    let body = body_names(env.model()).len();
+    crate::sim::fixture::wall_boxes(&config.task.place, config.scene.cube_size)
+        .into_iter()
+        .enumerate()
+        .map(|(k, (half_extents, centre))| BodyShape {
+            name: format!("fixture_wall_{k}"),
+            body,
+            geometry: Geometry::Box {
+                centre,
+                half_extents,
+            },
+        })
+        .collect()
 }
