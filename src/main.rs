@@ -7,11 +7,9 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use std::process::ExitCode;
 
-use clap::Parser;
-
 fn main() -> ExitCode {
     streams_as_unix_tools();
-    let args = match cli::Cli::try_parse() {
+    let args = match cli::Cli::try_parse_from_args(std::env::args_os().collect()) {
         Ok(args) => args,
         // Help and version print as clap prints them; usage errors with long values cut.
         Err(e) if !e.use_stderr() => e.exit(),
@@ -24,7 +22,12 @@ fn main() -> ExitCode {
         Ok(code) => code,
         Err(err) => {
             eprintln!("error: {}", excerpt_long_words(&format!("{err:#}")));
-            ExitCode::FAILURE
+            // A usage error found after parsing exits as clap's own do.
+            if err.downcast_ref::<cli::UsageError>().is_some() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::FAILURE
+            }
         }
     }
 }

@@ -1,5 +1,7 @@
 //! Argument pieces shared by several subcommands, and number formatting.
 
+use std::path::{Path, PathBuf};
+
 use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
 use fairgrasp_kinematics::{ArmKind, ArmModel, EndFrame, Pose};
@@ -58,11 +60,28 @@ impl OutputArgs {
     }
 }
 
+/// A command line that cannot mean anything, found after parsing (a list of joint values of
+/// the wrong length for the arm): it exits with code 2, as clap's own usage errors do.
+#[derive(Debug)]
+pub struct UsageError(pub String);
+
+impl std::fmt::Display for UsageError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for UsageError {}
+
 /// Six joint angles from the command line, checked finite and converted to radians.
 pub fn joints_from(values: &[f64], out: &OutputArgs, flag: &str) -> anyhow::Result<[f64; 6]> {
-    let q: [f64; 6] = values
-        .try_into()
-        .map_err(|_| anyhow::anyhow!("{flag} takes 6 joint angles, got {}", values.len()))?;
+    let q: [f64; 6] = values.try_into().map_err(|_| {
+        UsageError(format!(
+            "{flag} takes 6 joint angles (q1 … q6 of the FR3/FR5), got {}; another arm's chain \
+             takes one per joint with --urdf FILE",
+            values.len()
+        ))
+    })?;
     if let Some(i) = q.iter().position(|v| !v.is_finite()) {
         bail!("{flag}: joint j{} is {}, not a finite angle", i + 1, q[i]);
     }
@@ -112,7 +131,7 @@ pub const MAX_CLI_NUMBER: f64 = 1e6;
 pub fn finite_number(text: &str) -> Result<f64, String> {
     let value: f64 = text.trim().parse().map_err(|_| {
         if text.starts_with("--") {
-            // A flag after a list of any length (`--joints` with --urdf) is read as a value.
+            // A flag after a list of any length written `--joints=…` is read as a value.
             format!("{text:?} is not a number: put flags before a list of numbers, not after it")
         } else {
             format!("{text:?} is not a number")
@@ -140,5 +159,17 @@ pub fn thread_count(text: &str) -> Result<usize, String> {
     match text.trim().parse::<usize>() {
         Ok(n) if (1..=256).contains(&n) => Ok(n),
         _ => Err(format!("{text}: give a whole number of threads in 1..=256")),
+    }
+}
+
+/// The checkpoint folder a `--policy` names, resolved as every command resolves it
+/// ([`fairgrasp_eval::shipped::checkpoint_folder`]: a shipped policy's name, a policy folder, a
+/// checkpoint folder or a run folder). A folder whose `meta.json` exists but is not a regular
+/// file is returned as it is, so that loading it says what is wrong with it.
+pub fn policy_folder(given: &str) -> anyhow::Result<PathBuf> {
+    match fairgrasp_eval::shipped::checkpoint_folder(given) {
+        Ok(dir) => Ok(dir),
+        Err(_) if Path::new(given).join("meta.json").exists() => Ok(PathBuf::from(given)),
+        Err(why) => bail!("--policy {why}"),
     }
 }

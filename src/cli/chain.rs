@@ -5,12 +5,11 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-use anyhow::bail;
 use fairgrasp_kinematics::chain_ik::{ChainIk, ChainIkOptions};
 use fairgrasp_kinematics::{JointKind, Pose, UrdfRobot};
 use serde_json::json;
 
-use super::args::{OutputArgs, fmt3, print_json};
+use super::args::{OutputArgs, UsageError, fmt3, print_json};
 
 /// The chain of the URDF at `path` to `tip`.
 fn chain(path: &Path, tip: Option<&str>) -> anyhow::Result<ChainIk> {
@@ -21,13 +20,14 @@ fn chain(path: &Path, tip: Option<&str>) -> anyhow::Result<ChainIk> {
 /// revolute angles per `--deg`, prismatic offsets in metres.
 fn values(ik: &ChainIk, given: &[f64], out: &OutputArgs, flag: &str) -> anyhow::Result<Vec<f64>> {
     if given.len() != ik.dof() {
-        bail!(
+        return Err(UsageError(format!(
             "{flag}: the chain to `{}` has {} movable joints ({}), got {} values",
             ik.chain.tip,
             ik.dof(),
             ik.names.join(", "),
             given.len()
-        );
+        ))
+        .into());
     }
     let kinds = ik.chain.joints.iter().filter(|j| j.kind.is_single_axis());
     Ok(given
@@ -58,7 +58,7 @@ pub fn run_fk(
     out: &OutputArgs,
 ) -> anyhow::Result<ExitCode> {
     let ik = chain(path, tip)?;
-    let q = values(&ik, joints, out, "--chain-joints")?;
+    let q = values(&ik, joints, out, "--joints")?;
     let pose = ik.chain.fk(&q);
     let outside: Vec<&str> = (0..ik.dof())
         .filter(|&i| q[i] < ik.lower[i] || q[i] > ik.upper[i])
@@ -95,7 +95,7 @@ pub struct ChainIkRequest<'a> {
 pub fn run_ik(r: &ChainIkRequest<'_>, out: &OutputArgs) -> anyhow::Result<ExitCode> {
     let ik = chain(r.path, r.tip)?;
     let start = match r.current {
-        Some(values_given) => values(&ik, values_given, out, "--chain-current")?,
+        Some(values_given) => values(&ik, values_given, out, "--current")?,
         None => (0..ik.dof())
             .map(|i| 0f64.clamp(ik.lower[i], ik.upper[i]))
             .collect(),

@@ -13,10 +13,12 @@ use super::baseline::{ScenarioArgs, evaluate_and_print};
 
 #[derive(Args, Debug)]
 pub struct EvalArgs {
-    /// Checkpoint folder (a run's checkpoints/best or checkpoints/latest). Default: the shipped
-    /// residual policy (built into the binary; assets/policies/residual_hard in the sources).
-    #[arg(long, value_name = "DIR")]
-    policy: Option<PathBuf>,
+    /// The policy, as every command takes one: a shipped policy by name (residual_nudged,
+    /// pure_full, …; built into the binary), a policy folder (assets/policies/residual_nudged),
+    /// a checkpoint folder (…/checkpoint, a run's checkpoints/latest) or a run folder (its
+    /// checkpoints/best). Default: residual_hard.
+    #[arg(long, value_name = "NAME")]
+    policy: Option<String>,
     /// Ablation: set every policy input whose name starts with NAME to 0 (e.g. `wrist` for the
     /// wrist camera's features of a task-space residual, `cube_moved` for the push). Repeat for
     /// several. An unknown name is refused with the list of input names.
@@ -34,12 +36,12 @@ pub struct EvalArgs {
 pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
     // The shipped residual policy is built into the binary: found from any folder.
     let policy = match &a.policy {
-        Some(p) => p.clone(),
+        Some(p) => super::args::policy_folder(p)?,
         None => fairgrasp_eval::shipped::default_policy()
             .context("unpacking the shipped residual policy")?,
     };
     let (meta, actor) =
-        load_actor(&policy).context("loading the policy (pass --policy DIR to choose one)")?;
+        load_actor(&policy).context("loading the policy (pass --policy NAME to choose one)")?;
     let mut masked = Vec::new();
     for prefix in &a.mask_input {
         let found = meta
@@ -48,7 +50,11 @@ pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
             .map_err(|e| anyhow::anyhow!("--mask-input {prefix}: {e}"))?;
         masked.extend(found);
     }
-    let mut method = format!("{} agent ({})", meta.agent.mode, policy.display());
+    let shown = a
+        .policy
+        .clone()
+        .unwrap_or_else(|| policy.display().to_string());
+    let mut method = format!("{} agent ({shown})", meta.agent.mode);
     if !a.mask_input.is_empty() {
         method += &format!(", inputs masked: {}", a.mask_input.join(", "));
     }

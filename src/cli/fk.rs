@@ -19,39 +19,27 @@ pub struct FkArgs {
     /// The chain's tip link with --urdf (default: the URDF's only leaf).
     #[arg(long, value_name = "LINK", requires = "urdf")]
     tip: Option<String>,
-    /// Joint angles q1 … q6 (radians, or degrees with --deg); with --urdf, for a chain of six
-    /// movable joints.
-    #[arg(
-        long,
-        num_args = 6,
-        required_unless_present = "chain_joints",
-        allow_hyphen_values = true, value_parser = crate::cli::args::finite_number,
-        value_name = "Q"
-    )]
-    joints: Option<Vec<f64>>,
-    /// With --urdf: one value per movable joint of the chain, any number of them (revolute:
-    /// radians or --deg; prismatic: metres). Give it last: it takes every value after it.
+    /// Joint values: q1 … q6 of the FR3/FR5 (radians, or degrees with --deg); with --urdf, one
+    /// per movable joint of the chain, as many as it has (revolute: radians or --deg;
+    /// prismatic: metres). Flags may follow the list.
     #[arg(
         long,
         num_args = 1..,
-        requires = "urdf",
-        conflicts_with = "joints",
+        required = true,
         allow_hyphen_values = true, value_parser = crate::cli::args::finite_number,
         value_name = "Q"
     )]
-    chain_joints: Option<Vec<f64>>,
+    joints: Vec<f64>,
     #[command(flatten)]
     out: OutputArgs,
 }
 
 pub fn run(a: &FkArgs) -> anyhow::Result<ExitCode> {
-    let given = a.joints.as_ref().or(a.chain_joints.as_ref());
-    let given = given.expect("clap requires --joints or --chain-joints");
     if let Some(path) = &a.urdf {
-        return super::chain::run_fk(path, a.tip.as_deref(), given, &a.out);
+        return super::chain::run_fk(path, a.tip.as_deref(), &a.joints, &a.out);
     }
     let model = a.model.model();
-    let q = joints_from(given, &a.out, "--joints")?;
+    let q = joints_from(&a.joints, &a.out, "--joints")?;
     let flange = model.fk_flange(&q);
     let tcp = model.fk_tcp(&q);
     let jac = model.jacobian(&q, EndFrame::Tcp);

@@ -19,7 +19,7 @@ pub struct IkArgs {
     /// Any serial arm's URDF instead of the built-in model: the chain IK (damped QP steps
     /// within the joint limits, random restarts) places the chain's tip at --pose, in the
     /// URDF's root frame.
-    #[arg(long, value_name = "FILE", conflicts_with_all = ["frame", "qp"])]
+    #[arg(long, value_name = "FILE", conflicts_with = "frame")]
     urdf: Option<std::path::PathBuf>,
     /// The chain's tip link with --urdf (default: the URDF's only leaf).
     #[arg(long, value_name = "LINK", requires = "urdf")]
@@ -31,14 +31,13 @@ pub struct IkArgs {
     #[arg(long, value_enum, default_value = "tool0")]
     frame: FrameArg,
     /// Current joints q1 … q6: picks the nearest branch and seeds the QP solver (default all 0);
-    /// with --urdf, the chain IK's start for a chain of six movable joints.
-    #[arg(long, num_args = 6, allow_hyphen_values = true, value_parser = crate::cli::args::finite_number, value_name = "Q")]
+    /// with --urdf, the chain IK's start, one value per movable joint of the chain (default: 0
+    /// within each joint's limits). Flags may follow the list.
+    #[arg(long, num_args = 1.., allow_hyphen_values = true, value_parser = crate::cli::args::finite_number, value_name = "Q")]
     current: Option<Vec<f64>>,
-    /// With --urdf: the chain IK's start, one value per movable joint, any number of them
-    /// (default: 0 within each joint's limits). Give it last: it takes every value after it.
-    #[arg(long, num_args = 1.., requires = "urdf", conflicts_with = "current", allow_hyphen_values = true, value_parser = crate::cli::args::finite_number, value_name = "Q")]
-    chain_current: Option<Vec<f64>>,
-    /// Also run the clarabel QP IK from --current (tolerance 1e-4 m / 1e-3 rad).
+    /// Also run the clarabel QP IK from --current (tolerance 1e-4 m / 1e-3 rad). With --urdf
+    /// it is accepted and changes nothing: the chain IK is itself this QP solver (damped QP
+    /// steps within the joint limits, from --current).
     #[arg(long)]
     qp: bool,
     /// Seed of the QP solver's random restarts.
@@ -55,7 +54,7 @@ pub fn run(a: &IkArgs) -> anyhow::Result<ExitCode> {
             path,
             tip: a.tip.as_deref(),
             pose: target,
-            current: a.current.as_deref().or(a.chain_current.as_deref()),
+            current: a.current.as_deref(),
             seed: a.seed,
         };
         return super::chain::run_ik(&request, &a.out);

@@ -24,9 +24,12 @@ mod soak;
 mod squeeze_chart;
 mod train;
 
+use std::ffi::OsString;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+
+pub use args::UsageError;
 
 /// fairgrasp: kinematics, grasping and residual PPO for the FAIRINO FR3 cobot.
 ///
@@ -80,6 +83,57 @@ enum Command {
     Replay(replay::ReplayArgs),
     /// Benchmarks: `bench env` measures environment steps per second and reset times.
     Bench(bench::BenchArgs),
+}
+
+impl Cli {
+    /// Parses `argv` (the program's name first). A list of numbers of any length (`fk
+    /// --joints`, `ik --current`: as many values as the `--urdf` chain has joints) takes the
+    /// words after it up to the next flag: a word that starts with `-` ends the list unless it
+    /// is a number (`-1e-12`, `-0.5`), so flags may follow the list as they follow any other.
+    pub fn try_parse_from_args(argv: Vec<OsString>) -> Result<Cli, clap::Error> {
+        let mut command = Cli::command();
+        let subcommand = argv
+            .iter()
+            .skip(1)
+            .filter_map(|a| a.to_str())
+            .find(|a| !a.starts_with('-'));
+        if let Some(name) = subcommand.filter(|n| command.find_subcommand(n).is_some()) {
+            let name = name.to_string();
+            let lists: Vec<(clap::Id, String)> = command
+                .find_subcommand(&name)
+                .expect("found above")
+                .get_arguments()
+                .filter(|a| {
+                    a.is_allow_hyphen_values_set()
+                        && a.get_num_args()
+                            .is_some_and(|n| n.max_values() == usize::MAX)
+                })
+                .filter_map(|a| Some((a.get_id().clone(), format!("--{}", a.get_long()?))))
+                .collect();
+            for (id, flag) in lists {
+                let Some(at) = argv.iter().position(|a| a.to_str() == Some(flag.as_str())) else {
+                    continue;
+                };
+                let values = argv[at + 1..]
+                    .iter()
+                    .take_while(|a| a.to_str().is_some_and(is_list_value))
+                    .count();
+                if values > 0 {
+                    command = command
+                        .mut_subcommand(&name, |sub| sub.mut_arg(id, |a| a.num_args(values)));
+                }
+            }
+        }
+        let matches = command.try_get_matches_from(argv)?;
+        Cli::from_arg_matches(&matches)
+    }
+}
+
+/// Is `word` a value of a list of numbers (not a flag)? A word that does not start with `-`, or
+/// a negative number; a word that is not a number is a value too, which the list's parser then
+/// refuses naming it.
+fn is_list_value(word: &str) -> bool {
+    !word.starts_with('-') || word.parse::<f64>().is_ok()
 }
 
 /// Runs one subcommand; `Ok` carries the exit code (non-zero when the answer is "no solution").
