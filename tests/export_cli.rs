@@ -2,7 +2,8 @@
 //! sample for sample, every step is ≤ 1°, the JSON's `period_sec` / `joints_deg` are the ROS 2
 //! driver's goal, a played export still grasps, and what must be refused is refused (a file
 //! that crosses a limit, an existing `--out`, a period out of range, a failed episode, a stream
-//! without gripper commands) with nothing written or played.
+//! written with `--no-gripper`) with nothing written or played; the gripper's commands are
+//! written by default.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -270,7 +271,7 @@ fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
     let o = fairgrasp(&dir, &[&failed[..], &["--allow-failure"]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
     // Without gripper commands playback cannot grasp; a CSV must say where it plays.
-    let o = fairgrasp(&dir, &["export", "--out", "arm_only.json"]);
+    let o = fairgrasp(&dir, &["export", "--no-gripper", "--out", "arm_only.json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let o = fairgrasp(&dir, &["playback", "arm_only.json"]);
     assert!(
@@ -295,4 +296,51 @@ fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
         names,
         ["arm_only.json", "f.json", "jump.json", "ok.json", "s.csv"]
     );
+}
+
+#[test]
+fn export_writes_the_gripper_by_default_so_playback_grasps_and_no_gripper_leaves_it_out() {
+    let dir = temp_dir("default-gripper");
+    let o = fairgrasp(&dir, &["export", "--out", "plain.json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let doc: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("plain.json")).unwrap()).unwrap();
+    // The grasp closes the gripper at least once (command +1 closed).
+    let events = doc["gripper"].as_array().expect("a gripper list");
+    assert!(events.iter().any(|e| e["command"] == 1.0), "{doc}");
+    let o = fairgrasp(&dir, &["playback", "plain.json", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let played: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(played["outcome"], "success", "{played}");
+    // The old flag still runs and changes nothing.
+    let o = fairgrasp(&dir, &["export", "--gripper", "--out", "old.json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read(dir.join("old.json")).unwrap(),
+        std::fs::read(dir.join("plain.json")).unwrap()
+    );
+    // .npy: the gripper's commands beside the joints, unless --no-gripper.
+    let o = fairgrasp(&dir, &["export", "--out", "plain.npy"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(dir.join("plain.gripper.npy").is_file());
+    let o = fairgrasp(&dir, &["export", "--no-gripper", "--out", "arm.npy"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!dir.join("arm.gripper.npy").exists());
+    let o = fairgrasp(&dir, &["export", "--no-gripper", "--out", "arm.json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let doc: Value = serde_json::from_slice(&std::fs::read(dir.join("arm.json")).unwrap()).unwrap();
+    assert!(doc["gripper"].as_array().is_none_or(Vec::is_empty), "{doc}");
+    let o = fairgrasp(&dir, &["playback", "arm.json"]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("no gripper commands"),
+        "{}",
+        stderr(&o)
+    );
+    let o = fairgrasp(
+        &dir,
+        &["export", "--gripper", "--no-gripper", "--out", "both.json"],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(!dir.join("both.json").exists());
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,6 +1,6 @@
 """Stream a fairgrasp export to a real FAIRINO FR3 with FAIRINO's Python SDK (ServoJ).
 
-    fairgrasp export --preset my_cell.toml --episode 3 --gripper --out grasp.json
+    fairgrasp export --preset my_cell.toml --episode 3 --out grasp.json
     fairgrasp playback grasp.json                       # it must still grasp in the simulator
     python python/examples/fairino_servoj.py grasp.json  # dry run: checks and prints the plan
     python python/examples/fairino_servoj.py grasp.json --execute --ip 192.168.58.2
@@ -138,7 +138,7 @@ def stream(robot, period, samples, events, args, clock=time.perf_counter, sleep=
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("file", help="a stream JSON from `fairgrasp export` (use --gripper there for the gripper)")
+    p.add_argument("file", help="a stream JSON from `fairgrasp export` (with its gripper commands, the default)")
     p.add_argument("--execute", action="store_true", help="connect and move the arm (default: dry run)")
     p.add_argument("--ip", default="192.168.58.2", help="the controller's address (FAIRINO's default)")
     p.add_argument("--speed", type=float, default=20.0, help="MoveJ to the start: speed in %% (default 20)")

@@ -58,8 +58,9 @@ pub struct ExportArgs {
     /// The script that grasps [default: open_loop, unless --policy].
     #[arg(long, conflicts_with = "policy", value_parser = clap::builder::PossibleValuesParser::new(SCRIPT_NAMES))]
     method: Option<String>,
-    /// A shipped policy by name (residual_nudged, pure_full, …), a checkpoint folder or a run
-    /// folder (its checkpoints/best).
+    /// The policy that grasps, as every command takes one: a shipped policy by name
+    /// (residual_nudged, pure_full, …), a policy folder (assets/policies/residual_nudged), a
+    /// checkpoint folder (…/checkpoint) or a run folder (its checkpoints/best).
     #[arg(long, value_name = "NAME")]
     policy: Option<String>,
     /// Servo period [s]: 0.001–0.016 (FAIRINO's driver).
@@ -68,9 +69,13 @@ pub struct ExportArgs {
     /// How long the final sample is repeated at the end, so the arm settles [s].
     #[arg(long, default_value_t = 0.25, value_parser = finite_number)]
     hold: f64,
-    /// Write the gripper's commands too (JSON: a `gripper` list of events; CSV: a
-    /// `gripper_command` column; .npy: FILE.gripper.npy beside it). Playback needs them.
+    /// Leave out the gripper's commands, which are written by default (JSON: a `gripper` list
+    /// of events; CSV: a `gripper_command` column; .npy: FILE.gripper.npy beside it): an
+    /// arm-only stream, which playback refuses (it cannot grasp).
     #[arg(long)]
+    no_gripper: bool,
+    /// Write the gripper's commands: the default (accepted so that older commands still run).
+    #[arg(long, conflicts_with = "no_gripper")]
     gripper: bool,
     /// Export an episode that failed in the simulator (refused by default: a failed grasp
     /// may collide).
@@ -164,7 +169,8 @@ pub fn run(a: &ExportArgs) -> anyhow::Result<ExitCode> {
     let Some(format) = Format::of(&a.out) else {
         bail!("--out {}: name a .json, .csv or .npy file", a.out.display());
     };
-    let sidecar = (a.gripper && format == Format::Npy).then(|| a.out.with_extension("gripper.npy"));
+    let gripper = !a.no_gripper;
+    let sidecar = (gripper && format == Format::Npy).then(|| a.out.with_extension("gripper.npy"));
     for path in std::iter::once(&a.out).chain(&sidecar) {
         if path.exists() {
             bail!(
@@ -205,7 +211,7 @@ pub fn run(a: &ExportArgs) -> anyhow::Result<ExitCode> {
         );
     }
     let mut stream = exported.resampled.stream.clone();
-    if !a.gripper {
+    if !gripper {
         stream.gripper.clear();
     }
     let source = json!({
