@@ -17,10 +17,11 @@ use super::baseline::preset_config;
 
 #[derive(Args, Debug)]
 pub struct ReplayArgs {
-    /// What acts: a script (open_loop, closed_loop, oracle, calibrated), a shipped policy by name
-    /// (residual_hard, pure_full, residual_miscalibrated, …), a checkpoint folder or a run folder
-    /// (its checkpoints/best). Repeat the flag to run several on the same scenario (shown side by
-    /// side in the page).
+    /// What acts: a script (open_loop, closed_loop, oracle, calibrated), or a policy as every
+    /// command takes one: a shipped policy by name (residual_hard, pure_full, …), a policy folder
+    /// (assets/policies/pure_full), a checkpoint folder (…/checkpoint) or a run folder (its
+    /// checkpoints/best). Repeat the flag to run several on the same scenario (shown side by side
+    /// in the page).
     #[arg(long = "policy", value_name = "P", required = true)]
     policies: Vec<String>,
     /// Preset name or a .toml env config.
