@@ -281,8 +281,7 @@ fn a_place_comparison_runs_the_place_scripts_and_refuses_a_lift_preset_beside_th
     assert!(c.replay.iter().any(|r| r.preset == "place_fixture_error"));
     let mixed = run_comparison(&spec(&["place", "seed"], 2), &[], &|_| {});
     let message = mixed
-        .err()
-        .expect("a place and a lift preset together")
+        .expect_err("a place and a lift preset together")
         .to_string();
     assert!(
         message.contains("place") && message.contains("seed"),

@@ -27,7 +27,7 @@ fn pinned_three() -> String {
 #[test]
 fn every_build_inlines_the_three_version_the_lock_file_pins() {
     let pinned = pinned_three();
-    assert_eq!(three_version(), Some(pinned.as_str()));
+    assert_eq!(three_version(), pinned.as_str());
     assert_eq!(read("vendor/three-version.txt").trim(), pinned);
     // three.js names its release by the minor version: 0.187.0 is r187, which the bundle
     // announces to the page as `window.__THREE__`.

@@ -156,12 +156,6 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     let written = write_comparison_folder(staged, comparison, &a.out, spec.threads, |dir| {
         output.save_episodes(dir).map_err(|e| e.to_string())
     })?;
-    if fairgrasp_report::replay3d::three_version().is_none() {
-        eprintln!(
-            "note: replay.html was not written: this fairgrasp was built without three.js \
-             (run scripts/install-browser.sh, then build again)"
-        );
-    }
     if a.json {
         println!("{}", comparison.to_json());
     } else if a.verbose {

@@ -279,7 +279,7 @@ mod tests {
                 TrajectoryRow {
                     step: k,
                     time_s: t,
-                    joints: [0.1 * t.sin(), -1.3, -1.4, -1.9, 1.570_796_326_794_896_6, t],
+                    joints: [0.1 * t.sin(), -1.3, -1.4, -1.9, 1.5, t],
                     gripper_opening_m: 0.085 - 0.000_123_456_789 * k as f64,
                     tcp_xyz: [0.3 + 0.001 * t, 0.0, 0.25],
                     tcp_quat_xyzw: [1.0, 0.0, 0.0, 0.0],

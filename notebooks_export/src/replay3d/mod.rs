@@ -51,10 +51,9 @@ pub struct ReplayEpisode<'a> {
     pub trajectory: &'a Trajectory,
 }
 
-/// The three.js version inlined into replays (`0.187.0`). Every build has the committed bundle,
-/// so this is always `Some`; the `Option` remains for callers written when a build could lack it.
-pub fn three_version() -> Option<&'static str> {
-    Some(THREE_VERSION.trim())
+/// The three.js version inlined into replays (`0.187.0`): every build has the committed bundle.
+pub fn three_version() -> &'static str {
+    THREE_VERSION.trim()
 }
 
 /// Is `path` a replay that fairgrasp wrote (so it may be replaced)?

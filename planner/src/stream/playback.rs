@@ -28,7 +28,9 @@ pub struct PlaybackReport {
 /// Why a stream could not be played.
 #[derive(Debug, thiserror::Error)]
 pub enum PlaybackError {
-    #[error("the stream has no gripper commands, so it cannot grasp: export it with --gripper")]
+    #[error(
+        "the stream has no gripper commands, so it cannot grasp: export it without --no-gripper"
+    )]
     NoGripper,
     #[error("the stream has no samples")]
     Empty,
