@@ -75,6 +75,7 @@ pub fn export_episode(
     hold_samples: usize,
     limits: &StreamLimits,
 ) -> Result<ExportedEpisode, ExportError> {
+    method.check_task(config)?;
     let (index, learned): (usize, Vec<LearnedPolicy>) = match method {
         Method::Script(i) => (i, Vec::new()),
         Method::Learned(l) => (scripts_for(config).len(), vec![*l]),

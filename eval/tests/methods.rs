@@ -45,3 +45,19 @@ fn a_method_is_a_script_a_shipped_policy_a_checkpoint_or_a_run_folder() {
         "{e}"
     );
 }
+
+#[test]
+fn on_a_place_preset_only_the_open_loop_script_is_a_script() {
+    let place = fairgrasp_env::config::presets::load("place").unwrap();
+    let lift = fairgrasp_env::config::presets::load("seed").unwrap();
+    let closed = Method::resolve("closed_loop").unwrap();
+    let e = closed.check_task(&place).unwrap_err().to_string();
+    assert!(e.contains("closed_loop") && e.contains("open_loop"), "{e}");
+    assert!(closed.check_task(&lift).is_ok());
+    assert!(
+        Method::resolve("open_loop")
+            .unwrap()
+            .check_task(&place)
+            .is_ok()
+    );
+}

@@ -59,6 +59,7 @@ pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
     let mut names = Vec::new();
     for p in &a.policies {
         let method = Method::resolve(p)?;
+        method.check_task(&config)?;
         names.push(method.name());
         match method {
             Method::Script(i) => methods.push(i),

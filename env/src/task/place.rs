@@ -2,20 +2,8 @@
 //! released, the arm clear. Its settings are `[task.place]` ([`crate::config::PlaceConfig`]).
 
 use crate::config::PlaceConfig;
+pub use crate::task::state::PlaceFacts;
 use crate::task::state::TaskState;
-
-/// The facts about the cube and the fixture a place step is judged on (world frame, [m]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PlaceFacts {
-    /// The cube's centre in the fixture frame (x, y along its walls) [m].
-    pub offset_in_fixture: [f64; 2],
-    /// The cube's lowest corner above the table top [m].
-    pub bottom_above_table: f64,
-    /// The cube's tilt from standing on a face [rad].
-    pub tilt: f64,
-    /// The fixture's centre on the table top, world [m].
-    pub fixture: [f64; 3],
-}
 
 /// Seated: the cube's centre inside the pocket, its bottom on the table (the pocket's floor)
 /// and standing on a face: then it is between the walls, which a cube on the floor can only be

@@ -21,7 +21,7 @@ pub struct TaskState {
     pub object_xy_from_table_centre: [f64; 2],
     pub table_half_size: [f64; 2],
     /// The place task's facts (`None` for the lift task).
-    pub place: Option<crate::task::place::PlaceFacts>,
+    pub place: Option<PlaceFacts>,
 }
 
 /// Distance from the TCP to the object centre [m].
@@ -30,4 +30,17 @@ pub fn tcp_object_distance(s: &TaskState) -> f64 {
         .map(|i| (s.object[i] - s.tcp[i]).powi(2))
         .sum::<f64>()
         .sqrt()
+}
+
+/// The facts about the cube and the fixture a place step is judged on (world frame, [m]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlaceFacts {
+    /// The cube's centre in the fixture frame (x, y along its walls) [m].
+    pub offset_in_fixture: [f64; 2],
+    /// The cube's lowest corner above the table top [m].
+    pub bottom_above_table: f64,
+    /// The cube's tilt from standing on a face [rad].
+    pub tilt: f64,
+    /// The fixture's centre on the table top, world [m].
+    pub fixture: [f64; 3],
 }

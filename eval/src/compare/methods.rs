@@ -37,6 +37,22 @@ impl Method {
         Ok(Method::Learned(Box::new(loaded.remove(0))))
     }
 
+    /// Refuses a lift script on a place preset (`config`): there `open_loop` is the place
+    /// script, and the other script names mean nothing (the force search runs in `baseline
+    /// --script force_search` and in `compare`).
+    pub fn check_task(&self, config: &fairgrasp_env::EnvConfig) -> Result<(), CompareError> {
+        match self {
+            Method::Script(i) if *i > 0 && config.task.kind == fairgrasp_env::TaskKind::Place => {
+                Err(CompareError::Request(format!(
+                    "`{}` is a lift task's script; on a place preset the script is open_loop \
+                     (the place script)",
+                    SCRIPT_NAMES[*i]
+                )))
+            }
+            _ => Ok(()),
+        }
+    }
+
     /// The method's name as a comparison shows it.
     pub fn name(&self) -> String {
         match self {
