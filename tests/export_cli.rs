@@ -275,7 +275,7 @@ fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
     assert!(o.status.success(), "{}", stderr(&o));
     let o = fairgrasp(&dir, &["playback", "arm_only.json"]);
     assert!(
-        !o.status.success() && stderr(&o).contains("--gripper"),
+        !o.status.success() && stderr(&o).contains("--no-gripper"),
         "{}",
         stderr(&o)
     );

@@ -283,7 +283,7 @@ fn comparisons_episodes_and_run_metrics() {
     let episode = std::fs::read_dir(cmp.join("episodes"))
         .unwrap()
         .map(|e| e.unwrap().path())
-        .find(|p| p.extension().is_some_and(|e| e == "json"))
+        .find(|p| p.extension().is_some_and(|e| e == "gz"))
         .unwrap();
     let seed = std::fs::read(&episode).unwrap();
     let file = dir.join("episode.json");

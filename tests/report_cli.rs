@@ -44,6 +44,7 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
         "6",
         "--threads",
         "2",
+        "--verbose",
         "--out",
         out_dir.to_str().unwrap(),
     ]));
@@ -59,17 +60,18 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
         .map(|m| m.as_str().unwrap())
         .collect();
     assert_eq!(
-        methods[..4],
+        methods[..5],
         [
             "scripted baseline",
             "closed-loop script",
             "oracle script",
-            "script + calibration"
+            "script + calibration",
+            "script + tuned grip"
         ]
     );
     let learned = results.iter().filter(|r| !r["policy"].is_null()).count() / 2;
     assert!(learned >= 2, "{methods:?}");
-    assert_eq!(methods.len(), 4 + learned);
+    assert_eq!(methods.len(), 5 + learned);
     assert_eq!(results.len(), 2 * methods.len());
     // The paired tests: every learned method against every script on each preset, with the
     // discordant counts of the two result lists.
@@ -92,8 +94,8 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
     };
     let mut pairs = 0;
     for preset in ["fixed", "hard"] {
-        for l in &methods[4..] {
-            for s in &methods[..4] {
+        for l in &methods[5..] {
+            for s in &methods[..5] {
                 let (a, b) = (outcome_list(l, preset), outcome_list(s, preset));
                 let only_a = a.iter().zip(&b).filter(|(x, y)| **x && !**y).count();
                 let only_b = a.iter().zip(&b).filter(|(x, y)| !**x && **y).count();
@@ -220,16 +222,17 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
     let recorded = std::fs::read_dir(out_dir.join("episodes"))
         .unwrap()
         .map(|e| e.unwrap().path())
-        .find(|p| p.extension().is_some_and(|e| e == "json"))
+        .find(|p| p.extension().is_some_and(|e| e == "gz"))
         .unwrap();
     let refused = fairgrasp(&["plot", recorded.to_str().unwrap()]);
     assert_eq!(refused.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&refused.stderr).contains("inside the report folder"));
-    let episode = dir.join("episode_0005.json");
+    // A compare episode (gzipped JSON) is drawn under its name without `.json.gz`.
+    let episode = dir.join("episode_0005.json.gz");
     std::fs::copy(&recorded, &episode).unwrap();
     ok(&fairgrasp(&["plot", episode.to_str().unwrap()]));
-    assert!(episode.with_extension("png").is_file());
-    assert!(episode.with_extension("gif").is_file());
+    assert!(dir.join("episode_0005.png").is_file());
+    assert!(dir.join("episode_0005.gif").is_file());
 }
 
 #[test]
@@ -281,7 +284,7 @@ fn missing_or_wrong_folders_are_named_and_nothing_is_written() {
     assert_eq!(out.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
-        stderr.contains("loading the policy") && stderr.contains("meta.json"),
+        stderr.contains("--policy") && stderr.contains("meta.json"),
         "{stderr}"
     );
 }

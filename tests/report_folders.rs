@@ -231,7 +231,7 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
     // A still past the episode's end is refused before anything is drawn.
     let episode = names(&dir.join("cmp/episodes"))
         .into_iter()
-        .find(|n| n.ends_with(".json"))
+        .find(|n| n.ends_with(".json.gz"))
         .unwrap();
     let episode = format!("cmp/episodes/{episode}");
     let stderr = refused(&fairgrasp(&dir, &["plot", &episode, "--still", "100000"]));
@@ -254,7 +254,7 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
         first,
         "plot drew into the report"
     );
-    let added = dir.join(episode.replace(".json", "_step3.png"));
+    let added = dir.join(episode.replace(".json.gz", "_step3.png"));
     std::fs::write(&added, b"a still copied in by hand").unwrap();
     let stderr = refused(&compare(&["--force"]));
     assert!(stderr.contains("_step3.png (added since"), "{stderr}");

@@ -35,6 +35,8 @@ fn a_copied_binary_run_elsewhere_compares_the_built_in_policies_on_a_built_in_pr
         .env("TMPDIR", &tmp)
         .args([
             "compare",
+            "--policy",
+            "all",
             "--preset",
             "fixed",
             "--episodes",
@@ -65,6 +67,7 @@ fn a_copied_binary_run_elsewhere_compares_the_built_in_policies_on_a_built_in_pr
         "closed-loop script".into(),
         "oracle script".into(),
         "script + calibration".into(),
+        "script + tuned grip".into(),
     ];
     methods.extend(names.iter().map(|n| {
         let mode = n.split('_').next().unwrap();
@@ -75,7 +78,7 @@ fn a_copied_binary_run_elsewhere_compares_the_built_in_policies_on_a_built_in_pr
     // The learned policies are the shipped bytes, unpacked under TMPDIR: nothing is read from
     // the source tree the binary was built in.
     for (i, name) in names.iter().enumerate() {
-        let policy = PathBuf::from(v["results"][i + 4]["policy"].as_str().unwrap());
+        let policy = PathBuf::from(v["results"][i + 5]["policy"].as_str().unwrap());
         assert!(
             policy.starts_with(&tmp) && !policy.starts_with(repo().join("assets")),
             "{}",

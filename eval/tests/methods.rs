@@ -39,7 +39,7 @@ fn a_method_is_a_script_a_shipped_policy_a_checkpoint_or_a_run_folder() {
         Ok(_) => panic!("a folder without a checkpoint resolved"),
     };
     assert!(
-        e.contains("not a script (open_loop, closed_loop, oracle, calibrated)")
+        e.contains("not a script (open_loop, closed_loop, oracle, calibrated, tuned_grip)")
             && e.contains("residual_generalist")
             && e.contains("run folder"),
         "{e}"

@@ -12,7 +12,7 @@ import fairgrasp
 
 def test_python_policies_join_the_report_on_the_same_scenarios(tmp_path):
     out = tmp_path / "report"
-    policy = fairgrasp.load_policy("residual_nudged")
+    policy = fairgrasp.load_policy("residual_generalist")
     written = fairgrasp.compare(
         policies={"residual from Python": policy, "still": lambda obs: np.zeros(7)},
         presets=["nudged"], episodes=20, seed=5, out=out, threads=2)
@@ -20,7 +20,7 @@ def test_python_policies_join_the_report_on_the_same_scenarios(tmp_path):
     comparison = json.loads((out / "compare.json").read_text())
     assert comparison["methods"][-2:] == ["residual from Python", "still"]
     results = {r["method"]: r for r in comparison["results"]}
-    ours, shipped = results["residual from Python"], results["residual PPO: residual_nudged"]
+    ours, shipped = results["residual from Python"], results["residual PPO: residual_generalist"]
     # The same network on the same scenarios, once in Rust's compare and once from Python.
     assert [e["seed"] for e in ours["results"]] == [e["seed"] for e in shipped["results"]]
     assert [e["outcome"] for e in ours["results"]] == [e["outcome"] for e in shipped["results"]]
