@@ -192,19 +192,15 @@ pub fn write_report(
     Ok(written)
 }
 
-/// Charts and text for one comparison folder `dir`, named `shown` in the text.
-fn comparison_section(
-    doc: &mut Document,
-    (dir, shown, c, trajectories): (&Path, &Path, &Comparison, &[Trajectory]),
-    (out, prefix, threads): (&Path, &str, usize),
-    written: &mut Vec<String>,
-) -> Result<(), ReportError> {
+/// The comparison's opening: what was run, the pivot table and the leading paired tests.
+fn results_head(doc: &mut Document, c: &Comparison, out: &Path) -> Result<(), ReportError> {
     let episodes = c.results.first().map_or(0, |r| r.report.episodes);
     doc.markdown(format!(
         "## Comparison: {} on {}\n\nEach method ran on the *same* {episodes} seeded scenarios \
          per preset (cube position, yaw, friction, mass, joint noise drawn from the scenario \
          seed), so differences come from the methods, not from luck of the draw. Success means \
-         the cube was lifted and held; the interval is the 95 % Wilson score interval, which \
+         the cube was lifted and held (lift), or seated in the fixture and released \
+         (place); the interval is the 95 % Wilson score interval, which \
          stays honest near 0 % and 100 %.\n\nReproduce: `{}`",
         c.methods.join(", "),
         c.presets.join(", "),
@@ -229,6 +225,17 @@ fn comparison_section(
              equally good. Every other pair is in the appendix.\n\n{key}"
         ));
     }
+    Ok(())
+}
+
+/// Charts and text for one comparison folder `dir`, named `shown` in the text.
+fn comparison_section(
+    doc: &mut Document,
+    (dir, shown, c, trajectories): (&Path, &Path, &Comparison, &[Trajectory]),
+    (out, prefix, threads): (&Path, &str, usize),
+    written: &mut Vec<String>,
+) -> Result<(), ReportError> {
+    results_head(doc, c, out)?;
     let charts = draw_comparison_charts(c, trajectories, out, prefix, threads)?;
     written.push(charts.success.clone());
     doc.image(

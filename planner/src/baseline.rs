@@ -20,7 +20,7 @@ pub use crate::correction::CloseTiming;
 use crate::correction::{TaskCorrection, corrected, joint_offset};
 pub use crate::grasp::PlannedObject;
 use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
-use crate::motion::{JointTrajectory, MotionLimits};
+use crate::motion::{JointTrajectory, MotionLimits, tracking_action};
 pub use crate::phase::Phase;
 
 /// Settings of the scripted grasp.
@@ -287,11 +287,16 @@ impl ScriptedGrasp {
         let t = self.steps_in_phase as f64 * self.step_dt;
         let q_now = self.with(&traj.sample(t).0, &self.applied);
         let q_next = self.with(&traj.sample(t + self.step_dt).0, &self.correction);
-        for i in 0..6 {
-            let feedforward = (q_next[i] - q_now[i]) / self.step_dt;
-            let feedback = self.config.feedback_gain * (q_now[i] - obs.joints[i]);
-            a[i] = ((feedforward + feedback) / self.action_scale).clamp(-1.0, 1.0);
-        }
+        let gain = self.config.feedback_gain;
+        let joints = tracking_action(
+            &q_now,
+            &q_next,
+            &obs.joints,
+            gain,
+            self.step_dt,
+            self.action_scale,
+        );
+        a[..6].copy_from_slice(&joints);
         Action(a)
     }
 

@@ -87,3 +87,22 @@ impl JointTrajectory {
         )
     }
 }
+
+/// The joint part of a velocity action that follows a reference from `q_now` to `q_next` [rad]
+/// over one env step of `dt` [s]: the reference's velocity plus `gain` [1/s] times the measured
+/// joints' (`q`) lag behind `q_now`, in units of the action's `scale` [rad/s], each clipped to
+/// [−1, 1]. The scripts' one tracking law.
+pub fn tracking_action(
+    q_now: &[f64; 6],
+    q_next: &[f64; 6],
+    q: &[f64; 6],
+    gain: f64,
+    dt: f64,
+    scale: f64,
+) -> [f64; 6] {
+    std::array::from_fn(|i| {
+        let feedforward = (q_next[i] - q_now[i]) / dt;
+        let feedback = gain * (q_now[i] - q[i]);
+        ((feedforward + feedback) / scale).clamp(-1.0, 1.0)
+    })
+}

@@ -16,7 +16,7 @@ use fairgrasp_kinematics::ArmModel;
 
 use crate::baseline::{BaselineConfig, Phase, ScriptedGrasp};
 use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
-use crate::motion::{JointTrajectory, MotionLimits};
+use crate::motion::{JointTrajectory, MotionLimits, tracking_action};
 use crate::place_search::{ForceSearch, SearchParams};
 
 /// The cube's bottom above the pocket's floor when the gripper opens [m].
@@ -192,11 +192,16 @@ impl ScriptedPlace {
             let t = self.steps_in_phase as f64 * self.step_dt;
             let (q_now, _, _) = traj.sample(t);
             let (q_next, _, _) = traj.sample(t + self.step_dt);
-            for i in 0..6 {
-                let feedforward = (q_next[i] - q_now[i]) / self.step_dt;
-                let feedback = self.config.feedback_gain * (q_now[i] - obs.joints[i]);
-                a[i] = ((feedforward + feedback) / self.action_scale).clamp(-1.0, 1.0);
-            }
+            let gain = self.config.feedback_gain;
+            let (dt, scale) = (self.step_dt, self.action_scale);
+            a[..6].copy_from_slice(&tracking_action(
+                &q_now,
+                &q_next,
+                &obs.joints,
+                gain,
+                dt,
+                scale,
+            ));
         }
         Action(a)
     }
@@ -294,10 +299,9 @@ impl Policy for ScriptedPlace {
             (PlacePhase::Search, Some(search)) => {
                 let target = search.step(obs, &self.model, &self.mount.table_in_base);
                 let mut a = [gripper; 7];
-                for i in 0..6 {
-                    let v = (target[i] - obs.joints[i]) / self.step_dt;
-                    a[i] = (v / self.action_scale).clamp(-1.0, 1.0);
-                }
+                let q = &obs.joints;
+                let joints = tracking_action(q, &target, q, 0.0, self.step_dt, self.action_scale);
+                a[..6].copy_from_slice(&joints);
                 Action(a)
             }
             _ => self.follow(obs, gripper),

@@ -200,6 +200,63 @@ impl EnvConfig {
             s.cube_friction,
             "must be in [0, 10]",
         )?;
+        self.validate_task()?;
+        self.validate_randomization()?;
+        self.validate_families()
+    }
+
+    /// The randomisation's ranges and noise levels (`[randomization]`; the families' fields are
+    /// `validate_families`').
+    fn validate_randomization(&self) -> Result<(), ConfigError> {
+        let r = &self.randomization;
+        check_range(&r.radius, "randomization.radius", 0.0)?;
+        check_range(&r.angle, "randomization.angle", -std::f64::consts::PI)?;
+        if let Some(f) = &r.friction {
+            check_range(f, "randomization.friction", 0.0)?;
+        }
+        if let Some(m) = &r.mass_scale {
+            check_range(m, "randomization.mass_scale", 0.0)?;
+            check(
+                m[0] > 0.0,
+                "randomization.mass_scale",
+                m,
+                "must be positive",
+            )?;
+        }
+        // Noise beyond these puts the start joints or the observed cube outside anything a
+        // scenario means (the workspace is 0.25–0.45 m from the base).
+        for (value, field, bound, rule) in [
+            (
+                r.joint_noise,
+                "randomization.joint_noise",
+                0.5,
+                "must be in [0, 0.5] rad (default 0.05 on the randomised presets)",
+            ),
+            (
+                r.observed_position_noise,
+                "randomization.observed_position_noise",
+                0.2,
+                "must be in [0, 0.2] m (hard: 0.01)",
+            ),
+            (
+                r.observed_yaw_noise,
+                "randomization.observed_yaw_noise",
+                std::f64::consts::PI,
+                "must be in [0, π] rad (hard: 0.1745, 10°)",
+            ),
+        ] {
+            check(
+                value.is_finite() && (0.0..=bound).contains(&value),
+                field,
+                value,
+                rule,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// The task's fields (`[task]`, the staged reward's weights, `[task.place]`).
+    fn validate_task(&self) -> Result<(), ConfigError> {
         let t = &self.task;
         check(
             (1..=MAX_EPISODE_STEPS).contains(&t.max_steps),
@@ -281,50 +338,6 @@ impl EnvConfig {
             "staged",
             "the staged reward is the lift task's (reach, grasp, lift): with task.kind = \"place\" use \"seed\"",
         )?;
-        let r = &self.randomization;
-        check_range(&r.radius, "randomization.radius", 0.0)?;
-        check_range(&r.angle, "randomization.angle", -std::f64::consts::PI)?;
-        if let Some(f) = &r.friction {
-            check_range(f, "randomization.friction", 0.0)?;
-        }
-        if let Some(m) = &r.mass_scale {
-            check_range(m, "randomization.mass_scale", 0.0)?;
-            check(
-                m[0] > 0.0,
-                "randomization.mass_scale",
-                m,
-                "must be positive",
-            )?;
-        }
-        // Noise beyond these puts the start joints or the observed cube outside anything a
-        // scenario means (the workspace is 0.25–0.45 m from the base).
-        for (value, field, bound, rule) in [
-            (
-                r.joint_noise,
-                "randomization.joint_noise",
-                0.5,
-                "must be in [0, 0.5] rad (default 0.05 on the randomised presets)",
-            ),
-            (
-                r.observed_position_noise,
-                "randomization.observed_position_noise",
-                0.2,
-                "must be in [0, 0.2] m (hard: 0.01)",
-            ),
-            (
-                r.observed_yaw_noise,
-                "randomization.observed_yaw_noise",
-                std::f64::consts::PI,
-                "must be in [0, π] rad (hard: 0.1745, 10°)",
-            ),
-        ] {
-            check(
-                value.is_finite() && (0.0..=bound).contains(&value),
-                field,
-                value,
-                rule,
-            )?;
-        }
-        self.validate_families()
+        Ok(())
     }
 }

@@ -12,6 +12,7 @@ use serde::Serialize;
 use crate::cell::mount::Mount;
 use crate::config::EnvConfig;
 use crate::scenario::graspable::top_down_grasp;
+use crate::scenario::noise::gauss;
 
 /// The fixture's pose in one scenario: the pocket's centre on the table top, table frame.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -25,18 +26,6 @@ pub struct FixturePose {
     /// (`task.place.observed_position_noise`, `observed_yaw_noise`).
     pub observed_xy_error: [f64; 2],
     pub observed_yaw_error: f64,
-}
-
-/// A draw from N(0, σ²) (0 without noise; no draw is taken then, so a noise-free config's
-/// fixtures are those drawn before the noise existed).
-fn gauss(rng: &mut ChaCha8Rng, sigma: f64) -> f64 {
-    if sigma > 0.0 {
-        rand_distr::Normal::new(0.0, sigma)
-            .map(|n| rand_distr::Distribution::sample(&n, rng))
-            .unwrap_or(0.0)
-    } else {
-        0.0
-    }
 }
 
 /// Fixture poses tried before a scenario is given up.

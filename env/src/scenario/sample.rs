@@ -5,13 +5,15 @@ use std::f64::consts::TAU;
 use fairgrasp_kinematics::Pose;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
 use serde::Serialize;
 
 use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
-use crate::config::EnvConfig;
+use crate::config::{EnvConfig, TaskKind};
+use crate::scenario::fixture::{FixturePose, draw_fixture};
 use crate::scenario::graspable::top_down_grasp;
+use crate::scenario::noise::gauss;
+use fairgrasp_kinematics::ArmModel;
 
 /// Redraws allowed before a scenario is given up as ungraspable.
 const MAX_DRAWS: usize = 1000;
@@ -43,7 +45,7 @@ pub struct Scenario {
     /// episode of a config), applied to what is observed.
     pub camera_offset: Option<crate::scenario::families::CameraOffset>,
     /// Where the place task's fixture stands (`None` for the lift task).
-    pub fixture: Option<crate::scenario::fixture::FixturePose>,
+    pub fixture: Option<FixturePose>,
 }
 
 /// The object pose in `base_link` for a scenario: resting on the table top at `xy` in the table
@@ -120,14 +122,12 @@ impl Scenario {
             observed_yaw_error: 0.0,
             nudge: None,
             camera_offset: None,
-            fixture: (config.task.kind == crate::config::TaskKind::Place).then_some(
-                crate::scenario::fixture::FixturePose {
-                    xy: config.task.place.fixture_xy,
-                    yaw: 0.0,
-                    observed_xy_error: [0.0; 2],
-                    observed_yaw_error: 0.0,
-                },
-            ),
+            fixture: (config.task.kind == TaskKind::Place).then_some(FixturePose {
+                xy: config.task.place.fixture_xy,
+                yaw: 0.0,
+                observed_xy_error: [0.0; 2],
+                observed_yaw_error: 0.0,
+            }),
         }
     }
 
@@ -167,41 +167,17 @@ impl Scenario {
             });
             let mass = config.scene.cube_mass
                 * r.mass_scale.map_or(1.0, |m| rng.random_range(m[0]..=m[1]));
-            let noise = Normal::new(0.0, r.joint_noise.max(1e-12)).expect("positive sigma");
-            let mut start_joints = config.arm.home_joints;
-            if r.joint_noise > 0.0 {
-                for (q, spec) in start_joints.iter_mut().zip(&model.joints) {
-                    *q = (*q + noise.sample(&mut rng)).clamp(spec.lower, spec.upper);
-                }
-            }
-            let gauss = |rng: &mut ChaCha8Rng, sigma: f64| {
-                if sigma > 0.0 {
-                    Normal::new(0.0, sigma).expect("positive sigma").sample(rng)
-                } else {
-                    0.0
-                }
-            };
+            let start_joints = noisy_home(config, model, &mut rng);
             let p = r.observed_position_noise;
             // Perception noise lies on the table plane: the cube's height is known.
             let observed_position_error = [gauss(&mut rng, p), gauss(&mut rng, p), 0.0];
             let observed_yaw_error = gauss(&mut rng, r.observed_yaw_noise);
             let pose = mount.resting_object_in_base(object_xy, object_yaw, config.scene.cube_size);
-            let fixture = match config.task.kind {
-                crate::config::TaskKind::Lift => None,
-                crate::config::TaskKind::Place => {
-                    match crate::scenario::fixture::draw_fixture(
-                        config,
-                        model,
-                        &mount,
-                        seed,
-                        object_xy,
-                        &start_joints,
-                    ) {
-                        Some(f) => Some(f),
-                        None if r.position => continue,
-                        None => break,
-                    }
+            let Ok(fixture) = fixture_for(config, cell, seed, object_xy, &start_joints) else {
+                if r.position {
+                    continue; // another cube position may leave room for the fixture
                 }
+                break;
             };
             if top_down_grasp(model, &mount, &pose, &start_joints).is_some() {
                 let nudge = r.nudge.as_ref().and_then(|n| {
@@ -242,6 +218,42 @@ impl Scenario {
             base_height_above_table: mount.base_height_above_table(),
             base_tilt: mount.tilt(),
         })
+    }
+}
+
+/// The home joints with `randomization.joint_noise` added, each within its limits [rad].
+fn noisy_home(config: &EnvConfig, model: &ArmModel, rng: &mut ChaCha8Rng) -> [f64; 6] {
+    let sigma = config.randomization.joint_noise;
+    let mut q = config.arm.home_joints;
+    if sigma > 0.0 {
+        for (q, spec) in q.iter_mut().zip(&model.joints) {
+            *q = (*q + gauss(rng, sigma)).clamp(spec.lower, spec.upper);
+        }
+    }
+    q
+}
+
+/// The place task's fixture for a cube starting at `object_xy` (`Ok(None)` for the lift task);
+/// `Err` when no fixture pose fits beside this cube.
+fn fixture_for(
+    config: &EnvConfig,
+    cell: &Cell,
+    seed: u64,
+    object_xy: [f64; 2],
+    start_joints: &[f64; 6],
+) -> Result<Option<FixturePose>, ()> {
+    match config.task.kind {
+        TaskKind::Lift => Ok(None),
+        TaskKind::Place => draw_fixture(
+            config,
+            &cell.model,
+            &cell.mount,
+            seed,
+            object_xy,
+            start_joints,
+        )
+        .map(Some)
+        .ok_or(()),
     }
 }
 

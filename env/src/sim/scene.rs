@@ -142,14 +142,8 @@ fn insert_robot_collider(
     parts.insert(h, part);
 }
 
-/// Builds the world with the arm at `q`, the fingers open and the cube at `cube_pose` (world).
-pub fn build(
-    config: &EnvConfig,
-    model: &ArmModel,
-    base_in_world: &Pose,
-    q: &[f64; 6],
-    cube_pose: &Isometry3<f64>,
-) -> (PhysicsWorld, SceneHandles) {
+/// An empty world with gravity along −z and the config's integration parameters.
+fn new_world(config: &EnvConfig) -> PhysicsWorld {
     let mut world = PhysicsWorld::new();
     world.gravity = Vector::new(0.0, 0.0, -9.81);
     let ip = &mut world.integration_parameters;
@@ -160,11 +154,20 @@ pub fn build(
     // the cube slides millimetres along the pads. Always recompute them.
     ip.contact_recycling = false;
     ip.warmstart_joints = true;
-    let mut parts = ColliderParts::default();
-    let s = &config.scene;
+    world
+}
 
-    // Table: a fixed box whose top is at table_height, centred under the arm base.
-    let base_xy = base_in_world.xyz();
+/// Inserts the table (a fixed box whose top is at `scene.table_height`, centred under the base
+/// at `base_xy`, world) and the cube at `cube_pose` (world); returns the table's collider, the
+/// cube's body and its collider.
+fn insert_table_and_cube(
+    world: &mut PhysicsWorld,
+    parts: &mut ColliderParts,
+    config: &EnvConfig,
+    base_xy: [f64; 3],
+    cube_pose: &Isometry3<f64>,
+) -> (ColliderHandle, RigidBodyHandle, ColliderHandle) {
+    let s = &config.scene;
     let table_body = world.bodies.insert(RigidBodyBuilder::fixed());
     let (half, centre) = table_box(config, [base_xy[0], base_xy[1]]);
     let table = ColliderBuilder::cuboid(half[0] as f32, half[1] as f32, half[2] as f32)
@@ -175,8 +178,6 @@ pub fn build(
         .colliders
         .insert_with_parent(table, table_body, &mut world.bodies);
     parts.insert(table_collider, Part::Table);
-
-    // Cube.
     let cube = world.bodies.insert(
         RigidBodyBuilder::dynamic()
             .pose(to_rapier(cube_pose))
@@ -191,10 +192,26 @@ pub fn build(
         .colliders
         .insert_with_parent(cube_collider, cube, &mut world.bodies);
     parts.insert(cube_collider, Part::Cube);
+    (table_collider, cube, cube_collider)
+}
 
+/// Builds the world with the arm at `q`, the fingers open and the cube at `cube_pose` (world).
+pub fn build(
+    config: &EnvConfig,
+    model: &ArmModel,
+    base_in_world: &Pose,
+    q: &[f64; 6],
+    cube_pose: &Isometry3<f64>,
+) -> (PhysicsWorld, SceneHandles) {
+    let mut world = new_world(config);
+    let mut parts = ColliderParts::default();
+    let base_xy = base_in_world.xyz();
+    let (table_collider, cube, cube_collider) =
+        insert_table_and_cube(&mut world, &mut parts, config, base_xy, cube_pose);
     // The place task's fixture, beside the arm until a scenario moves it.
     let fixture = (config.task.kind == crate::config::TaskKind::Place).then(|| {
         let p = config.task.place.fixture_xy;
+        let s = &config.scene;
         let at = Isometry3::translation(p[0] + base_xy[0], p[1] + base_xy[1], s.table_height);
         crate::sim::fixture::insert_fixture(&mut world, &mut parts, config, to_rapier(&at))
     });
