@@ -68,3 +68,37 @@ fn ik_reaches_the_fk_pose_of_the_reported_wrist_singularity() {
     let solutions = v["solutions"].as_array().map_or(0, Vec::len);
     assert!(solutions >= 1, "{text}");
 }
+
+/// A negative number after a flag is a number, refused by the flag's range with a message naming
+/// the flag and the range (it used to be "unexpected argument '-0' found"), and a count too large
+/// to finish is refused where it is parsed (`compare --episodes 4294967295` used to run for hours,
+/// `scene --seeds 18446744073709551615` never returned). The preset does not exist, so a command
+/// that took the number fails on the preset, fast, with the wrong message.
+#[test]
+fn negative_numbers_and_endless_counts_are_refused_by_range_naming_the_flag() {
+    for (args, range) in [
+        (&["bench", "soak", "--noise", "-0.5"][..], "[0, 1]"),
+        (
+            &["baseline", "--script", "tuned_grip", "--grip-force", "-3"][..],
+            "(0, 100]",
+        ),
+        (&["baseline", "--episodes", "-5"][..], "1..=1000000"),
+        (&["compare", "--episodes", "4294967295"][..], "1..=1000000"),
+        (
+            &["scene", "--seeds", "18446744073709551615"][..],
+            "0..=1000000",
+        ),
+        (&["scene", "--seed", "-1"][..], "0..=9007199254740991"),
+    ] {
+        let mut argv = args.to_vec();
+        argv.extend(["--preset", "no_such_preset"]);
+        let out = fairgrasp(&argv);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let flag = args.iter().rev().nth(1).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(&format!("'{flag} ")) && stderr.contains(range),
+            "{args:?}: {stderr}"
+        );
+    }
+}

@@ -1,5 +1,6 @@
 //! Argument pieces shared by several subcommands, and number formatting.
 
+use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
@@ -152,6 +153,51 @@ pub fn positive_seconds(text: &str) -> Result<f64, String> {
         return Err(format!("{text}: must be a positive number of seconds"));
     }
     Ok(value)
+}
+
+/// The most scenarios one command runs, records or checks [scenarios]: 10⁶ (`eval` and
+/// `baseline` had this cap first; `compare` runs it for every method and preset). Every count of episodes, scenarios or resets on the command line is bounded by it where it is
+/// parsed, and every index into a scenario set by it minus one.
+pub const MAX_EPISODES: u32 = 1_000_000;
+
+/// The largest seed on the command line: 2⁵³ − 1, the largest integer every reader of the
+/// files a seed is written into keeps exact (JavaScript's numbers in replay.html, TOML's i64 in
+/// a run's config.toml). Larger seeds would be stored as another seed.
+pub const MAX_SEED: u64 = (1 << 53) - 1;
+
+/// Parses a whole number within `range` (clap value parser); the message gives the range, as
+/// clap's own range checks do (`-1 is not in 0..=1000000`), a negative number included.
+pub fn whole_number_in(text: &str, range: RangeInclusive<u64>) -> Result<u64, String> {
+    let (lo, hi) = (range.start(), range.end());
+    let t = text.trim();
+    let digits = t.strip_prefix(['-', '+']).unwrap_or(t);
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(format!("{text:?} is not a whole number in {lo}..={hi}"));
+    }
+    match t.parse::<u64>() {
+        Ok(n) if range.contains(&n) => Ok(n),
+        _ => Err(format!("{t} is not in {lo}..={hi}")),
+    }
+}
+
+/// Parses a count of episodes (scenarios), 1–[`MAX_EPISODES`] (clap value parser).
+pub fn episode_count(text: &str) -> Result<u32, String> {
+    whole_number_in(text, 1..=u64::from(MAX_EPISODES)).map(|n| n as u32)
+}
+
+/// Parses a count of scenarios that may be 0 (none), 0–[`MAX_EPISODES`] (clap value parser).
+pub fn scenario_count(text: &str) -> Result<usize, String> {
+    whole_number_in(text, 0..=u64::from(MAX_EPISODES)).map(|n| n as usize)
+}
+
+/// Parses an index into a scenario set, 0–[`MAX_EPISODES`] − 1 (clap value parser).
+pub fn scenario_index(text: &str) -> Result<usize, String> {
+    whole_number_in(text, 0..=u64::from(MAX_EPISODES) - 1).map(|n| n as usize)
+}
+
+/// Parses a seed, 0–[`MAX_SEED`] (clap value parser).
+pub fn seed(text: &str) -> Result<u64, String> {
+    whole_number_in(text, 0..=MAX_SEED)
 }
 
 /// Parses a worker-thread count, 1–256 (clap value parser).

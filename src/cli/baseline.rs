@@ -28,11 +28,12 @@ fn preset_help() -> String {
 pub struct ScenarioArgs {
     #[arg(long, default_value = "seed", help = preset_help())]
     pub preset: String,
-    /// Episodes (scenarios) to run.
-    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    /// Episodes (scenarios) to run, 1–1000000.
+    #[arg(long, default_value_t = 100, value_parser = crate::cli::args::episode_count)]
     pub episodes: u32,
-    /// Seed of the scenario set: the same seed gives the same scenarios for every policy.
-    #[arg(long, default_value_t = 0)]
+    /// Seed of the scenario set, 0–9007199254740991 (2⁵³ − 1): the same seed gives the same scenarios for
+    /// every policy.
+    #[arg(long, default_value_t = 0, value_parser = crate::cli::args::seed)]
     pub seed: u64,
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]

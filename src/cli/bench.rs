@@ -7,6 +7,8 @@ use fairgrasp_bench::env::{EnvBenchSpec, bench_env};
 use fairgrasp_env::EnvConfig;
 use fairgrasp_types::ArmSimulation;
 
+use super::args::whole_number_in;
+
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     #[command(subcommand)]
@@ -30,8 +32,9 @@ enum BenchWhat {
 
 #[derive(Args, Debug)]
 pub struct PpoBenchArgs {
-    /// PPO iterations to time (each: 512 steps × 4 envs, 10 epochs of minibatches of 64).
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
+    /// PPO iterations to time, 1–1000 (each: 512 steps × 4 envs, 10 epochs of minibatches of
+    /// 64).
+    #[arg(long, default_value_t = 3, value_parser = |t: &str| whole_number_in(t, 1..=1000).map(|n| n as u32))]
     iterations: u32,
     /// Preset or env config (.toml) of the training phase (e.g. one with `[physics]
     /// free_space = false` to time always-simulated training).
@@ -47,21 +50,21 @@ pub struct EnvBenchArgs {
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
     arm: ArmSimulation,
-    /// Threads stepping environments in parallel.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=64))]
+    /// Threads stepping environments in parallel, 1–64.
+    #[arg(long, default_value_t = 1, value_parser = |t: &str| whole_number_in(t, 1..=64).map(|n| n as u16))]
     threads: u16,
-    /// Environments per thread (a PPO rollout steps several; 1 measures the sync overhead).
-    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u16).range(1..=64))]
+    /// Environments per thread, 1–64 (a PPO rollout steps several; 1 measures the sync overhead).
+    #[arg(long, default_value_t = 4, value_parser = |t: &str| whole_number_in(t, 1..=64).map(|n| n as u16))]
     envs_per_thread: u16,
-    /// Steps of each environment (each 20 physics steps of 1/240 s by default).
-    #[arg(long, default_value_t = 5000, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Steps of each environment, 1–1000000 (each 20 physics steps of 1/240 s by default).
+    #[arg(long, default_value_t = 5000, value_parser = |t: &str| whole_number_in(t, 1..=1_000_000).map(|n| n as u32))]
     steps: u32,
     /// Preset or env config (.toml) to bench. Default: the default scene with the cube's
     /// position and yaw randomised.
     #[arg(long)]
     preset: Option<String>,
-    /// Resets timed for each of soft and hard reset.
-    #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Resets timed for each of soft and hard reset, 1–100000.
+    #[arg(long, default_value_t = 50, value_parser = |t: &str| whole_number_in(t, 1..=100_000).map(|n| n as u32))]
     resets: u32,
     /// Print one JSON object instead of text.
     #[arg(long)]
@@ -70,11 +73,11 @@ pub struct EnvBenchArgs {
 
 #[derive(Args, Debug)]
 pub struct IkBenchArgs {
-    /// Random reachable poses per arm.
-    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    /// Random reachable poses per arm, 1–1000000.
+    #[arg(long, default_value_t = 10_000, value_parser = |t: &str| whole_number_in(t, 1..=1_000_000).map(|n| n as u32))]
     poses: u32,
-    /// Seed of the poses and starts.
-    #[arg(long, default_value_t = 0)]
+    /// Seed of the poses and starts, 0–9007199254740991 (2⁵³ − 1).
+    #[arg(long, default_value_t = 0, value_parser = super::args::seed)]
     seed: u64,
     /// Bench this URDF's chain instead of the built-in FR3, FR5 and 7-joint arm.
     #[arg(long, value_name = "FILE")]

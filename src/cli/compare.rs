@@ -27,8 +27,8 @@ pub struct CompareArgs {
     /// miscalibrated_b, nudged, wrist_camera) and the contact family (heavy_slippery).
     #[arg(long = "preset", value_name = "NAME")]
     presets: Vec<String>,
-    /// Episodes (scenarios) per preset; every method gets the same ones.
-    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Episodes (scenarios) per preset, 1–1000000; every method gets the same ones.
+    #[arg(long, default_value_t = 100, value_parser = super::args::episode_count)]
     episodes: u32,
     /// Learned policies; repeat for several: a shipped policy's name (residual_nudged, …), a
     /// policy folder (assets/policies/NAME), a checkpoint folder or a run folder (its
@@ -40,14 +40,14 @@ pub struct CompareArgs {
     /// tuned for the preset.
     #[arg(long = "policy", value_name = "NAME|DIR|all")]
     policies: Vec<String>,
-    /// Seed of the scenario sets.
-    #[arg(long, default_value_t = 0)]
+    /// Seed of the scenario sets, 0–9007199254740991 (2⁵³ − 1).
+    #[arg(long, default_value_t = 0, value_parser = super::args::seed)]
     seed: u64,
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
     arm: ArmSimulation,
     /// Worker threads, 1–256 (default: one per core).
-    #[arg(long)]
+    #[arg(long, value_parser = super::args::thread_count)]
     threads: Option<usize>,
     /// Output folder: compare.csv, compare.json, charts, replays, report.md, report.ipynb. It
     /// must be new or empty, or (with --force) one an earlier `fairgrasp compare` or `report`
@@ -62,14 +62,16 @@ pub struct CompareArgs {
     /// nothing is replaced). A folder fairgrasp did not write is never replaced.
     #[arg(long)]
     force: bool,
-    /// Scenario index (on the last preset) recorded for the episode charts and replays.
-    /// Default: the first one where the first two methods end differently, else 0.
-    #[arg(long, value_name = "K")]
+    /// Scenario index (on the last preset) recorded for the episode charts and replays,
+    /// 0–999999 (and below --episodes). Default: the first one where the first two methods end
+    /// differently, else 0.
+    #[arg(long, value_name = "K", value_parser = super::args::scenario_index)]
     episode: Option<usize>,
     /// Scenarios of every preset recorded for every method for the 3D replay (replay.html):
     /// the first N of each set, and the first where the baseline and the first learned policy
-    /// end differently (on the last preset, the --episode one). 0: no replay.
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_REPLAY_EPISODES)]
+    /// end differently (on the last preset, the --episode one), 0–1000000. 0: no replay.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_REPLAY_EPISODES,
+          value_parser = super::args::scenario_count)]
     replay_episodes: usize,
     /// Print compare.json on stdout instead of the table.
     #[arg(long)]

@@ -32,12 +32,12 @@ pub struct EpisodeArgs {
     /// [default: seed; playback: the file's].
     #[arg(long)]
     pub preset: Option<String>,
-    /// Index of the scenario in the preset's seeded set (the episode `compare --seed S` calls N)
-    /// [default: 0; playback: the file's].
-    #[arg(long, value_name = "N")]
+    /// Index of the scenario in the preset's seeded set, 0–999999 (the episode `compare --seed
+    /// S` calls N) [default: 0; playback: the file's].
+    #[arg(long, value_name = "N", value_parser = super::args::scenario_index)]
     pub episode: Option<usize>,
-    /// Seed of the scenario set [default: 0; playback: the file's].
-    #[arg(long)]
+    /// Seed of the scenario set, 0–9007199254740991 (2⁵³ − 1) [default: 0; playback: the file's].
+    #[arg(long, value_parser = super::args::seed)]
     pub seed: Option<u64>,
     /// The real cell's mount: base_link in the world, x y z [m] roll pitch yaw (radians, or
     /// degrees with --deg), as in `fairgrasp frames`; replaces the preset's `[arm]` mount.

@@ -40,8 +40,8 @@ pub struct IkArgs {
     /// steps within the joint limits, from --current).
     #[arg(long)]
     qp: bool,
-    /// Seed of the QP solver's random restarts.
-    #[arg(long, default_value_t = 0)]
+    /// Seed of the QP solver's random restarts, 0–9007199254740991 (2⁵³ − 1).
+    #[arg(long, default_value_t = 0, value_parser = super::args::seed)]
     seed: u64,
     #[command(flatten)]
     out: OutputArgs,

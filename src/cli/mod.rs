@@ -91,7 +91,7 @@ impl Cli {
     /// words after it up to the next flag: a word that starts with `-` ends the list unless it
     /// is a number (`-1e-12`, `-0.5`), so flags may follow the list as they follow any other.
     pub fn try_parse_from_args(argv: Vec<OsString>) -> Result<Cli, clap::Error> {
-        let mut command = Cli::command();
+        let mut command = negative_numbers_are_values(Cli::command());
         let subcommand = argv
             .iter()
             .skip(1)
@@ -129,6 +129,21 @@ impl Cli {
     }
 }
 
+/// `command` with every flag that takes a value, in every subcommand, taking a negative number
+/// as its value: `--noise -0.5` or `--episodes -5` is then refused by the flag's range, naming
+/// the flag and the range, where clap would call `-0` an unexpected argument.
+fn negative_numbers_are_values(command: clap::Command) -> clap::Command {
+    command
+        .mut_args(|a| {
+            if a.get_action().takes_values() {
+                a.allow_negative_numbers(true)
+            } else {
+                a
+            }
+        })
+        .mut_subcommands(negative_numbers_are_values)
+}
+
 /// Is `word` a value of a list of numbers (not a flag)? A word that does not start with `-`, or
 /// a negative number; a word that is not a number is a value too, which the list's parser then
 /// refuses naming it.
@@ -155,5 +170,111 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Replay(a) => replay::run(&a),
         Command::Export(a) => export::run(&a),
         Command::Playback(a) => playback::run(&a),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::any::TypeId;
+
+    use clap::CommandFactory;
+    use clap::error::ErrorKind;
+
+    use super::Cli;
+
+    /// The subcommand path, `--long` name and help text of every flag that parses an integer.
+    fn integer_flags(
+        command: &clap::Command,
+        path: &[String],
+        out: &mut Vec<(Vec<String>, String, String)>,
+    ) {
+        let integers = [
+            TypeId::of::<u8>(),
+            TypeId::of::<u16>(),
+            TypeId::of::<u32>(),
+            TypeId::of::<u64>(),
+            TypeId::of::<usize>(),
+        ];
+        for arg in command.get_arguments() {
+            let id = arg.get_value_parser().type_id();
+            if let Some(long) = arg.get_long()
+                && integers.iter().any(|t| id == *t)
+            {
+                let help = arg
+                    .get_long_help()
+                    .or(arg.get_help())
+                    .map(|h| h.to_string())
+                    .unwrap_or_default();
+                out.push((path.to_vec(), format!("--{long}"), help));
+            }
+        }
+        for sub in command.get_subcommands() {
+            let mut deeper = path.to_vec();
+            deeper.push(sub.get_name().to_string());
+            integer_flags(sub, &deeper, out);
+        }
+    }
+
+    /// The first `A–B` of whole numbers in `help`.
+    fn stated_range(help: &str) -> Option<(u64, u64)> {
+        help.match_indices('–').find_map(|(at, dash)| {
+            let before = &help[..at];
+            let start = before
+                .rfind(|c: char| !c.is_ascii_digit())
+                .map_or(0, |i| i + 1);
+            let after = &help[at + dash.len()..];
+            let end = after
+                .find(|c: char| !c.is_ascii_digit())
+                .unwrap_or(after.len());
+            Some((before[start..].parse().ok()?, after[..end].parse().ok()?))
+        })
+    }
+
+    /// Parses `path flag value`: `Err` with the message when the value is refused by its range
+    /// (a missing required flag, or any other complaint, means the value itself was taken).
+    fn value_refused(path: &[String], flag: &str, value: &str) -> Result<(), String> {
+        let mut argv: Vec<std::ffi::OsString> = vec!["fairgrasp".into()];
+        argv.extend(path.iter().map(Into::into));
+        argv.extend([flag.into(), value.into()]);
+        match Cli::try_parse_from_args(argv) {
+            Err(e) if e.kind() == ErrorKind::ValueValidation => Err(e.render().to_string()),
+            _ => Ok(()),
+        }
+    }
+
+    /// Every count and seed on the command line is bounded where it is parsed, and its `--help`
+    /// says the bound: the help states `A–B`, B is taken, B + 1, A − 1 (a negative number when
+    /// A = 0, parsed as a number, not a flag) and 2⁶⁴ − 1 are refused by a message naming the
+    /// flag and the range `A..=B`. `compare --episodes 4294967295` (hours) and `scene --seeds 18446744073709551615`
+    /// (never returns) used to be taken.
+    #[test]
+    fn every_integer_flag_states_its_range_and_refuses_values_outside_it() {
+        let mut flags = Vec::new();
+        integer_flags(&Cli::command(), &[], &mut flags);
+        assert!(flags.len() >= 20, "{} integer flags found", flags.len());
+        for (path, flag, help) in &flags {
+            let at = format!("{} {flag}", path.join(" "));
+            let (lo, hi) = stated_range(help)
+                .unwrap_or_else(|| panic!("{at}: its help states no range A–B: {help:?}"));
+            assert!(lo <= hi, "{at}: {lo}–{hi}");
+            assert_eq!(
+                value_refused(path, flag, &hi.to_string()),
+                Ok(()),
+                "{at}: the help's upper bound {hi} is refused"
+            );
+            let below = if lo == 0 {
+                "-1".to_string()
+            } else {
+                (lo - 1).to_string()
+            };
+            for bad in [(hi + 1).to_string(), below, u64::MAX.to_string()] {
+                let message = value_refused(path, flag, &bad)
+                    .expect_err(&format!("{at} {bad}: taken, outside {lo}–{hi}"));
+                assert!(
+                    message.contains(flag.as_str()) && message.contains(&format!("{lo}..={hi}")),
+                    "{at} {bad}: {message}"
+                );
+            }
+        }
     }
 }

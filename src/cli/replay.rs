@@ -28,11 +28,11 @@ pub struct ReplayArgs {
     #[arg(long, default_value = "seed")]
     preset: String,
     /// Index of the scenario in the preset's seeded set (the same scenario `fairgrasp compare
-    /// --seed S` calls episode N).
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    /// --seed S` calls episode N), 0–999999.
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = super::args::scenario_index)]
     episode: usize,
-    /// Seed of the scenario set.
-    #[arg(long, default_value_t = 0)]
+    /// Seed of the scenario set, 0–9007199254740991 (2⁵³ − 1).
+    #[arg(long, default_value_t = 0, value_parser = super::args::seed)]
     seed: u64,
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]

@@ -10,6 +10,14 @@ use fairgrasp_report::charts::{curves, episode, replay};
 use fairgrasp_report::trajectory::{self, Trajectory};
 use fairgrasp_report::{Existing, RunFolder, build_report};
 
+/// Parses `--still`: a step of an episode, 0–[`MAX_EPISODE_STEPS`] − 1 (clap value parser).
+///
+/// [`MAX_EPISODE_STEPS`]: fairgrasp_env::config::validate::MAX_EPISODE_STEPS
+fn still_step(text: &str) -> Result<usize, String> {
+    let last = fairgrasp_env::config::validate::MAX_EPISODE_STEPS as u64 - 1;
+    super::args::whole_number_in(text, 0..=last).map(|n| n as usize)
+}
+
 #[derive(Args, Debug)]
 pub struct PlotArgs {
     /// Training run folders (from `fairgrasp train`: metrics.csv, config.toml), drawn together
@@ -25,8 +33,9 @@ pub struct PlotArgs {
     out: Option<PathBuf>,
     /// Also write one replay frame at this step as <episode>_step<N>.png (for documents that
     /// cannot show GIFs). Steps are numbered from 0; a step past an episode's last one is
-    /// refused (the error gives the range) before anything is drawn.
-    #[arg(long, value_name = "STEP")]
+    /// refused (the error gives the range) before anything is drawn; 0–99999 (an episode's
+    /// longest, `task.max_steps`, is 100000 steps).
+    #[arg(long, value_name = "STEP", value_parser = still_step)]
     still: Option<usize>,
     /// Write the episode charts, replays and stills into this folder (created if missing)
     /// instead of beside each episode file; needed for an episode inside a report folder,

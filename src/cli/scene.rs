@@ -17,12 +17,13 @@ pub struct SceneArgs {
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
     arm: ArmSimulation,
-    /// Reset seed of the scene shown in detail.
-    #[arg(long, default_value_t = 0)]
+    /// Reset seed of the scene shown in detail, 0–9007199254740991 (2⁵³ − 1).
+    #[arg(long, default_value_t = 0, value_parser = super::args::seed)]
     seed: u64,
-    /// Also check this many resets (seeds 0..N) and count those that start in a collision.
-    #[arg(long, default_value_t = 0)]
-    seeds: u64,
+    /// Also check this many resets (seeds 0..N), 0–1000000, and count those that start in a
+    /// collision.
+    #[arg(long, default_value_t = 0, value_parser = super::args::scenario_count)]
+    seeds: usize,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -30,7 +31,7 @@ pub struct SceneArgs {
 
 pub fn run(a: &SceneArgs) -> anyhow::Result<ExitCode> {
     let config = preset_config(&a.preset, a.arm)?;
-    let d = diagnose_scene(&config, a.seed, a.seeds)?;
+    let d = diagnose_scene(&config, a.seed, a.seeds as u64)?;
     let bad_now = d.start_is_bad();
     if a.json {
         let mut v = serde_json::to_value(&d)?;

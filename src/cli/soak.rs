@@ -15,14 +15,14 @@ use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
 #[derive(Args, Debug)]
 pub struct SoakArgs {
-    /// Env steps per preset.
-    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(1..=1_000_000_000))]
+    /// Env steps per preset, 1–1000000000.
+    #[arg(long, default_value_t = 1_000_000, value_parser = |t: &str| super::args::whole_number_in(t, 1..=1_000_000_000))]
     steps: u64,
     /// Presets to soak (default: every shipped preset).
     #[arg(long = "preset", value_name = "NAME")]
     presets: Vec<String>,
-    /// Seed of the random actions and the scenarios.
-    #[arg(long, default_value_t = 0)]
+    /// Seed of the random actions and the scenarios, 0–9007199254740991 (2⁵³ − 1).
+    #[arg(long, default_value_t = 0, value_parser = super::args::seed)]
     seed: u64,
     /// Where actions come from: `script` (the scripted grasp plus uniform noise of ±--noise:
     /// grasps, lifts, drops and pushes, so contacts are exercised) or `random` (uniform in

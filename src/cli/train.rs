@@ -27,11 +27,11 @@ pub struct TrainArgs {
     /// aside to DIR.replaced-N, never deleted. A folder that is not a run's is refused even so.
     #[arg(long, conflicts_with = "resume")]
     force: bool,
-    /// Override the config's seed (a --resume without it keeps the run's seed).
-    #[arg(long)]
+    /// Override the config's seed, 0–9007199254740991 (2⁵³ − 1) (a --resume without it keeps the run's seed).
+    #[arg(long, value_parser = crate::cli::args::seed)]
     seed: Option<u64>,
-    /// Override the config's total_timesteps.
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000_000_000))]
+    /// Override the config's total_timesteps, 1–10000000000.
+    #[arg(long, value_parser = |t: &str| crate::cli::args::whole_number_in(t, 1..=10_000_000_000))]
     timesteps: Option<u64>,
     /// Override the config's max_wall_time_s: stop after this many seconds of this invocation.
     #[arg(long, value_name = "SECONDS", value_parser = crate::cli::args::positive_seconds)]
