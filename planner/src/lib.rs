@@ -8,7 +8,8 @@
 //! - [`phase`]: [`Phase`], where the script is (plan, approach, descend, close, lift, hold).
 //! - [`place`]: [`ScriptedPlace`], the place task's open-loop script (the grasp, then carry,
 //!   lower, release, retreat); [`place_search`]: the force-guided search that replaces the
-//!   lower in the engineer's control.
+//!   lower in the engineer's control; [`place_residual`]: [`PlaceResidual`], what a residual
+//!   policy corrects that search through.
 //! - [`closed_loop`]: [`ClosedLoopGrasp`], the closed-loop script (re-plans, retries once) and
 //!   the oracle (the same on the true cube pose).
 //! - [`calibrated`]: [`CalibratedScript`], the open-loop script after a (simulated) camera
@@ -29,6 +30,7 @@ pub mod grasp;
 pub mod motion;
 pub mod phase;
 pub mod place;
+pub mod place_residual;
 pub mod place_search;
 pub mod residual;
 pub mod stream;
@@ -39,6 +41,7 @@ pub use calibrated::{CalibratedScript, CameraCalibration};
 pub use closed_loop::{ClosedLoopConfig, ClosedLoopGrasp, CubeSource};
 pub use correction::{CorrectionLimits, TaskCorrection};
 pub use place::ScriptedPlace;
+pub use place_residual::PlaceResidual;
 pub use place_search::SearchParams;
 pub use residual::{OracleResidual, ResidualScript};
 pub use tuned_grip::TunedGripScript;

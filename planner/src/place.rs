@@ -14,7 +14,10 @@ use fairgrasp_env::episode::{Outcome, Policy};
 use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 use fairgrasp_kinematics::ArmModel;
 
+use fairgrasp_env::scenario::perception::ObservedObject;
+
 use crate::baseline::{BaselineConfig, Phase, ScriptedGrasp};
+use crate::correction::TaskCorrection;
 use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
 use crate::motion::{JointTrajectory, MotionLimits, tracking_action};
 use crate::place_search::{ForceSearch, SearchParams};
@@ -89,6 +92,10 @@ pub struct ScriptedPlace {
     search_params: Option<SearchParams>,
     search: Option<ForceSearch>,
     wall_height: f64,
+    /// The fixture as observed when the place was planned.
+    planned_fixture: Option<ObservedObject>,
+    /// A residual's correction of the search ([`crate::place_residual`]); zero otherwise.
+    correction: TaskCorrection,
 }
 
 impl ScriptedPlace {
@@ -119,6 +126,8 @@ impl ScriptedPlace {
             search_params: None,
             search: None,
             wall_height: env.task.place.wall_height,
+            planned_fixture: None,
+            correction: TaskCorrection::ZERO,
         }
     }
 
@@ -134,6 +143,29 @@ impl ScriptedPlace {
     /// Where the script is.
     pub fn place_phase(&self) -> PlacePhase {
         self.phase
+    }
+
+    /// The running force-guided search (None before it starts, and without one).
+    pub fn search(&self) -> Option<&ForceSearch> {
+        self.search.as_ref()
+    }
+
+    /// The fixture as observed when the place was planned (None before).
+    pub fn planned_fixture(&self) -> Option<ObservedObject> {
+        self.planned_fixture
+    }
+
+    /// The correction the search's offset gets from now on (a residual's; zero otherwise).
+    pub fn set_search_correction(&mut self, c: TaskCorrection) {
+        self.correction = c;
+        if let Some(search) = &mut self.search {
+            search.set_correction(c);
+        }
+    }
+
+    /// The correction set by [`ScriptedPlace::set_search_correction`].
+    pub fn search_correction(&self) -> TaskCorrection {
+        self.correction
     }
 
     /// The carry, place and retreat joints for the fixture in `obs`, from the arm's joints.
@@ -235,6 +267,8 @@ impl Policy for ScriptedPlace {
         self.trajectory = None;
         self.gave_up = None;
         self.search = None;
+        self.planned_fixture = None;
+        self.correction = TaskCorrection::ZERO;
     }
 
     fn act(&mut self, obs: &Observation) -> Action {
@@ -245,6 +279,7 @@ impl Policy for ScriptedPlace {
             match self.plan(obs) {
                 Some(t) => {
                     self.targets = Some(t);
+                    self.planned_fixture = obs.fixture;
                     self.enter(PlacePhase::Carry, obs, Some(t.pre_grasp));
                 }
                 None => {
@@ -262,13 +297,15 @@ impl Policy for ScriptedPlace {
         match (self.phase, targets) {
             (PlacePhase::Carry, Some(t)) if arrived => match self.search_params {
                 Some(params) => {
-                    self.search = Some(ForceSearch::new(
+                    let mut search = ForceSearch::new(
                         params,
                         t.pre_grasp,
                         CARRY_HEIGHT,
                         self.wall_height,
                         self.step_dt,
-                    ));
+                    );
+                    search.set_correction(self.correction);
+                    self.search = Some(search);
                     self.enter(PlacePhase::Search, obs, None);
                 }
                 None => self.enter(PlacePhase::Lower, obs, Some(t.grasp)),

@@ -80,6 +80,12 @@ pub struct ForceSearch {
     /// The xy offset of the spiral when the press gave way [m, table frame].
     found_xy: [f64; 2],
     step_dt: f64,
+    /// A residual's correction added to the search's own offset (zero for the engineer's
+    /// search; [`crate::place_residual`]).
+    correction: TaskCorrection,
+    /// The offset the last step commanded: xy in the table plane, then depth below the carry
+    /// pose [m].
+    last: [f64; 3],
 }
 
 impl ForceSearch {
@@ -101,6 +107,34 @@ impl ForceSearch {
             stage: Stage::Descend { depth: 0.0 },
             found_xy: [0.0; 2],
             step_dt,
+            correction: TaskCorrection::ZERO,
+            last: [0.0; 3],
+        }
+    }
+
+    /// Adds `c` to the search's own offset from the next step on (a residual's correction).
+    pub fn set_correction(&mut self, c: TaskCorrection) {
+        self.correction = c;
+    }
+
+    /// The search's own offset at the last step: xy in the table plane and the depth below the
+    /// carry pose [m] (without the correction).
+    pub fn last_offset(&self) -> [f64; 3] {
+        self.last
+    }
+
+    /// The depth below the carry pose where the cube sits just above the floor [m].
+    pub fn floor_depth(&self) -> f64 {
+        self.floor_depth
+    }
+
+    /// The stage as an index: 0 descend, 1 spiral, 2 insert, 3 done.
+    pub fn stage_index(&self) -> usize {
+        match self.stage {
+            Stage::Descend { .. } => 0,
+            Stage::Spiral { .. } => 1,
+            Stage::Insert { .. } => 2,
+            Stage::Done => 3,
         }
     }
 
@@ -190,9 +224,15 @@ impl ForceSearch {
             }
             Stage::Done => (self.found_xy, self.floor_depth),
         };
+        self.last = [xy[0], xy[1], depth];
+        let k = &self.correction;
         let c = TaskCorrection {
-            offset: [xy[0], xy[1], -depth],
-            yaw: 0.0,
+            offset: [
+                xy[0] + k.offset[0],
+                xy[1] + k.offset[1],
+                k.offset[2] - depth,
+            ],
+            yaw: k.yaw,
         };
         corrected(model, table_in_base, &self.carry, &c)
     }

@@ -127,6 +127,8 @@ fn a_task_residual_trains_and_its_checkpoint_reloads() {
 
 #[test]
 fn input_names_match_the_input_and_a_mask_prefix_must_name_some() {
+    let lift = presets::load("seed").unwrap();
+    let place = presets::load("place").unwrap();
     for agent in [
         task_residual(),
         AgentConfig::default(),
@@ -135,17 +137,27 @@ fn input_names_match_the_input_and_a_mask_prefix_must_name_some() {
             ..AgentConfig::default()
         },
     ] {
-        assert_eq!(agent.input_names().len(), agent.input_dim(), "{agent:?}");
+        for env in [&lift, &place] {
+            let names = agent.input_names(env);
+            assert_eq!(names.len(), agent.input_dim(), "{agent:?}");
+        }
     }
     let agent = task_residual();
-    let wrist = agent.input_indices("wrist").unwrap();
+    let wrist = agent.input_indices(&lift, "wrist").unwrap();
     assert_eq!(
         wrist,
         (OBS_DIM + 14..OBS_DIM + FEATURE_DIM).collect::<Vec<_>>()
     );
-    let e = agent.input_indices("wirst").unwrap_err();
+    // On the place task the same prefix names the wrist force.
+    let force = agent.input_indices(&place, "wrist").unwrap();
+    assert_eq!(force, (OBS_DIM + 6..OBS_DIM + 9).collect::<Vec<_>>());
+    let e = agent.input_indices(&lift, "wirst").unwrap_err();
     assert!(e.contains("wirst") && e.contains("wrist_valid"), "{e}");
-    assert!(AgentConfig::default().input_indices("wrist").is_err());
+    assert!(
+        AgentConfig::default()
+            .input_indices(&lift, "wrist")
+            .is_err()
+    );
 }
 
 #[test]
@@ -155,7 +167,7 @@ fn masking_the_wrist_view_changes_nothing_before_the_wrist_camera_sees_the_cube(
     let mut env = GraspEnv::new(config.clone()).unwrap();
     let s = &scenario_set(&config, 3, 1).unwrap()[0];
     let (meta, model) = fresh(task_residual(), false);
-    let wrist = meta.agent.input_indices("wrist").unwrap();
+    let wrist = meta.agent.input_indices(&config, "wrist").unwrap();
     let mut plain = agent_policy(&meta, &model, &config);
     let mut masked = agent_policy(&meta, &model, &config).with_masked_inputs(wrist);
     let (mut obs, _) = env.reset_to(s);

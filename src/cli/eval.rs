@@ -43,10 +43,11 @@ pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
     let (meta, actor) =
         load_actor(&policy).context("loading the policy (pass --policy NAME to choose one)")?;
     let mut masked = Vec::new();
+    let env = super::baseline::preset_config(&a.scenarios.preset, a.scenarios.arm)?;
     for prefix in &a.mask_input {
         let found = meta
             .agent
-            .input_indices(prefix)
+            .input_indices(&env, prefix)
             .map_err(|e| anyhow::anyhow!("--mask-input {prefix}: {e}"))?;
         masked.extend(found);
     }

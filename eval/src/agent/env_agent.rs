@@ -112,6 +112,7 @@ pub fn script_input_bounds(
             b.push((-turned, turned));
             b
         }
+        Some(Script::Place(_)) => fairgrasp_planner::place_residual::feature_bounds().to_vec(),
     }
 }
 
@@ -147,6 +148,17 @@ pub fn output_names(agent: &AgentConfig, env: &EnvConfig) -> Vec<String> {
             if agent.squeeze { "squeeze" } else { "unused_4" },
             "unused_5",
             "close_timing",
+        ]
+        .map(String::from)
+        .to_vec(),
+        Some(Script::Place(_)) => [
+            "search_offset_x",
+            "search_offset_y",
+            "search_offset_z",
+            "search_offset_yaw",
+            "unused_4",
+            "unused_5",
+            "unused_6",
         ]
         .map(String::from)
         .to_vec(),

@@ -13,7 +13,7 @@
 //! ([`fairgrasp_env::robot::tcp_action::TaskSpaceAction`]).
 
 use fairgrasp_env::cell::Cell;
-use fairgrasp_env::config::{ActionSpace, GripperCommand, TcpSaturation};
+use fairgrasp_env::config::{ActionSpace, GripperCommand, TaskKind, TcpSaturation};
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::robot::tcp_action::TaskSpaceAction;
 use fairgrasp_env::{Action, EnvConfig, Observation};
@@ -168,10 +168,12 @@ impl AgentConfig {
         }
     }
 
-    /// The names of the policy input's entries, in order: the observation's
-    /// ([`fairgrasp_env::env::obs::OBS_NAMES`]), then the script's part (`baseline_action_0` … `_6`,
-    /// or [`fairgrasp_planner::residual::FEATURE_NAMES`]).
-    pub fn input_names(&self) -> Vec<String> {
+    /// The names of the policy input's entries on the env of `env`, in order: the
+    /// observation's ([`fairgrasp_env::env::obs::OBS_NAMES`]), then the script's part
+    /// (`baseline_action_0` … `_6`, or the task script's features:
+    /// [`fairgrasp_planner::residual::FEATURE_NAMES`] on the lift task,
+    /// [`fairgrasp_planner::place_residual::FEATURE_NAMES`] on the place task).
+    pub fn input_names(&self, env: &EnvConfig) -> Vec<String> {
         let mut names: Vec<String> = fairgrasp_env::env::obs::OBS_NAMES
             .iter()
             .map(|n| n.to_string())
@@ -182,20 +184,20 @@ impl AgentConfig {
                 names.extend((0..ACT_DIM).map(|i| format!("baseline_action_{i}")));
             }
             (Mode::Residual, ActionSpace::Tcp) => {
-                names.extend(
-                    fairgrasp_planner::residual::FEATURE_NAMES
-                        .iter()
-                        .map(|n| n.to_string()),
-                );
+                let features = match env.task.kind {
+                    TaskKind::Lift => fairgrasp_planner::residual::FEATURE_NAMES,
+                    TaskKind::Place => fairgrasp_planner::place_residual::FEATURE_NAMES,
+                };
+                names.extend(features.iter().map(|n| n.to_string()));
             }
         }
         names
     }
 
-    /// The input entries whose names start with `prefix` (an ablation masks them), or an error
-    /// listing the names.
-    pub fn input_indices(&self, prefix: &str) -> Result<Vec<usize>, String> {
-        let names = self.input_names();
+    /// The input entries whose names start with `prefix` on the env of `env` (an ablation
+    /// masks them), or an error listing the names.
+    pub fn input_indices(&self, env: &EnvConfig, prefix: &str) -> Result<Vec<usize>, String> {
+        let names = self.input_names(env);
         let found: Vec<usize> = (0..names.len())
             .filter(|&i| !prefix.is_empty() && names[i].starts_with(prefix))
             .collect();
@@ -282,10 +284,14 @@ impl AgentConfig {
         }
     }
 
-    /// The script for residual mode (None in pure mode).
+    /// The script for residual mode (None in pure mode): on a place preset, a task-space
+    /// residual corrects the force-guided search (its squeeze is not used there).
     pub fn script(&self, env: &EnvConfig) -> Option<Script> {
         match self.mode {
             Mode::Pure => None,
+            Mode::Residual if self.task_residual() && env.task.kind == TaskKind::Place => {
+                Some(Script::place(env))
+            }
             Mode::Residual if self.task_residual() => Some(Script::task(env, self.squeeze)),
             Mode::Residual => Some(Script::joint(env)),
         }

@@ -7,17 +7,20 @@
 //!   is the rate of a task-space correction the script's reference follows, and the close's
 //!   timing ([`fairgrasp_planner::residual`]); the script's phase, the cube's motion since the
 //!   plan and the correction so far are appended to the policy input.
+//! - [`Script::Place`] (`action_space = "tcp"` on a place preset): the same on the place task,
+//!   correcting the force-guided search ([`fairgrasp_planner::place_residual`]).
 
 use fairgrasp_env::episode::Outcome;
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::{Action, EnvConfig, Observation};
 use fairgrasp_planner::residual::{FEATURE_DIM, ResidualScript};
-use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
+use fairgrasp_planner::{BaselineConfig, PlaceResidual, ScriptedGrasp};
 
 /// One env's script.
 pub enum Script {
     Joint(Box<ScriptedGrasp>),
     Task(Box<ResidualScript>),
+    Place(Box<PlaceResidual>),
 }
 
 impl Script {
@@ -32,10 +35,15 @@ impl Script {
         Script::Task(Box::new(if squeeze { r.squeezing(env) } else { r }))
     }
 
+    /// The place task's residual interface on the force-guided search.
+    pub fn place(env: &EnvConfig) -> Script {
+        Script::Place(Box::new(PlaceResidual::new(env)))
+    }
+
     /// The grip force per finger [N] the task script's squeeze asks for (None otherwise).
     pub fn grip_force(&self) -> Option<f64> {
         match self {
-            Script::Joint(_) => None,
+            Script::Joint(_) | Script::Place(_) => None,
             Script::Task(r) => r.grip_force(),
         }
     }
@@ -44,6 +52,7 @@ impl Script {
         match self {
             Script::Joint(b) => (**b).reset(seed),
             Script::Task(r) => r.reset(seed),
+            Script::Place(r) => r.reset(seed),
         }
     }
 
@@ -53,7 +62,7 @@ impl Script {
     pub fn prepare(&mut self, obs: &Observation) -> Option<Action> {
         match self {
             Script::Joint(b) => Some((**b).act(obs)),
-            Script::Task(_) => None,
+            Script::Task(_) | Script::Place(_) => None,
         }
     }
 
@@ -67,13 +76,8 @@ impl Script {
                     *slot = v;
                 }
             }
-            Script::Task(r) => {
-                let mut f = [0.0; FEATURE_DIM];
-                r.write_features(obs, &mut f);
-                for (slot, v) in out.iter_mut().zip(f) {
-                    *slot = v as f32;
-                }
-            }
+            Script::Task(r) => write_features(|f| r.write_features(obs, f), out),
+            Script::Place(r) => write_features(|f| r.write_features(obs, f), out),
         }
     }
 
@@ -82,11 +86,8 @@ impl Script {
     pub fn act_on(&mut self, obs: &Observation, policy: &[f32]) -> Option<Action> {
         match self {
             Script::Joint(_) => None,
-            Script::Task(r) => {
-                let a: [f64; 7] =
-                    std::array::from_fn(|i| policy.get(i).copied().unwrap_or(0.0) as f64);
-                Some(r.act(obs, &a))
-            }
+            Script::Task(r) => Some(r.act(obs, &policy_action(policy))),
+            Script::Place(r) => Some(r.act(obs, &policy_action(policy))),
         }
     }
 
@@ -95,6 +96,7 @@ impl Script {
         match self {
             Script::Joint(b) => (**b).phase().name(),
             Script::Task(r) => r.script().phase().name(),
+            Script::Place(r) => r.phase(),
         }
     }
 
@@ -103,6 +105,21 @@ impl Script {
         match self {
             Script::Joint(b) => (**b).gave_up(),
             Script::Task(r) => r.script().gave_up(),
+            Script::Place(r) => r.gave_up(),
         }
     }
+}
+
+/// The features `write` fills, as policy input values into `out`.
+fn write_features(write: impl FnOnce(&mut [f64; FEATURE_DIM]), out: &mut [f32]) {
+    let mut f = [0.0; FEATURE_DIM];
+    write(&mut f);
+    for (slot, v) in out.iter_mut().zip(f) {
+        *slot = v as f32;
+    }
+}
+
+/// The policy's output as the 7 values a task-space script reads (a missing one counts as 0).
+fn policy_action(policy: &[f32]) -> [f64; 7] {
+    std::array::from_fn(|i| policy.get(i).copied().unwrap_or(0.0) as f64)
 }
