@@ -3,7 +3,11 @@ policy ``fairgrasp.evaluate`` and ``fairgrasp.compare`` take (held-out scenarios
 ``fairgrasp eval --seed``, with Rust's 95 % Wilson intervals), and one line of a result."""
 
 import os
-import tomllib
+
+try:
+    import tomllib  # Python 3.11+
+except ModuleNotFoundError:  # Python 3.10, the package's oldest: the same parser, from PyPI
+    import tomli as tomllib
 
 import numpy as np
 

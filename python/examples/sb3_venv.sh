@@ -11,7 +11,7 @@ venv="${1:-$root/target/sb3-venv}"
 if ! [[ -x "$venv/bin/python" ]] || ! "$venv/bin/python" -c "import torch, stable_baselines3" 2>/dev/null; then
     python3 -m venv "$venv"
     "$venv/bin/pip" install --quiet --disable-pip-version-check \
-        "torch==2.15.0" "stable-baselines3==2.9.2" "maturin==1.16.0"
+        "torch==2.15.0" "stable-baselines3==2.9.2" "maturin==1.16.0" "tomli==2.4.1; python_version < '3.11'"
 fi
 lib="$root/target/debug/deps/lib_native.so"
 site="$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"

@@ -21,19 +21,24 @@ from .policy import evaluate
 
 
 def _method(value):
+    """``(policy, keyword arguments of evaluate)`` of a method given as a policy or a dict."""
     if isinstance(value, dict):
-        unknown = set(value) - {"policy", "recipe", "agent"}
+        unknown = set(value) - {"policy", "recipe", "agent", "vec_normalize"}
         if unknown or "policy" not in value:
-            raise ValueError(f"a method given as a dict has the keys policy, recipe, agent; got {sorted(value)}")
-        return value["policy"], value.get("recipe"), value.get("agent")
-    return value, None, None
+            raise ValueError(
+                f"a method given as a dict has the keys policy, recipe, agent, vec_normalize; got {sorted(value)}"
+            )
+        extra = {k: value[k] for k in ("recipe", "agent", "vec_normalize") if k in value}
+        return value["policy"], extra
+    return value, {}
 
 
 def compare(policies=None, presets=None, episodes=100, seed=0, out="report", *, force=False,
             arm="servo", threads=None, shipped=True):
     """Writes the comparison report folder ``out`` with ``policies`` (``{"name": policy}``, a
     policy being anything ``fairgrasp.evaluate`` takes, or ``{"policy": p, "recipe": r,
-    "agent": a}`` for a model trained on a recipe's env) beside the scripts and the shipped
+    "agent": a, "vec_normalize": v}`` for a model trained on a recipe's env, ``v`` the
+    ``VecNormalize`` it was trained behind when the model does not carry it) beside the scripts and the shipped
     policies. ``presets``: default ``fairgrasp compare``'s. ``out`` must be new, empty, or (with
     ``force=True``) a report fairgrasp wrote. Returns the files written (relative to ``out``).
 
@@ -45,10 +50,10 @@ def compare(policies=None, presets=None, episodes=100, seed=0, out="report", *, 
     _native.check_compare(presets, int(episodes), int(seed), out, bool(force), arm, threads)
     methods = []
     for name, value in policies.items():
-        policy, recipe, agent = _method(value)
+        policy, extra = _method(value)
         results = []
         for preset in presets:
-            r = evaluate(policy, preset, episodes, seed, arm=arm, recipe=recipe, agent=agent, name=name)
+            r = evaluate(policy, preset, episodes, seed, arm=arm, name=name, **extra)
             results.append([preset, r["records"]])
         origin = getattr(policy, "name", None) or type(policy).__name__
         methods.append({"name": str(name), "policy": f"python: {origin}", "results": results})

@@ -70,9 +70,38 @@ def load_policy(name_or_folder):
     return RustPolicy(name_or_folder)
 
 
-def _actor(policy):
+#: ``vec_normalize`` not given: take an SB3 model's own (``model.get_vec_normalize_env()``).
+FROM_MODEL = "from the model"
+
+
+def _normalizer(policy, vec_normalize):
+    """The observation normaliser an SB3 model was trained behind, or None: ``vec_normalize`` if
+    given (None: none), else the model's own. A model without its env (``PPO.load`` without
+    ``env=``) is refused: whether it was trained behind ``VecNormalize`` cannot be known, and
+    unnormalised inputs would evaluate it wrongly without a word."""
+    if vec_normalize is not FROM_MODEL:
+        return vec_normalize
+    if not hasattr(policy, "get_vec_normalize_env"):
+        return None
+    found = policy.get_vec_normalize_env()
+    if found is None and getattr(policy, "env", None) is None:
+        raise ValueError(
+            f"policy {type(policy).__name__}: an SB3 model without its env, so its VecNormalize "
+            "statistics (if it was trained behind VecNormalize) are unknown; pass "
+            "vec_normalize=VecNormalize.load(path, venv) (in compare: {'policy': model, "
+            "'vec_normalize': ...}), or vec_normalize=None if it was trained without one"
+        )
+    return found
+
+
+def _actor(policy, vec_normalize=FROM_MODEL):
     if hasattr(policy, "predict"):
-        return lambda obs: policy.predict(obs, deterministic=True)[0]
+        normalizer = _normalizer(policy, vec_normalize)
+        if normalizer is None:
+            return lambda obs: policy.predict(obs, deterministic=True)[0]
+        return lambda obs: policy.predict(normalizer.normalize_obs(obs[None, :])[0], deterministic=True)[0]
+    if vec_normalize is not FROM_MODEL and vec_normalize is not None:
+        raise ValueError("vec_normalize= is for an SB3 model (an object with predict)")
     if callable(policy):
         return policy
     raise TypeError(f"policy {policy!r}: expected an object with predict(obs) or a callable obs -> action")
@@ -92,7 +121,7 @@ def _env_for(policy, preset, arm, recipe, agent):
 
 
 def evaluate(policy, preset="seed", episodes=100, seed=0, *, arm="servo", recipe=None, agent=None,
-             name=None):
+             name=None, vec_normalize=FROM_MODEL):
     """Plays ``episodes`` scenarios of ``preset`` (the list ``fairgrasp eval --seed seed`` plays)
     with ``policy`` and returns a dict: ``success_rate``, ``successes``, ``episodes``, the 95 %
     Wilson interval ``ci_low`` / ``ci_high``, ``outcomes`` (counts by Rust's outcome names) and
@@ -100,10 +129,13 @@ def evaluate(policy, preset="seed", episodes=100, seed=0, *, arm="servo", recipe
 
     The env: a ``load_policy`` policy's own; else the env of ``recipe`` (the one an SB3 model was
     trained on, ``agent`` laid over it) as evaluations use it; else the preset's plain env.
+    An SB3 model sees the observations through the ``VecNormalize`` it was trained behind: its own
+    (``model.get_vec_normalize_env()``), or ``vec_normalize`` (None: none); a model loaded
+    without its env and without ``vec_normalize`` is refused (ValueError).
     A policy that raises, or returns a wrong shape or a non-finite action, raises
     ``PolicyError`` naming the policy, the preset, the scenario and the step."""
     label = name or getattr(policy, "name", None) or type(policy).__name__
-    act = _actor(policy)
+    act = _actor(policy, vec_normalize)
     env = _env_for(policy, preset, arm, recipe, agent)
     shape = env.action_space.shape
     seeds = _native.scenario_seeds(preset, int(seed), int(episodes), arm)

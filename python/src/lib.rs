@@ -88,6 +88,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(preset_names, m)?)?;
     m.add_function(wrap_pyfunction!(setup::recipe_names, m)?)?;
     m.add_function(wrap_pyfunction!(setup::recipe_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(setup::task_residual_recipe, m)?)?;
     #[cfg(feature = "train")]
     m.add_function(wrap_pyfunction!(train::train, m)?)?;
     m.add("HAS_TRAIN", cfg!(feature = "train"))?;

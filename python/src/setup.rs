@@ -112,7 +112,7 @@ impl Setup {
         let mut names: Vec<String> = OBS_NAMES.iter().map(|n| n.to_string()).collect();
         let (mut low, mut high) = (space.low.clone(), space.high.clone());
         if let Some(agent) = &self.agent {
-            names = agent.input_names();
+            names = agent.input_names(&self.config);
             let bound = |name: &str| {
                 let i = OBS_NAMES.iter().position(|n| *n == name).unwrap_or(0);
                 space.high[i..i + 3]
@@ -153,6 +153,16 @@ impl Setup {
 #[pyfunction]
 pub(crate) fn recipe_names() -> Vec<&'static str> {
     recipes::names()
+}
+
+/// The shipped recipe of the task-space residual for the shipped preset `preset`
+/// (`fairgrasp_eval::recipes::task_residual_recipe`); an unknown preset is a ValueError.
+#[pyfunction]
+pub(crate) fn task_residual_recipe(preset: &str) -> PyResult<&'static str> {
+    let config = fairgrasp_env::config::presets::load(preset)
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    let place = config.task.kind == fairgrasp_env::config::TaskKind::Place;
+    Ok(recipes::task_residual_recipe(preset, place))
 }
 
 /// The keys a recipe override may have.

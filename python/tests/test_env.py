@@ -112,3 +112,15 @@ def test_render_returns_the_replay_view_as_rgb():
     assert frame.shape == (500, 960, 3) and frame.dtype == np.uint8
     assert (frame < 200).any(), "nothing drawn"
     assert fairgrasp.FairGraspEnv(preset="seed").render() is None
+
+
+def test_each_preset_has_a_task_space_residual_id_named_for_what_it_corrects():
+    from fairgrasp.registration import residual_id
+
+    lift = gym.make(residual_id("nudged")).unwrapped
+    assert lift.preset == "nudged"
+    assert "cube_moved_x" in lift.obs_names and lift.action_names[0] == "offset_x"
+    place = gym.make("FairGrasp-Residual-PlaceGraspError-v0").unwrapped
+    assert place.preset == "place_grasp_error"
+    assert "wrist_force_z" in place.obs_names and place.action_names[0] == "search_offset_x"
+    check_env(place, skip_render_check=True)

@@ -57,3 +57,50 @@ def test_evaluate_takes_a_callable_and_names_a_bad_policy():
         with pytest.raises(fairgrasp.PolicyError, match="preset 'seed', episode 0") as e:
             fairgrasp.evaluate(policy, "seed", episodes=2, seed=0, name="bad")
         assert words in str(e.value) and "policy 'bad'" in str(e.value) and "step 0" in str(e.value)
+
+
+class _FakeSb3:
+    """An object with Stable-Baselines3's model API (``predict``, ``env``,
+    ``get_vec_normalize_env``), recording the observations it is shown."""
+
+    def __init__(self, env=None, normalizer=None):
+        self.env = env
+        self._normalizer = normalizer
+        self.seen = []
+
+    def get_vec_normalize_env(self):
+        return self._normalizer
+
+    def predict(self, obs, state=None, episode_start=None, deterministic=True):
+        self.seen.append(np.array(obs))
+        return np.zeros(7), None
+
+
+class _Shift:
+    """A VecNormalize stand-in: ``normalize_obs`` subtracts 1000 (a batch of one)."""
+
+    def normalize_obs(self, batch):
+        return batch - 1000.0
+
+
+def test_an_sb3_model_sees_observations_through_its_vec_normalize_or_is_refused():
+    first = fairgrasp._native.scenario_seeds("seed", 3, 1, "servo")[0]
+    raw = fairgrasp.FairGraspEnv(preset="seed").reset(seed=first)[0]
+    # The model's own statistics (trained behind VecNormalize, its env attached).
+    own = _FakeSb3(env=object(), normalizer=_Shift())
+    fairgrasp.evaluate(own, "seed", episodes=1, seed=3)
+    np.testing.assert_allclose(own.seen[0], raw - 1000.0)
+    # Statistics given for a model loaded without its env.
+    given = _FakeSb3()
+    fairgrasp.evaluate(given, "seed", episodes=1, seed=3, vec_normalize=_Shift())
+    np.testing.assert_allclose(given.seen[0], raw - 1000.0)
+    # A model loaded without its env: refused, unless told it had no VecNormalize.
+    with pytest.raises(ValueError, match="VecNormalize"):
+        fairgrasp.evaluate(_FakeSb3(), "seed", episodes=1, seed=3)
+    plain = _FakeSb3()
+    fairgrasp.evaluate(plain, "seed", episodes=1, seed=3, vec_normalize=None)
+    np.testing.assert_array_equal(plain.seen[0], raw)
+    # compare() passes the dict's vec_normalize on; a misspelt key is named.
+    with pytest.raises(ValueError, match="vec_normalize"):
+        fairgrasp.compare(policies={"m": {"policy": plain, "vec_normalise": None}}, presets=["seed"],
+                          episodes=1, out="/nonexistent/never_written")
