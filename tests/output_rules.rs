@@ -1,7 +1,7 @@
 //! Outputs never clobber what fairgrasp did not write: `plot --out` refuses a run's own files,
 //! a device, a foreign PNG, a path inside a report folder, and a path another of its outputs
-//! takes; it replaces a chart it wrote. `baseline --record` refuses a folder holding anything
-//! but earlier recordings. Every refusal leaves the file as it was.
+//! takes; it replaces a chart it wrote. `baseline --record` records only into a new or empty
+//! folder. Every refusal leaves the file as it was.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -88,7 +88,7 @@ fn plot_replaces_only_charts_it_wrote() {
 }
 
 #[test]
-fn episodes_are_recorded_only_into_a_folder_of_recordings() {
+fn episodes_are_recorded_only_into_a_new_or_empty_folder() {
     let dir = temp_dir("record");
     let record = dir.join("episodes");
     std::fs::create_dir_all(&record).unwrap();
@@ -109,10 +109,37 @@ fn episodes_are_recorded_only_into_a_folder_of_recordings() {
         stderr(&refused)
     );
     std::fs::remove_file(record.join("thesis.tex")).unwrap();
-    for _ in 0..2 {
-        let recorded = fairgrasp(&args, &[&record]);
-        assert!(recorded.status.success(), "{}", stderr(&recorded));
-    }
+    let recorded = fairgrasp(&args, &[&record]);
+    assert!(recorded.status.success(), "{}", stderr(&recorded));
     assert!(record.join("episode_0001.json").is_file());
+    // A second recording into the same folder would leave its episodes beside the first one's
+    // with nothing to tell them apart (it used to, silently): refused, naming the folder and
+    // what it holds, files untouched.
+    let before = std::fs::read(record.join("episode_0001.json")).unwrap();
+    let again = fairgrasp(
+        &[
+            "baseline",
+            "--preset",
+            "fixed",
+            "--episodes",
+            "1",
+            "--seed",
+            "3",
+            "--record",
+        ],
+        &[&record],
+    );
+    let message = stderr(&again);
+    assert_eq!(again.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains(&record.display().to_string())
+            && message.contains("holds 4 episode files")
+            && message.contains("new or empty folder"),
+        "{message}"
+    );
+    assert_eq!(
+        std::fs::read(record.join("episode_0001.json")).unwrap(),
+        before
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

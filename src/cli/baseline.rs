@@ -41,8 +41,8 @@ pub struct ScenarioArgs {
     /// Worker threads, 1–256 (default: all cores).
     #[arg(long, value_parser = crate::cli::args::thread_count)]
     pub threads: Option<usize>,
-    /// Write each episode's trajectory (CSV and JSON) into this folder: a new one, or one that
-    /// holds only earlier recordings (episode_NNNN.*), which are replaced.
+    /// Write each episode's trajectory (CSV and JSON) into this folder: a new or empty one (a
+    /// folder holding an earlier recording is refused: the two would mix).
     #[arg(long, value_name = "DIR")]
     pub record: Option<PathBuf>,
     /// Print one JSON object instead of text.

@@ -108,8 +108,10 @@ pub fn is_episode_file(name: &str) -> bool {
     digits > 0 && ([".csv", ".json", ".png", ".gif"].contains(&tail) || step_png)
 }
 
-/// Checks a folder episodes are recorded into (`--record DIR`): new, or holding only earlier
-/// recordings ([`is_episode_file`]), and not inside a report folder.
+/// Checks a folder episodes are recorded into (`--record DIR`): new or empty, and not inside a
+/// report folder. A folder holding earlier recordings is refused too: a new recording would
+/// leave its `episode_*` files beside the earlier ones (a shorter run leaves the earlier
+/// run's later episodes) with nothing to tell the two runs apart.
 pub fn check_record_folder(dir: &Path) -> Result<(), String> {
     let shown = dir.display();
     if let Some(report) = report_folder_around(&dir.join("episode_0000.json")) {
@@ -129,16 +131,37 @@ pub fn check_record_folder(dir: &Path) -> Result<(), String> {
         Err(e) => return Err(format!("{shown}: {e}")),
         Ok(entries) => entries,
     };
+    let mut episodes = Vec::new();
     for entry in entries.flatten() {
         let name = entry.file_name().to_string_lossy().into_owned();
         if !is_episode_file(&name) {
             return Err(format!(
                 "{shown} holds {name}, which is not an episode recording: episodes are recorded \
-                 only into a new folder or one holding earlier recordings; choose another folder"
+                 only into a new or empty folder; choose another folder"
             ));
         }
+        episodes.push(name);
+    }
+    if !episodes.is_empty() {
+        episodes.sort();
+        return Err(format!(
+            "{shown} holds {} episode files of an earlier recording ({}): a new recording would \
+             mix with them; record into a new or empty folder (or delete them first)",
+            episodes.len(),
+            first_few(&episodes, 3)
+        ));
     }
     Ok(())
+}
+
+/// The first `n` of `names` joined by commas, and how many more there are (`a, b, c and 12
+/// more`): a list in a message stays short however long it is.
+pub fn first_few(names: &[String], n: usize) -> String {
+    let shown = names[..names.len().min(n)].join(", ");
+    match names.len().saturating_sub(n) {
+        0 => shown,
+        more => format!("{shown} and {more} more"),
+    }
 }
 
 #[cfg(test)]
@@ -195,8 +218,17 @@ mod tests {
         let record = dir.join("record");
         assert_eq!(check_record_folder(&record), Ok(()));
         std::fs::create_dir_all(&record).unwrap();
-        std::fs::write(record.join("episode_0001.csv"), "").unwrap();
         assert_eq!(check_record_folder(&record), Ok(()));
+        for i in 0..5 {
+            std::fs::write(record.join(format!("episode_{i:04}.csv")), "").unwrap();
+        }
+        let e = check_record_folder(&record).unwrap_err();
+        assert!(
+            e.contains("holds 5 episode files")
+                && e.contains("episode_0000.csv, episode_0001.csv, episode_0002.csv and 2 more")
+                && e.contains("new or empty folder"),
+            "{e}"
+        );
         std::fs::write(record.join("thesis.tex"), "").unwrap();
         assert!(
             check_record_folder(&record)
