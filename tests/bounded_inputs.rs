@@ -170,3 +170,130 @@ fn a_huge_bad_value_is_quoted_as_an_excerpt() {
         );
     }
 }
+
+/// A URDF path is read only as a regular file within the URDF cap, by the rule configs follow
+/// (`fairgrasp_types::fs::read_bounded`): a FIFO nobody writes used to block `joints --urdf`
+/// forever, and `/dev/zero` behind a `.urdf` name was read up to the cap.
+#[test]
+fn urdf_paths_are_read_only_as_regular_files() {
+    let dir = scratch("urdf-files");
+    let fifo = dir.join("fifo.urdf");
+    assert!(
+        Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let zero = dir.join("zero.urdf");
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    for path in [&fifo, &zero] {
+        let p = path.to_str().unwrap();
+        refused(&["joints", "--urdf", p], &[p, "not a regular file"]);
+        refused(
+            &["fk", "--urdf", p, "--joints", "0"],
+            &[p, "not a regular file"],
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Errors quote bounded excerpts of their input: a 1 MB TOML line of short words (which the
+/// long-word cut in `main.rs` does not shorten) used to be echoed whole; an unconnected URDF of
+/// 20 000 links listed every root link; a TOML file with old-Mac CR line endings was quoted
+/// whole as its "line 1".
+#[test]
+fn messages_quote_bounded_excerpts_of_the_input() {
+    let dir = scratch("quotes");
+    let long_line = dir.join("long_line.toml");
+    let ones = vec!["1"; 300_000].join(", ");
+    std::fs::write(&long_line, format!("[scene]\ncube_mass = [{ones}]\n")).unwrap();
+    let cr = dir.join("old_mac.toml");
+    let mut text = String::from("[physics]\r");
+    for i in 0..2000 {
+        text.push_str(&format!("# comment {i}\r"));
+    }
+    text.push_str("[scene]\rcube_mass = 0.1\r");
+    std::fs::write(&cr, text).unwrap();
+    let unconnected = dir.join("unconnected.urdf");
+    let links: String = (0..20_000)
+        .map(|i| format!("  <link name=\"l{i}\"/>\n"))
+        .collect();
+    std::fs::write(
+        &unconnected,
+        format!("<robot name=\"r\">\n{links}</robot>\n"),
+    )
+    .unwrap();
+    for (args, needles) in [
+        (
+            vec!["baseline", "--preset", long_line.to_str().unwrap()],
+            &["line 2", "characters)"][..],
+        ),
+        (
+            vec!["baseline", "--preset", cr.to_str().unwrap()],
+            &["line 1", "CR"][..],
+        ),
+        (
+            vec!["joints", "--urdf", unconnected.to_str().unwrap()],
+            &["20000 root links", "l0, l1, l2", "and 19995 more"][..],
+        ),
+    ] {
+        let out = fairgrasp(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let head = &stderr[..stderr.len().min(600)];
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {head}");
+        assert!(
+            stderr.len() < 1_000,
+            "{args:?}: {} bytes: {head}",
+            stderr.len()
+        );
+        for n in needles {
+            assert!(stderr.contains(n), "{args:?}: `{n}` not in {head}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// An error cites the line it is on whether the file ends its lines with LF, CRLF or CR (old
+/// Mac): a URDF with CR line endings used to report every error on line 1.
+#[test]
+fn errors_cite_the_right_line_for_lf_crlf_and_cr_files() {
+    let dir = scratch("line-ends");
+    let urdf = [
+        "<?xml version=\"1.0\"?>",
+        "<robot name=\"r\">",
+        "  <link name=\"a\"/>",
+        "  <link name=\"b\"/>",
+        "  <joint name=\"j\" type=\"fixed\">",
+        "    <origin xyz=\"0 0 abc\"/>",
+        "    <parent link=\"a\"/>",
+        "    <child link=\"b\"/>",
+        "  </joint>",
+        "</robot>",
+    ];
+    let toml = [
+        "[physics]",
+        "dt = 0.01",
+        "",
+        "[scene]",
+        "cube_mass = \"heavy\"",
+    ];
+    for (name, end) in [("lf", "\n"), ("crlf", "\r\n"), ("cr", "\r")] {
+        let path = dir.join(format!("{name}.urdf"));
+        std::fs::write(&path, urdf.join(end) + end).unwrap();
+        refused(
+            &["joints", "--urdf", path.to_str().unwrap()],
+            &["line 6", "abc"],
+        );
+        if name != "cr" {
+            // TOML allows LF and CRLF only; a CR file is refused on its line 1 (above).
+            let path = dir.join(format!("{name}.toml"));
+            std::fs::write(&path, toml.join(end) + end).unwrap();
+            refused(
+                &["baseline", "--preset", path.to_str().unwrap()],
+                &["line 5", "heavy"],
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

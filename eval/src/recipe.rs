@@ -80,7 +80,11 @@ impl Recipe {
                 Self::KEYS.join(", ")
             )));
         }
-        let mut table: toml::Table = toml::from_str(text).map_err(|e| file(e.to_string()))?;
+        let mut table: toml::Table = toml::from_str(text).map_err(|e| {
+            file(fairgrasp_env::config::validate::toml_error_message(
+                text, &e,
+            ))
+        })?;
         table.retain(|k, _| Self::KEYS.contains(&AsRef::<str>::as_ref(k)));
         for key in remove {
             table.remove(key);
@@ -104,7 +108,11 @@ impl Recipe {
         let text =
             fairgrasp_types::fs::read_text_bounded(path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
                 .map_err(|e| file(e.to_string()))?;
-        toml::from_str(&text).map_err(|e| file(e.to_string()))
+        toml::from_str(&text).map_err(|e| {
+            file(fairgrasp_env::config::validate::toml_error_message(
+                &text, &e,
+            ))
+        })
     }
 
     /// The env configuration evaluations use: the preset as it is, with the recipe's arm.

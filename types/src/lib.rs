@@ -11,6 +11,8 @@
 //!   the robot's bodies and shapes in it, for 3D replays.
 //! - [`fs`]: [`write_atomic`], the one way fairgrasp writes a result file; [`output`]: when an
 //!   existing file may be written over (only one fairgrasp wrote).
+//! - [`text`]: line numbers of offsets (LF, CRLF and CR files) and bounded excerpts of input
+//!   for messages.
 //! - [`work_queue`]: numbered jobs shared by worker threads, results in job order.
 
 pub mod body;
@@ -22,6 +24,7 @@ pub mod fs;
 pub mod names;
 pub mod output;
 pub mod paired;
+pub mod text;
 pub mod trajectory;
 pub mod work_queue;
 

@@ -148,20 +148,10 @@ pub fn check_record_folder(dir: &Path) -> Result<(), String> {
             "{shown} holds {} episode files of an earlier recording ({}): a new recording would \
              mix with them; record into a new or empty folder (or delete them first)",
             episodes.len(),
-            first_few(&episodes, 3)
+            crate::text::first_few(&episodes, 3)
         ));
     }
     Ok(())
-}
-
-/// The first `n` of `names` joined by commas, and how many more there are (`a, b, c and 12
-/// more`): a list in a message stays short however long it is.
-pub fn first_few(names: &[String], n: usize) -> String {
-    let shown = names[..names.len().min(n)].join(", ");
-    match names.len().saturating_sub(n) {
-        0 => shown,
-        more => format!("{shown} and {more} more"),
-    }
 }
 
 #[cfg(test)]

@@ -70,13 +70,34 @@ pub fn first_bad_number(config: &impl serde::Serialize) -> Option<(String, Strin
     first_non_finite(&value).map(|(field, v)| (field, v.to_string(), "must be a finite number"))
 }
 
-/// A TOML error as a message that says where: the parser's own (line, column, the line itself)
-/// or, for the errors it gives without a position (an integer beyond ±9.2·10¹⁸), the first line
-/// holding such an integer.
+/// A TOML error as a message that says where: `line N: `the line` (column C): what`, the line
+/// counted with LF, CRLF and CR line ends alike and quoted as a bounded excerpt
+/// ([`fairgrasp_types::text`]; the parser's own message quoted the whole line, a 1 MB line
+/// whole, and a file with old-Mac CR line ends whole as its line 1). For the errors the parser
+/// gives without a position (an integer beyond ±9.2·10¹⁸): the first line holding such an
+/// integer.
 pub fn toml_error_message(text: &str, error: &toml::de::Error) -> String {
-    let message = error.to_string();
-    if message.contains("line") {
-        return message;
+    use fairgrasp_types::text::{MAX_QUOTED_CHARS, excerpt, line_and_column};
+    let quote = |line: &str| excerpt(line.trim(), MAX_QUOTED_CHARS);
+    let message = error.message().trim_end().to_string();
+    if let Some(span) = error.span() {
+        // A CR not followed by LF (old-Mac line ends, which TOML does not take): cite the
+        // line the CR ends, not the one after it.
+        let bare_cr = message
+            .contains("carriage return")
+            .then(|| text[..(span.start + 1).min(text.len())].rfind('\r'))
+            .flatten();
+        let (line, column, quoted) = line_and_column(text, bare_cr.unwrap_or(span.start));
+        let hint = if bare_cr.is_some() {
+            " (the file ends its lines with CR alone, as old Macs did: TOML takes LF or CRLF \
+             line ends; convert it, e.g. with `tr '\\r' '\\n'`)"
+        } else {
+            ""
+        };
+        return format!(
+            "line {line}: `{}` (column {column}): {message}{hint}",
+            quote(quoted)
+        );
     }
     let too_big = |word: &str| {
         let digits = word.trim_start_matches(['+', '-']).replace('_', "");
@@ -92,8 +113,51 @@ pub fn toml_error_message(text: &str, error: &toml::de::Error) -> String {
         Some((i, line)) => format!(
             "line {}: `{}`: {message} (integers must lie within ±9223372036854775807)",
             i + 1,
-            line.trim()
+            quote(line)
         ),
         None => message,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn message(text: &str) -> String {
+        let e = toml::from_str::<crate::EnvConfig>(text).expect_err("refused");
+        toml_error_message(text, &e)
+    }
+
+    #[test]
+    fn toml_errors_cite_their_line_for_lf_crlf_and_cr_files_and_quote_an_excerpt() {
+        let lines = [
+            "[physics]",
+            "dt = 0.01",
+            "",
+            "[scene]",
+            "cube_mass = \"heavy\"",
+        ];
+        for end in ["\n", "\r\n"] {
+            let m = message(&(lines.join(end) + end));
+            assert!(
+                m.starts_with("line 5: `cube_mass = \"heavy\"` (column 13): invalid type"),
+                "{end:?}: {m}"
+            );
+        }
+        // TOML takes no CR-only line ends: the first one is cited on the line it ends, that
+        // line alone is quoted (the parser quoted the whole file as its line 1), and why.
+        let m = message(&(lines.join("\r") + "\r"));
+        assert!(
+            m.starts_with("line 1: `[physics]` (column 10): ")
+                && m.contains("CR alone")
+                && !m.contains("cube_mass"),
+            "{m}"
+        );
+        let ones = vec!["1"; 300_000].join(", ");
+        let m = message(&format!("[scene]\ncube_mass = [{ones}]\n"));
+        assert!(
+            m.starts_with("line 2: `cube_mass = [1, 1") && m.len() < 300,
+            "{m}"
+        );
     }
 }

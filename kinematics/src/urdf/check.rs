@@ -44,40 +44,8 @@ fn numeric_arity(element: &str, attribute: &str) -> Option<usize> {
     }
 }
 
-/// 1-based line numbers of byte offsets, counted incrementally: a pass asking for increasing
-/// offsets reads the text once in all (counting from the start each time was quadratic).
-pub(crate) struct LineCounter<'a> {
-    bytes: &'a [u8],
-    /// Byte offset up to which newlines have been counted.
-    position: usize,
-    /// Line of `position`.
-    line: usize,
-}
-
-impl<'a> LineCounter<'a> {
-    pub(crate) fn new(text: &'a str) -> Self {
-        Self {
-            bytes: text.as_bytes(),
-            position: 0,
-            line: 1,
-        }
-    }
-
-    pub(crate) fn line_at(&mut self, offset: usize) -> usize {
-        let offset = offset.min(self.bytes.len());
-        if offset < self.position {
-            self.position = 0;
-            self.line = 1;
-        }
-        let newlines = self.bytes[self.position..offset]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count();
-        self.line += newlines;
-        self.position = offset;
-        self.line
-    }
-}
+/// Line numbers of offsets, LF, CRLF and CR (old-Mac) line ends alike: the one counter.
+pub(crate) use fairgrasp_types::text::LineCounter;
 
 /// A top-level `<joint>` whose end has not been read yet.
 struct OpenJoint {
@@ -271,13 +239,10 @@ fn check_numbers(
     Ok(())
 }
 
-/// A value as quoted in a message: at most 80 characters.
+/// A value as quoted in a message: at most
+/// [`MAX_QUOTED_CHARS`](fairgrasp_types::text::MAX_QUOTED_CHARS) characters and its length.
 fn shorten(value: String) -> String {
-    const MAX_CHARS: usize = 80;
-    match value.char_indices().nth(MAX_CHARS) {
-        Some((cut, _)) => format!("{}…", &value[..cut]),
-        None => value,
-    }
+    fairgrasp_types::text::excerpt(&value, fairgrasp_types::text::MAX_QUOTED_CHARS)
 }
 
 /// Attribute `key` of `element`, unescaped (`None` when absent or not decodable).
@@ -304,6 +269,6 @@ fn check_joint_type(
             file: file.to_string(),
             line,
             joint: owner.to_string(),
-            value: found.unwrap_or_else(|| "(missing)".to_string()),
+            value: found.map_or_else(|| "(missing)".to_string(), shorten),
         })
 }

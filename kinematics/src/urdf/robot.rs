@@ -6,7 +6,6 @@
 //! [`MAX_NESTING_DEPTH`](crate::urdf::MAX_NESTING_DEPTH) are refused.
 
 use std::collections::{HashMap, HashSet};
-use std::io::Read;
 use std::path::Path;
 
 use nalgebra::Vector3;
@@ -36,24 +35,24 @@ pub struct UrdfRobot {
 impl UrdfRobot {
     /// Reads and checks a URDF file of at most [`MAX_URDF_BYTES`].
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, UrdfError> {
-        let file = path.as_ref().display().to_string();
-        let read_error = |e: std::io::Error| UrdfError::Read {
-            file: file.clone(),
-            message: e.to_string(),
-        };
-        let handle = std::fs::File::open(path.as_ref()).map_err(read_error)?;
-        let bytes = handle.metadata().map_err(read_error)?.len();
+        let path = path.as_ref();
+        let file = path.display().to_string();
         let limit = MAX_URDF_BYTES as u64;
-        if bytes > limit {
-            return Err(UrdfError::TooLarge { file, bytes, limit });
-        }
-        // `take`: a device or a growing file stops one byte past the limit, which the check
-        // in `from_str_named` then refuses.
-        let mut text = String::new();
-        handle
-            .take(limit + 1)
-            .read_to_string(&mut text)
-            .map_err(read_error)?;
+        // Only a regular file within the cap is opened, by the rule every input follows: a FIFO
+        // would block, a device never ends.
+        let text = fairgrasp_types::fs::read_text_bounded(path, limit).map_err(|e| {
+            match std::fs::metadata(path) {
+                Ok(m) if m.is_file() && m.len() > limit => UrdfError::TooLarge {
+                    file: file.clone(),
+                    bytes: m.len(),
+                    limit,
+                },
+                _ => UrdfError::Read {
+                    file: file.clone(),
+                    message: e.to_string(),
+                },
+            }
+        })?;
         Self::from_str_named(&text, &file)
     }
 
@@ -162,11 +161,10 @@ fn build_tree(file: &str, robot: RobotText) -> Result<UrdfRobot, UrdfError> {
         let detail = if roots.is_empty() {
             "no root link (the joints form a cycle)".to_string()
         } else {
-            let names: Vec<&str> = roots.iter().map(|s| s.as_str()).collect();
             format!(
                 "{} root links ({}); one is expected",
                 roots.len(),
-                names.join(", ")
+                fairgrasp_types::text::first_few(&roots, 5)
             )
         };
         return Err(UrdfError::NotATree {

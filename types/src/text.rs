@@ -1,0 +1,119 @@
+//! Where an offset of a text is, and how much of an input a message quotes: the one rule for
+//! line numbers (LF, CRLF and old-Mac CR files alike) and for excerpts of input in messages
+//! (a quoted line or list stays short however long the input is).
+
+/// The most characters of an input line a message quotes [characters].
+pub const MAX_QUOTED_CHARS: usize = 80;
+
+/// 1-based line numbers of byte offsets, counted incrementally: a pass asking for increasing
+/// offsets reads the text once in all. A line ends at LF, at CRLF (one line end) and at a CR
+/// not followed by LF (old-Mac files), as XML reads them.
+pub struct LineCounter<'a> {
+    bytes: &'a [u8],
+    /// Byte offset up to which line ends have been counted.
+    position: usize,
+    /// Line of `position`.
+    line: usize,
+}
+
+impl<'a> LineCounter<'a> {
+    pub fn new(text: &'a str) -> Self {
+        Self {
+            bytes: text.as_bytes(),
+            position: 0,
+            line: 1,
+        }
+    }
+
+    /// The line (from 1) of byte `offset` (clamped to the text's end).
+    pub fn line_at(&mut self, offset: usize) -> usize {
+        let offset = offset.min(self.bytes.len());
+        if offset < self.position {
+            self.position = 0;
+            self.line = 1;
+        }
+        let bytes = self.bytes;
+        let ends = (self.position..offset)
+            .filter(|&i| match bytes[i] {
+                b'\n' => true,
+                // A CR ends a line unless an LF follows (CRLF counts once, at its LF).
+                b'\r' => bytes.get(i + 1) != Some(&b'\n'),
+                _ => false,
+            })
+            .count();
+        self.line += ends;
+        self.position = offset;
+        self.line
+    }
+}
+
+/// The line (from 1) and column (from 1, in characters) of byte `offset` of `text`, and that
+/// line's text without its line end; line ends as [`LineCounter`] counts them.
+pub fn line_and_column(text: &str, offset: usize) -> (usize, usize, &str) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let line = LineCounter::new(text).line_at(offset);
+    let start = text[..offset].rfind(['\n', '\r']).map_or(0, |i| i + 1);
+    let end = text[offset..]
+        .find(['\n', '\r'])
+        .map_or(text.len(), |i| offset + i);
+    let column = text[start..offset].chars().count() + 1;
+    (line, column, &text[start..end])
+}
+
+/// `text` whole if it has at most `max_chars` characters, else its first `max_chars` and how
+/// many there are (`abc… (1048576 characters)`).
+pub fn excerpt(text: &str, max_chars: usize) -> String {
+    match text.char_indices().nth(max_chars) {
+        None => text.to_string(),
+        Some((cut, _)) => format!("{}… ({} characters)", &text[..cut], text.chars().count()),
+    }
+}
+
+/// The first `n` of `names` joined by commas, and how many more there are (`a, b, c and 12
+/// more`): a list in a message stays short however long it is.
+pub fn first_few<S: AsRef<str>>(names: &[S], n: usize) -> String {
+    let shown: Vec<&str> = names.iter().take(n).map(AsRef::as_ref).collect();
+    match names.len().saturating_sub(n) {
+        0 => shown.join(", "),
+        more => format!("{} and {more} more", shown.join(", ")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_end_at_lf_crlf_and_cr_alike() {
+        for end in ["\n", "\r\n", "\r"] {
+            let text = ["a", "bb", "", "ccc = x"].join(end);
+            let at = text.find('x').unwrap();
+            assert_eq!(line_and_column(&text, at), (4, 7, "ccc = x"), "{end:?}");
+            let mut lines = LineCounter::new(&text);
+            assert_eq!(lines.line_at(0), 1, "{end:?}");
+            assert_eq!(lines.line_at(text.find('b').unwrap()), 2, "{end:?}");
+            assert_eq!(lines.line_at(at), 4, "{end:?}");
+            assert_eq!(lines.line_at(text.len()), 4, "{end:?}");
+        }
+        // A CRLF split by the offset is still one line end.
+        assert_eq!(LineCounter::new("a\r\nb").line_at(2), 1);
+        assert_eq!(LineCounter::new("a\r\nb").line_at(3), 2);
+    }
+
+    #[test]
+    fn excerpts_and_lists_stay_short() {
+        assert_eq!(excerpt("short", 80), "short");
+        let long = "é".repeat(1 << 20);
+        let cut = excerpt(&long, 80);
+        assert!(
+            cut.ends_with("… (1048576 characters)") && cut.chars().count() < 110,
+            "{cut}"
+        );
+        let names: Vec<String> = (0..20000).map(|i| format!("link{i}")).collect();
+        assert_eq!(first_few(&names, 3), "link0, link1, link2 and 19997 more");
+        assert_eq!(first_few(&names[..2], 3), "link0, link1");
+    }
+}
