@@ -94,6 +94,9 @@ pub struct ScriptedPlace {
     wall_height: f64,
     /// The fixture as observed when the place was planned.
     planned_fixture: Option<ObservedObject>,
+    /// Whether the place is planned for the cube where the camera sees it in the hand (the
+    /// closed loop), not for where the grasp should have put it.
+    reobserve: bool,
     /// A residual's correction of the search ([`crate::place_residual`]); zero otherwise.
     correction: TaskCorrection,
 }
@@ -128,6 +131,7 @@ impl ScriptedPlace {
             wall_height: env.task.place.wall_height,
             planned_fixture: None,
             correction: TaskCorrection::ZERO,
+            reobserve: false,
         }
     }
 
@@ -138,6 +142,16 @@ impl ScriptedPlace {
             search_params: Some(params),
             ..Self::new(env)
         }
+    }
+
+    /// The same script in closed loop: after the lift it looks at the cube in the hand again
+    /// (the fixed camera's view, with the cell's perception error) and plans the place so that
+    /// the cube it sees, not the TCP, goes over the pocket. A grasp that slipped or caught the
+    /// cube off-centre shows there; an error of the camera itself does not (it was in the grasp
+    /// too).
+    pub fn reobserving(mut self) -> Self {
+        self.reobserve = true;
+        self
     }
 
     /// Where the script is.
@@ -168,7 +182,9 @@ impl ScriptedPlace {
         self.correction
     }
 
-    /// The carry, place and retreat joints for the fixture in `obs`, from the arm's joints.
+    /// The carry, place and retreat joints for the fixture in `obs`, from the arm's joints; in
+    /// closed loop ([`ScriptedPlace::reobserving`]) shifted by the cube's observed offset in the
+    /// hand.
     fn plan(&self, obs: &Observation) -> Option<GraspJoints> {
         let fixture = obs.fixture?;
         let up = self.mount.table_in_base.transform_vector([
@@ -176,19 +192,44 @@ impl ScriptedPlace {
             0.0,
             0.5 * self.cube_size + DROP_HEIGHT + self.grasp_height,
         ]);
-        let target = GraspTarget {
+        let mut target = GraspTarget {
             object: [0, 1, 2].map(|i| fixture.position[i] + up[i]),
             object_yaw: fixture.yaw,
             mount: self.mount,
         };
         // `plan_grasp_joints` names them pre-grasp, grasp, lift: carry, place, retreat here.
-        plan_grasp_joints(
-            &self.model,
-            &target,
-            &obs.joints,
-            CARRY_HEIGHT,
-            RETREAT_HEIGHT,
-        )
+        let plan = |target: &GraspTarget| {
+            plan_grasp_joints(
+                &self.model,
+                target,
+                &obs.joints,
+                CARRY_HEIGHT,
+                RETREAT_HEIGHT,
+            )
+        };
+        let first = plan(&target)?;
+        if !self.reobserve {
+            return Some(first);
+        }
+        let shift = self.in_hand_shift(obs, &first.grasp);
+        target.object = [0, 1, 2].map(|i| target.object[i] - shift[i]);
+        plan(&target)
+    }
+
+    /// Where the cube seen in the hand at `obs` would be, horizontally, relative to the TCP
+    /// once the arm is at the place joints `place` [rad] (`base_link`, m; no vertical part):
+    /// the offset measured in the TCP's frame now, carried along with the gripper's turn.
+    fn in_hand_shift(&self, obs: &Observation, place: &[f64; 6]) -> [f64; 3] {
+        let now = self.model.fk_tcp(&obs.joints);
+        let cube = obs.object_position();
+        let p = now.iso.translation.vector;
+        let in_tcp = now
+            .inverse()
+            .transform_vector([cube[0] - p.x, cube[1] - p.y, cube[2] - p.z]);
+        let at_place = self.model.fk_tcp(place).transform_vector(in_tcp);
+        let z = self.mount.table_in_base.transform_vector([0.0, 0.0, 1.0]);
+        let along_z: f64 = (0..3).map(|i| at_place[i] * z[i]).sum();
+        [0, 1, 2].map(|i| at_place[i] - along_z * z[i])
     }
 
     fn enter(&mut self, phase: PlacePhase, obs: &Observation, target: Option<[f64; 6]>) {

@@ -90,3 +90,21 @@ fn the_wrist_sensor_feels_the_rim_push_up_on_a_misplaced_cube_and_nothing_in_the
     let (success, up, _, _) = forces_while_placing("place", 2);
     assert!(success && up < 0.05, "{success} {up}");
 }
+
+#[test]
+fn the_closed_loop_place_seats_the_cube_when_the_camera_is_right() {
+    // With no perception error the cube seen in the hand is where it is: the re-observed plan
+    // puts it over the pocket as the open loop's does.
+    let config = presets::load("place").unwrap();
+    let report = evaluate_seeded(
+        &config,
+        5,
+        20,
+        2,
+        None,
+        &|| ScriptedPlace::new(&config).reobserving(),
+        &|| {},
+    )
+    .unwrap();
+    assert!(report.successes >= 19, "{:?}", report.outcomes);
+}

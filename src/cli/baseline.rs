@@ -71,13 +71,19 @@ pub enum ScriptArg {
     /// lower (`--search-*` set its parameters, for a tuning grid).
     #[value(name = "force_search")]
     ForceSearch,
+    /// The place task: the force search in closed loop (the cube re-observed in the hand before
+    /// the place is planned). `closed_loop` on a place preset is the closed-loop place without
+    /// the search.
+    #[value(name = "closed_loop_force_search")]
+    ClosedLoopForceSearch,
 }
 
 #[derive(Args, Debug)]
 pub struct BaselineArgs {
     #[command(flatten)]
     scenarios: ScenarioArgs,
-    /// Which script: open_loop (the baseline), closed_loop, oracle, calibrated or tuned_grip.
+    /// Which script: open_loop (the baseline), closed_loop, oracle, calibrated or tuned_grip; on
+    /// a place preset open_loop, force_search, closed_loop or closed_loop_force_search.
     #[arg(long, value_enum, default_value = "open_loop")]
     script: ScriptArg,
     /// With `--script tuned_grip`: squeeze this many newtons per finger (0–100] instead of the
@@ -282,16 +288,29 @@ pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
                 let extra = serde_json::json!({ "search": params });
                 evaluate_and_print(&a.scenarios, "place script + force search", &make, extra)
             }
+            ScriptArg::ClosedLoop => {
+                let make = |config: &EnvConfig| ScriptedPlace::new(config).reobserving();
+                evaluate_and_print(&a.scenarios, "closed-loop place", &make, none)
+            }
+            ScriptArg::ClosedLoopForceSearch => {
+                let make =
+                    |config: &EnvConfig| ScriptedPlace::with_search(config, params).reobserving();
+                let extra = serde_json::json!({ "search": params });
+                let name = "closed-loop place + force search";
+                evaluate_and_print(&a.scenarios, name, &make, extra)
+            }
             _ => anyhow::bail!(
-                "--preset {}: the place task's scripts are open_loop and force_search; the \
-                 other controls are lift scripts",
+                "--preset {}: the place task's scripts are open_loop, force_search, closed_loop \
+                 and closed_loop_force_search; the other controls are lift scripts",
                 a.scenarios.preset
             ),
         };
     }
     match a.script {
-        ScriptArg::ForceSearch => {
-            anyhow::bail!("--script force_search is the place task's: give a place preset")
+        ScriptArg::ForceSearch | ScriptArg::ClosedLoopForceSearch => {
+            anyhow::bail!(
+                "--script force_search and closed_loop_force_search are the place task's: give a place preset"
+            )
         }
         ScriptArg::TunedGrip => {
             let make = |config: &EnvConfig| {

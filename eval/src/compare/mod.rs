@@ -55,10 +55,16 @@ pub const SCRIPTS: [&str; 5] = [
     "script + tuned grip",
 ];
 
-/// The place task's scripts, in order: the open-loop place script and the same with the
+/// The place task's scripts, in order: the open-loop place script, the same with the
 /// force-guided search, tuned on training scenarios, in place of its lower
-/// ([`fairgrasp_planner::place_search`]).
-pub const PLACE_SCRIPTS: [&str; 2] = ["place script", "place script + force search"];
+/// ([`fairgrasp_planner::place_search`]), and both in closed loop (the cube re-observed in the
+/// hand before the place is planned, [`ScriptedPlace::reobserving`]).
+pub const PLACE_SCRIPTS: [&str; 4] = [
+    "place script",
+    "place script + force search",
+    "closed-loop place",
+    "closed-loop place + force search",
+];
 
 /// The scripts a comparison on presets of `config`'s task runs first: [`SCRIPTS`] for the lift
 /// task, [`PLACE_SCRIPTS`] for the place task. Method `i` of a comparison is script `i` while `i`
@@ -221,9 +227,12 @@ pub(crate) fn make_policy(
         return Box::new(actor_policy(&l.meta, &l.actor, config));
     }
     if config.task.kind == TaskKind::Place {
+        let search = || ScriptedPlace::with_search(config, SearchParams::default());
         return match i {
             0 => Box::new(ScriptedPlace::new(config)),
-            _ => Box::new(ScriptedPlace::with_search(config, SearchParams::default())),
+            1 => Box::new(search()),
+            2 => Box::new(ScriptedPlace::new(config).reobserving()),
+            _ => Box::new(search().reobserving()),
         };
     }
     match i {
