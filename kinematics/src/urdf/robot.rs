@@ -40,19 +40,20 @@ impl UrdfRobot {
         let limit = MAX_URDF_BYTES as u64;
         // Only a regular file within the cap is opened, by the rule every input follows: a FIFO
         // would block, a device never ends.
-        let text = fairgrasp_types::fs::read_text_bounded(path, limit).map_err(|e| {
-            match std::fs::metadata(path) {
-                Ok(m) if m.is_file() && m.len() > limit => UrdfError::TooLarge {
-                    file: file.clone(),
-                    bytes: m.len(),
-                    limit,
+        let text =
+            fairgrasp_types::fs::read_text_bounded(path, limit).map_err(
+                |e| match std::fs::metadata(path) {
+                    Ok(m) if m.is_file() && m.len() > limit => UrdfError::TooLarge {
+                        file: file.clone(),
+                        bytes: m.len(),
+                        limit,
+                    },
+                    _ => UrdfError::Read {
+                        file: file.clone(),
+                        message: e.to_string(),
+                    },
                 },
-                _ => UrdfError::Read {
-                    file: file.clone(),
-                    message: e.to_string(),
-                },
-            }
-        })?;
+            )?;
         Self::from_str_named(&text, &file)
     }
 
