@@ -146,9 +146,11 @@ impl ScriptedPlace {
 
     /// The same script in closed loop: after the lift it looks at the cube in the hand again
     /// (the fixed camera's view, with the cell's perception error) and plans the place so that
-    /// the cube it sees, not the TCP, goes over the pocket. A grasp that slipped or caught the
-    /// cube off-centre shows there; an error of the camera itself does not (it was in the grasp
-    /// too).
+    /// the cube it sees, not the TCP, goes over the pocket — along the pads only: across them
+    /// the closing fingers have centred the cube (measured: 0.2 mm spread against 5.3 mm along
+    /// the pads, docs/place.md), where the camera's own bias would be read as an offset that is
+    /// not there. A cube that slid along the pads in the grasp shows; an error of the camera
+    /// itself does not (it was in the grasp too).
     pub fn reobserving(mut self) -> Self {
         self.reobserve = true;
         self
@@ -218,14 +220,16 @@ impl ScriptedPlace {
 
     /// Where the cube seen in the hand at `obs` would be, horizontally, relative to the TCP
     /// once the arm is at the place joints `place` [rad] (`base_link`, m; no vertical part):
-    /// the offset measured in the TCP's frame now, carried along with the gripper's turn.
+    /// the offset measured along the pads (the TCP's y; the fingers close along its x) now,
+    /// carried along with the gripper's turn.
     fn in_hand_shift(&self, obs: &Observation, place: &[f64; 6]) -> [f64; 3] {
         let now = self.model.fk_tcp(&obs.joints);
         let cube = obs.object_position();
         let p = now.iso.translation.vector;
-        let in_tcp = now
+        let mut in_tcp = now
             .inverse()
             .transform_vector([cube[0] - p.x, cube[1] - p.y, cube[2] - p.z]);
+        in_tcp[0] = 0.0;
         let at_place = self.model.fk_tcp(place).transform_vector(in_tcp);
         let z = self.mount.table_in_base.transform_vector([0.0, 0.0, 1.0]);
         let along_z: f64 = (0..3).map(|i| at_place[i] * z[i]).sum();
