@@ -34,10 +34,11 @@ pub struct CompareArgs {
     /// policy folder (assets/policies/NAME), a checkpoint folder or a run folder (its
     /// checkpoints/best), or `all` for every shipped policy (the specialists too; all but the
     /// pitfall exhibit pure_hard). Default: the shipped generalist residual
-    /// (residual_generalist) and pure PPO (pure_full). Every comparison also runs the five
-    /// scripts: the open-loop baseline, the closed-loop script, the oracle, the open-loop
-    /// script after a simulated camera calibration and the open-loop script with the grip
-    /// tuned for the preset.
+    /// (residual_generalist) and pure PPO (pure_full); on place presets none unless named.
+    /// Every comparison also runs the task's scripts: for lift the open-loop baseline, the
+    /// closed-loop script, the oracle, the open-loop script after a simulated camera
+    /// calibration and the open-loop script with the grip tuned for the preset; for place the
+    /// place script, the tuned force-guided search, and both in closed loop.
     #[arg(long = "policy", value_name = "NAME|DIR|all")]
     policies: Vec<String>,
     /// Seed of the scenario sets, 0–9007199254740991 (2⁵³ − 1).
