@@ -226,9 +226,9 @@ impl ScriptedPlace {
         let now = self.model.fk_tcp(&obs.joints);
         let cube = obs.object_position();
         let p = now.iso.translation.vector;
-        let mut in_tcp = now
-            .inverse()
-            .transform_vector([cube[0] - p.x, cube[1] - p.y, cube[2] - p.z]);
+        let mut in_tcp =
+            now.inverse()
+                .transform_vector([cube[0] - p.x, cube[1] - p.y, cube[2] - p.z]);
         in_tcp[0] = 0.0;
         let at_place = self.model.fk_tcp(place).transform_vector(in_tcp);
         let z = self.mount.table_in_base.transform_vector([0.0, 0.0, 1.0]);
