@@ -142,3 +142,42 @@ fn a_broken_trajectory_is_refused_with_its_file_and_row() {
     let e = trajectory::load(&path).unwrap_err().to_string();
     assert!(e.contains("bad.json") && e.contains("row 3"), "{e}");
 }
+
+#[test]
+fn a_place_episodes_replay_draws_the_fixture() {
+    // The fixture's colour in the replay (charts/replay.rs).
+    const FIXTURE: [u8; 3] = [120, 150, 110];
+    let count = |t: &trajectory::Trajectory| {
+        replay::replay_frame_rgb(t, "place", 0)
+            .unwrap()
+            .chunks_exact(3)
+            .filter(|p| *p == FIXTURE)
+            .count()
+    };
+    let mut lift = trajectory_json(20);
+    let plain: trajectory::Trajectory = serde_json::from_value(lift.clone()).unwrap();
+    // A pocket of four 1 cm walls around (0.25, −0.2) on the table.
+    let wall = |name: &str, centre: [f64; 3], half: [f64; 3]| serde_json::json!({"name": name, "body": 0, "kind": "box", "centre": centre, "half_extents": half});
+    lift["scene"]["bodies"] = serde_json::json!(["fixture"]);
+    lift["scene"]["shapes"] = serde_json::json!([
+        wall("fixture_wall_0", [0.032, 0.0, 0.005], [0.005, 0.037, 0.005]),
+        wall(
+            "fixture_wall_1",
+            [-0.032, 0.0, 0.005],
+            [0.005, 0.037, 0.005]
+        ),
+        wall("fixture_wall_2", [0.0, 0.032, 0.005], [0.027, 0.005, 0.005]),
+        wall(
+            "fixture_wall_3",
+            [0.0, -0.032, 0.005],
+            [0.027, 0.005, 0.005]
+        ),
+    ]);
+    for row in lift["rows"].as_array_mut().unwrap() {
+        row["bodies"] = serde_json::json!([[0.25, -0.2, 0.0, 0.0, 0.0, 0.0, 1.0]]);
+    }
+    let place: trajectory::Trajectory = serde_json::from_value(lift).unwrap();
+    assert_eq!(count(&plain), 0);
+    // Seen from above and from the side: hundreds of pixels.
+    assert!(count(&place) > 300, "{} fixture pixels", count(&place));
+}

@@ -1,5 +1,6 @@
-//! An episode replay as an animated GIF: the arm's and gripper's capsules, the cube and the
-//! table in two orthographic views of `base_link` (top: x–y; side: x–z, seen from −y).
+//! An episode replay as an animated GIF: the arm's and gripper's capsules, the cube, the table
+//! and, on the place task, the fixture's walls, in two orthographic views of `base_link` (top:
+//! x–y; side: x–z, seen from −y).
 
 use std::path::Path;
 
@@ -24,6 +25,10 @@ const SKELETON: RGBColor = RGBColor(40, 55, 75);
 const GRIPPER: RGBColor = RGBColor(80, 80, 80);
 const CUBE: RGBColor = RGBColor(225, 87, 89);
 const CUBE_EDGE: RGBColor = RGBColor(140, 30, 30);
+const FIXTURE: RGBColor = RGBColor(120, 150, 110);
+const FIXTURE_EDGE: RGBColor = RGBColor(60, 80, 55);
+/// Shapes whose names start with this are the fixture's (`fixture_wall_0` …).
+const FIXTURE_PREFIX: &str = "fixture";
 
 /// Writes the replay GIF of `t` with `title` above both views; refuses an episode without
 /// steps.
@@ -121,6 +126,7 @@ fn view_bounds(t: &Trajectory) -> ViewBounds {
             .iter()
             .flat_map(|c| [[c[0], c[1], c[2]], [c[3], c[4], c[5]]])
             .chain(r.cube_corners(t.scene.cube_size))
+            .chain(fixture_boxes(t, r).into_iter().flatten())
     });
     let bounds = |k: usize| min_max(points.clone().map(|p| p[k]));
     let z = bounds(2);
@@ -129,6 +135,40 @@ fn view_bounds(t: &Trajectory) -> ViewBounds {
         y: bounds(1),
         z: (z.0.min(t.scene.table_top_z), z.1),
     }
+}
+
+/// The corners of each of the fixture's boxes at `row` (`base_link`, m; none on the lift task):
+/// every box shape named [`FIXTURE_PREFIX`]… on its recorded body's pose.
+fn fixture_boxes(t: &Trajectory, row: &TrajectoryRow) -> Vec<[[f64; 3]; 8]> {
+    use fairgrasp_types::body::{Geometry, rotate};
+    let mut out = Vec::new();
+    for shape in &t.scene.shapes {
+        let (
+            Geometry::Box {
+                centre,
+                half_extents: h,
+            },
+            Some(pose),
+        ) = (&shape.geometry, row.bodies.get(shape.body))
+        else {
+            continue;
+        };
+        if !shape.name.starts_with(FIXTURE_PREFIX) {
+            continue;
+        }
+        let q = [pose[3], pose[4], pose[5], pose[6]];
+        out.push(std::array::from_fn(|i| {
+            let sign = |bit: usize| if i & bit == 0 { -1.0 } else { 1.0 };
+            let local = [
+                centre[0] + sign(1) * h[0],
+                centre[1] + sign(2) * h[1],
+                centre[2] + sign(4) * h[2],
+            ];
+            let r = rotate(q, local);
+            [pose[0] + r[0], pose[1] + r[1], pose[2] + r[2]]
+        }));
+    }
+    out
 }
 
 /// One frame: the title with the time, the top view and the side view.
@@ -209,6 +249,22 @@ fn draw_view(
                 [(ur.0, vr.0), (ur.1, scene.table_top_z)],
                 TABLE.filled(),
             )])
+            .map_err(de)?;
+    }
+    // The fixture's walls lie on the table, below everything that moves: drawn first.
+    for corners in fixture_boxes(t, row) {
+        let projected: Vec<(f64, f64)> = corners.iter().map(|p| (p[axes[0]], p[axes[1]])).collect();
+        if projected.len() != finite_points(projected.iter().copied()).len() {
+            continue;
+        }
+        let hull = convex_hull(projected);
+        let mut outline = hull.clone();
+        outline.extend(hull.first());
+        chart
+            .draw_series([Polygon::new(hull, FIXTURE.filled())])
+            .map_err(de)?;
+        chart
+            .draw_series([PathElement::new(outline, FIXTURE_EDGE.stroke_width(1))])
             .map_err(de)?;
     }
     // Depth order: lowest first in the top view, largest y first in the side view; the cube
