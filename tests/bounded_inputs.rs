@@ -45,19 +45,21 @@ fn refused(args: &[&str], needles: &[&str]) {
     }
 }
 
+/// A FIFO nobody writes (`fifo.EXT`) and a link to `/dev/zero` (`zero.EXT`) in `dir`: files
+/// that block or never end if read.
+fn special_files(dir: &std::path::Path, ext: &str) -> (std::path::PathBuf, std::path::PathBuf) {
+    let fifo = dir.join(format!("fifo.{ext}"));
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let zero = dir.join(format!("zero.{ext}"));
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    (fifo, zero)
+}
+
 #[test]
 fn fifos_devices_and_huge_files_are_refused_naming_the_file() {
     let dir = scratch("files");
-    let fifo = dir.join("fifo.toml");
-    assert!(
-        Command::new("mkfifo")
-            .arg(&fifo)
-            .status()
-            .unwrap()
-            .success()
-    );
-    let zero = dir.join("zero.toml");
-    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let (fifo, zero) = special_files(&dir, "toml");
     let huge = dir.join("huge.toml");
     let mut text = String::from("[task]\n");
     while text.len() <= 2 << 20 {
@@ -177,16 +179,7 @@ fn a_huge_bad_value_is_quoted_as_an_excerpt() {
 #[test]
 fn urdf_paths_are_read_only_as_regular_files() {
     let dir = scratch("urdf-files");
-    let fifo = dir.join("fifo.urdf");
-    assert!(
-        Command::new("mkfifo")
-            .arg(&fifo)
-            .status()
-            .unwrap()
-            .success()
-    );
-    let zero = dir.join("zero.urdf");
-    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let (fifo, zero) = special_files(&dir, "urdf");
     for path in [&fifo, &zero] {
         let p = path.to_str().unwrap();
         refused(&["joints", "--urdf", p], &[p, "not a regular file"]);
