@@ -83,7 +83,7 @@ class _Shift:
         return batch - 1000.0
 
 
-def test_an_sb3_model_sees_observations_through_its_vec_normalize_or_is_refused():
+def test_an_sb3_model_sees_observations_through_its_vec_normalize_or_is_refused(tmp_path):
     first = fairgrasp._native.scenario_seeds("seed", 3, 1, "servo")[0]
     raw = fairgrasp.FairGraspEnv(preset="seed").reset(seed=first)[0]
     # The model's own statistics (trained behind VecNormalize, its env attached).
@@ -100,7 +100,9 @@ def test_an_sb3_model_sees_observations_through_its_vec_normalize_or_is_refused(
     plain = _FakeSb3()
     fairgrasp.evaluate(plain, "seed", episodes=1, seed=3, vec_normalize=None)
     np.testing.assert_array_equal(plain.seen[0], raw)
-    # compare() passes the dict's vec_normalize on; a misspelt key is named.
+    # compare() takes the dict's vec_normalize; a misspelt key is named, and nothing is written.
+    out = tmp_path / "report"
     with pytest.raises(ValueError, match="vec_normalize"):
         fairgrasp.compare(policies={"m": {"policy": plain, "vec_normalise": None}}, presets=["seed"],
-                          episodes=1, out="/nonexistent/never_written")
+                          episodes=1, out=out)
+    assert not out.exists() or not any(out.iterdir())
