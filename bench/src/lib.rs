@@ -1,7 +1,7 @@
 //! fairgrasp-bench: the measurements behind `fairgrasp bench`, kept out of the crates they
 //! measure.
 //!
-//! - [`env`]: reset times and stepping throughput of the grasp env (`bench env`);
+//! - [`mod@env`]: reset times and stepping throughput of the grasp env (`bench env`);
 //! - [`ik`]: the chain IK on random reachable poses beside the FR3's closed form (`bench ik`);
 //! - [`soak`]: one env stepped for a long time, counting what must never happen (`bench soak`);
 //! - `ppo`: PPO's update and training throughput (`bench ppo`), with the `ppo` feature (it

@@ -1,17 +1,23 @@
-//! fairgrasp-env: the FR3 grasping environment in rapier3d, composed of three pieces.
+//! fairgrasp-env: the FR3 grasping environment in rapier3d: a robot, a task and a scenario,
+//! composed by [`GraspEnv`] over a simulator facade.
 //!
-//! - the **robot** ([`robot`]): the arm (servo or multibody) and its gripper; applies an action,
-//!   reports joint and gripper state;
-//! - the **task** ([`task`]): success, failure and reward as pure functions of the state;
-//! - the **scenario** ([`randomize`], [`perception`], [`curriculum`]): what is true this episode
-//!   (drawn from a seed) and what a policy observes of it.
-//!
-//! [`env`]'s `GraspEnv` composes them over [`sim`], the facade that alone touches rapier
-//! ([`scene`] builds its world, [`contacts`] reads its narrow phase; [`shapes`] places the
-//! same colliders analytically for checks without rapier). Frames: [`mount`] (the
-//! base and the table frame, for any mount). Interface: [`obs`], [`spaces`], [`step`];
-//! [`config`] and [`validate`] for settings; [`vec_env`], [`trajectory`], [`policy`] for
-//! parallel stepping, episode export and evaluation.
+//! - [`robot`]: the arm (servo or multibody) and its gripper; applies an action, reports joint
+//!   and gripper state.
+//! - [`task`]: success, failure and reward (the lift and the place task) as pure functions of
+//!   the state, and the episode's record.
+//! - [`scenario`]: what is true this episode, drawn from a seed (the cube, the place task's
+//!   fixture, the curriculum, the imperfection families), and what a policy observes of it.
+//! - [`cell`]: which arm, where it stands (the base and the table frame in the world) and how it
+//!   is simulated.
+//! - [`sim`]: the facade that alone touches rapier (the world, its contacts, the exact shapes
+//!   used for checks without rapier).
+//! - [`mod@env`]: [`GraspEnv`] itself: the observation, the action and observation spaces, the
+//!   step, the free-space steps that skip rapier.
+//! - [`episode`]: the [`Policy`](episode::Policy) trait, the evaluation loop, lockstep runs and
+//!   the recorded trajectory.
+//! - [`mod@vec`]: N environments stepped in parallel threads, with auto-reset.
+//! - [`config`]: the settings, loaded from TOML and checked with messages that name the field,
+//!   and the named presets.
 
 pub mod cell;
 pub mod config;

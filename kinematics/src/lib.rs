@@ -9,6 +9,9 @@
 //! - [`calibrate`]: the base's mount and a fixed camera's pose from measurements in a cell.
 //! - [`analytic_ik`]: all (up to 8) closed-form IK branches, wrapped into the joint limits.
 //! - [`diff_ik`] and [`qp_ik`]: differential IK as one clarabel QP, and an iterative solver.
+//! - [`chain_ik`]: IK for any serial URDF chain (damped QP steps, seeded restarts).
+//! - [`collision`]: self-collision and clearance checks on the arm's and gripper's capsules.
+//! - [`angles`]: the angle arithmetic the IK solvers share.
 //!
 //! Frames follow ROS: `world`, `base_link`, `tool0` (the flange, DH frame 6) and `tcp` (between
 //! the finger pads, 0.14 m along `tool0` z). Lengths are metres, angles radians.

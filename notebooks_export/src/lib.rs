@@ -16,6 +16,9 @@
 //! - [`output_folder`], [`folder_marker`]: the output folder, written whole or not at all, and
 //!   never over files fairgrasp did not write.
 //!
+//! - [`raster`]: the RGB buffer charts are drawn in, encoded to PNG or GIF frames; [`error`]:
+//!   the crate's one error type, naming the file.
+//!
 //! Text is drawn with the embedded DejaVu Sans ([`raster::register_fonts`]): no system font is
 //! needed.
 

@@ -1,8 +1,9 @@
-//! fairgrasp-rl: PPO in burn, the grasping agents, training runs and the comparison.
+//! fairgrasp-rl: PPO in burn, the grasping env as PPO trains on it, and training runs.
 //!
 //! Three rooms, each building only on the ones before it:
 //! - [`ppo`]: the algorithm (network, rollouts, GAE, losses, the update), nothing about grasping;
-//! - [`agent`]: residual and pure grasping agents, and the grasp env as PPO sees it;
+//! - [`agent`]: the grasp env as PPO sees it (the agents themselves are `fairgrasp-eval`'s,
+//!   re-exported);
 //! - [`run`]: training runs, checkpoints, resume, evaluation.
 //!
 //! What a trained policy needs after training (its checkpoint read and run without burn, the

@@ -14,6 +14,7 @@
 //! - [`text`]: line numbers of offsets (LF, CRLF and CR files) and bounded excerpts of input
 //!   for messages.
 //! - [`work_queue`]: numbered jobs shared by worker threads, results in job order.
+//! - [`checksum`]: 64-bit FNV-1a, the checksum of checkpoints and report folders.
 
 pub mod body;
 pub mod checksum;
