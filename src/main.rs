@@ -32,7 +32,7 @@ fn main() -> ExitCode {
     }
 }
 
-/// The longest word an error message quotes whole [characters]: a longer one (a pasted value
+/// The longest word an error message quotes whole \[characters\]: a longer one (a pasted value
 /// of megabytes, a TOML line quoted by the parser) is cut to its start and its length.
 const MAX_QUOTED_WORD: usize = 120;
 

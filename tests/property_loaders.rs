@@ -55,7 +55,7 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-/// The most a load may allocate above what was live before it [bytes]: inputs here are at most
+/// The most a load may allocate above what was live before it \[bytes\]: inputs here are at most
 /// a few hundred kilobytes, so anything near this is an allocation sized by a claim in the file.
 const ALLOCATION_BOUND: isize = 64 << 20;
 

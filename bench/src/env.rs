@@ -42,23 +42,23 @@ pub struct EnvBenchReport {
     pub simulated_share: f64,
     /// Physics steps per environment step (the config's substeps).
     pub substeps: usize,
-    /// Physics time step [s].
+    /// Physics time step \[s\].
     pub dt: f64,
-    /// Wall-clock time of the throughput phase [s].
+    /// Wall-clock time of the throughput phase \[s\].
     pub wall_s: f64,
-    /// CPU time of this process (all threads) during the throughput phase [s].
+    /// CPU time of this process (all threads) during the throughput phase \[s\].
     pub cpu_s: f64,
     pub env_steps_per_s: f64,
     pub env_steps_per_cpu_s: f64,
     /// Physics steps actually run per second (free-space env steps run none).
     pub physics_steps_per_s: f64,
-    /// Mean soft reset time [ms].
+    /// Mean soft reset time \[ms\].
     pub soft_reset_ms: f64,
-    /// Mean hard reset (world rebuilt from nothing) time [ms].
+    /// Mean hard reset (world rebuilt from nothing) time \[ms\].
     pub hard_reset_ms: f64,
-    /// Fastest soft reset [ms].
+    /// Fastest soft reset \[ms\].
     pub soft_reset_min_ms: f64,
-    /// Fastest hard reset [ms].
+    /// Fastest hard reset \[ms\].
     pub hard_reset_min_ms: f64,
 }
 
@@ -78,7 +78,7 @@ pub enum EnvBenchError {
     Env(#[from] EnvError),
 }
 
-/// CPU time used by this process so far [s] (user + system, all threads).
+/// CPU time used by this process so far \[s\] (user + system, all threads).
 fn cpu_seconds() -> f64 {
     let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
     // SAFETY: getrusage writes a complete rusage into the pointer it is given; on failure the
@@ -91,7 +91,7 @@ fn cpu_seconds() -> f64 {
     tv(usage.ru_utime) + tv(usage.ru_stime)
 }
 
-/// Runs `f` for seeds `0..n`, timing each call: (mean, minimum) [ms]. The minimum is what the
+/// Runs `f` for seeds `0..n`, timing each call: (mean, minimum) \[ms\]. The minimum is what the
 /// work costs without the scheduler's interruptions.
 fn time_each(
     n: usize,

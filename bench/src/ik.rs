@@ -21,7 +21,7 @@ pub struct IkBenchRow {
     pub dof: usize,
     pub poses: usize,
     pub solved: usize,
-    /// Median and 90th percentile of one solve [µs].
+    /// Median and 90th percentile of one solve \[µs\].
     pub median_us: f64,
     pub p90_us: f64,
     /// Mean attempts of the solved poses (1 = from the given start).

@@ -26,13 +26,13 @@ pub struct PpoBench {
     pub minibatch: usize,
     /// Gradient-step throughput: samples × epochs per second of an iteration on [`FreeEnv`].
     pub update_samples_per_s: f64,
-    /// One iteration (rollout + update) on [`FreeEnv`] [s].
+    /// One iteration (rollout + update) on [`FreeEnv`] \[s\].
     pub ppo_iteration_s_without_env: f64,
     /// The preset (or config file) the training phase ran on.
     pub preset: String,
     /// Env steps per second of training on the grasp env (residual agent, `preset`).
     pub train_env_steps_per_s: f64,
-    /// One iteration on the grasp env [s].
+    /// One iteration on the grasp env \[s\].
     pub training_iteration_s: f64,
 }
 

@@ -39,7 +39,7 @@ pub struct SoakReport {
     /// Errors returned by `reset` or `step` (the env was reset after each), and the first one.
     pub env_errors: u64,
     pub first_error: Option<String>,
-    /// Resident memory after the first 10 % of the steps, and at the end [KiB] (0 where
+    /// Resident memory after the first 10 % of the steps, and at the end \[KiB\] (0 where
     /// `/proc/self/statm` cannot be read). The process's, so soaks running side by side share
     /// it.
     pub rss_after_warmup_kib: u64,
@@ -57,7 +57,7 @@ impl SoakReport {
     }
 }
 
-/// The process's resident set size [KiB] from `/proc/self/statm` (Linux), 0 elsewhere.
+/// The process's resident set size \[KiB\] from `/proc/self/statm` (Linux), 0 elsewhere.
 pub fn resident_kib() -> u64 {
     let Ok(text) = std::fs::read_to_string("/proc/self/statm") else {
         return 0;

@@ -77,7 +77,7 @@ fn bad_family_values_are_refused_naming_the_field() {
     );
 }
 
-/// The observed cube in the table frame: centre [m] and yaw [rad].
+/// The observed cube in the table frame: centre \[m\] and yaw \[rad\].
 fn observed_in_table(env: &GraspEnv, obs: &fairgrasp_env::Observation) -> [f64; 3] {
     env.mount()
         .table_in_base

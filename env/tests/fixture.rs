@@ -21,9 +21,9 @@ fn place_config() -> EnvConfig {
     cfg
 }
 
-/// Where a cube let go `above` [m] over the pocket's centre, shifted `dx` [m] along the
-/// fixture's x and turned `yaw` [rad], comes to rest: its centre in the fixture frame and its
-/// lowest corner above the table top [m], and its tilt from standing on a face [rad].
+/// Where a cube let go `above` \[m\] over the pocket's centre, shifted `dx` \[m\] along the
+/// fixture's x and turned `yaw` \[rad\], comes to rest: its centre in the fixture frame and its
+/// lowest corner above the table top \[m\], and its tilt from standing on a face \[rad\].
 fn drop_cube(dx: f64, yaw: f64, above: f64) -> ([f64; 3], f64, f64) {
     let cfg = place_config();
     let table = cfg.scene.table_height;

@@ -13,7 +13,7 @@ fn env_with(free_space: bool) -> GraspEnv {
     GraspEnv::new(config).unwrap()
 }
 
-/// Largest difference between the two fingers' travels [m].
+/// Largest difference between the two fingers' travels \[m\].
 fn finger_gap(a: &GraspEnv, b: &GraspEnv) -> f64 {
     (0..2)
         .map(|f| (a.finger_travel()[f] - b.finger_travel()[f]).abs())

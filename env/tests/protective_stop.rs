@@ -7,7 +7,7 @@ use fairgrasp_env::config::TaskConfig;
 use fairgrasp_env::task::{Failure, TaskState, judge_protective_stop};
 use fairgrasp_env::{ArmSimulation, ConfigError, EnvConfig, GraspEnv, Step};
 
-/// The cube centre's height in `world` [m].
+/// The cube centre's height in `world` \[m\].
 fn object_world_z(env: &GraspEnv) -> f64 {
     (env.base_in_world().iso * env.object_in_base().iso)
         .translation
@@ -16,7 +16,7 @@ fn object_world_z(env: &GraspEnv) -> f64 {
 
 /// Closes the gripper above the cube, then drives the closed fingers straight down to the grasp
 /// pose (TCP at the cube's centre): the pads land on the cube's top and press it into the table.
-/// Returns the last step and how far the cube centre went below its resting height [m].
+/// Returns the last step and how far the cube centre went below its resting height \[m\].
 fn press_closed_fingers_onto_the_cube(arm: ArmSimulation, threshold: f64) -> (Step, f64) {
     let mut config = common::config(arm);
     config.task.protective_stop_force = threshold;

@@ -25,7 +25,7 @@ use rapier3d::parry::shape::Shape;
 use rapier3d::prelude::*;
 
 type Pose3 = rapier3d::math::Pose;
-/// Joints [rad] and finger travels [m].
+/// Joints \[rad\] and finger travels \[m\].
 type Configuration = ([f64; 6], [f64; 2]);
 
 /// Level, tilted, elevated and turned mounts (tilts within the 15° validation limit).
@@ -42,7 +42,7 @@ fn env_on(mount: &([f64; 3], [f64; 3])) -> GraspEnv {
     GraspEnv::new(config).expect("a valid mount")
 }
 
-/// Random joints within the limits [rad] and finger travels within [0, travel] [m]; every
+/// Random joints within the limits \[rad\] and finger travels within [0, travel] \[m\]; every
 /// other draw puts the TCP, pointing down, from 3 cm below to 8 cm above the table top (by IK),
 /// so that the pads and the palm graze the table.
 fn random_configuration(env: &GraspEnv, rng: &mut ChaCha8Rng) -> Configuration {
@@ -102,7 +102,7 @@ fn colliders(env: &mut GraspEnv) -> Vec<(Part, Pose3, SharedShape)> {
     out
 }
 
-/// parry's answers on one pair of colliders: penetration depths [m], 0 when apart.
+/// parry's answers on one pair of colliders: penetration depths \[m\], 0 when apart.
 ///
 /// None of them is exact on every pair, so a pair agrees when one of them does:
 /// - the narrow phase (what rapier's `contacts::analyze` reads: the deepest point of the contact
@@ -131,7 +131,7 @@ impl Reference {
     }
 }
 
-/// Penetration depth [m] of two shapes by GJK, then EPA if they intersect; negative: apart.
+/// Penetration depth \[m\] of two shapes by GJK, then EPA if they intersect; negative: apart.
 fn gjk_depth(p1: &Pose3, g1: &dyn Shape, p2: &Pose3, g2: &dyn Shape) -> f64 {
     let d = parry::query::distance(p1, g1, p2, g2).expect("supported shapes");
     if d.distance > 0.0 {

@@ -1,5 +1,5 @@
 //! Physical facts behind the contact family `heavy_slippery`: two pads squeezing with force F
-//! [N] each hold a cube of mass m [kg] while their friction can carry its weight,
+//! \[N\] each hold a cube of mass m \[kg\] while their friction can carry its weight,
 //! 2·F·μ ≥ m·g, with μ the pad–cube friction coefficient (rapier's default rule averages the
 //! pad's and the cube's coefficients). A cube too heavy for that slips out of the grip as the
 //! gripper lifts and stays on the table; a harder squeeze lifts the same cube.
@@ -16,9 +16,9 @@ const G: f64 = 9.81;
 struct Lift {
     /// Both pads touched the cube once closed.
     pads_touched: bool,
-    /// How far the cube rose [m].
+    /// How far the cube rose \[m\].
     cube_rise: f64,
-    /// How far the TCP rose [m].
+    /// How far the TCP rose \[m\].
     tcp_rise: f64,
 }
 

@@ -17,7 +17,7 @@ const MAGIC: u32 = 0x4255_524E;
 const VERSION: u16 = 1;
 const HEADER: usize = 10;
 const ALIGNMENT: usize = 256;
-/// The largest metadata blob accepted [bytes] (a fairgrasp network's is about 1 KiB).
+/// The largest metadata blob accepted \[bytes\] (a fairgrasp network's is about 1 KiB).
 const MAX_METADATA: usize = 1 << 20;
 
 /// Why a burnpack file cannot be read.

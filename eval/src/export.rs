@@ -63,7 +63,7 @@ impl Recorder for JointLog {
 }
 
 /// Runs `method` on `scenario` of `config` (as `compare` runs it), then resamples the episode's
-/// joints to one sample every `period_sec` [s] followed by `hold_samples` repeats of the last,
+/// joints to one sample every `period_sec` \[s\] followed by `hold_samples` repeats of the last,
 /// with the gripper command of every step, and checks the stream against `limits` (the arm's:
 /// [`StreamLimits::of`]). The episode's outcome is returned, not judged: the caller decides
 /// whether a failed episode may leave.

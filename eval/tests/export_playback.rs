@@ -14,7 +14,7 @@ use fairgrasp_planner::stream::{StreamLimits, check_stream, play};
 
 /// Exports `method` on the first `n` scenarios of `preset` (set `seed`) at `period` and plays
 /// each successful one back; returns (exported successes, played successes, largest tracking
-/// error [deg], largest step [deg]).
+/// error \[deg\], largest step \[deg\]).
 fn export_and_play(
     preset: &str,
     method: &str,

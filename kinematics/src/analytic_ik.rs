@@ -32,7 +32,7 @@ use crate::pose::Pose;
 use crate::wrist_singular::singular_wrist_q6_candidates;
 
 /// Below this |sin θ5| the wrist is singular: joints 2, 3, 4 and 6 turn about parallel axes.
-/// Choosing θ6 freely there costs at most about this much [rad, m per m of arm] in the FK.
+/// Choosing θ6 freely there costs at most about this much \[rad, m per m of arm\] in the FK.
 const WRIST_SINGULAR_SIN: f64 = 1e-10;
 /// acos/asin arguments this far beyond ±1 are treated as rounding and clamped.
 const BOUNDARY_SLACK: f64 = 1e-10;
@@ -40,7 +40,7 @@ const BOUNDARY_SLACK: f64 = 1e-10;
 /// One IK branch.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct IkSolution {
-    /// Joint angles j1 … j6 [rad], each moved into its limits where a 2π shift allows.
+    /// Joint angles j1 … j6 \[rad\], each moved into its limits where a 2π shift allows.
     pub joints: [f64; 6],
     /// Are all six within the joint limits?
     pub in_limits: bool,
@@ -59,7 +59,7 @@ pub enum IkError {
         "shoulder singular: the wrist centre is on the joint-1 axis ({radius_m:.4} m from it), so joint 1 is undefined"
     )]
     ShoulderSingular {
-        /// Horizontal distance of the wrist centre from the joint-1 axis [m].
+        /// Horizontal distance of the wrist centre from the joint-1 axis \[m\].
         radius_m: f64,
     },
     /// The pose cannot be reached: the reason names which geometric condition failed.
@@ -73,11 +73,11 @@ pub enum IkError {
 /// Options of the closed-form solver.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AnalyticIkOptions {
-    /// θ6 to prefer where the wrist is singular (θ5 = 0 or π) and θ6 is free [rad]. Used as is
+    /// θ6 to prefer where the wrist is singular (θ5 = 0 or π) and θ6 is free \[rad\]. Used as is
     /// where the elbow then reaches the target and the joints are within their limits; else the
     /// nearest θ6 for which they are (or at least the elbow reaches).
     pub wrist_singular_q6: f64,
-    /// Tolerance on the joint-limit check [rad].
+    /// Tolerance on the joint-limit check \[rad\].
     pub limit_tolerance: f64,
 }
 
@@ -232,7 +232,7 @@ impl ArmModel {
     }
 
     /// Step 4 for one shoulder and wrist: the planar 2R arm of joints 2, 3 (both elbows) and θ4
-    /// from the remaining rotation. `t16` is the flange in frame 1; angles [rad]. Returns the two
+    /// from the remaining rotation. `t16` is the flange in frame 1; angles \[rad\]. Returns the two
     /// raw joint vectors (elbow bit 0, 1), or why the elbow cannot reach.
     fn elbow_branches(
         &self,
@@ -271,7 +271,7 @@ impl ArmModel {
     /// Both elbows at a singular wrist (θ5 = `q5`, 0 or π): θ6 is free, so the first θ6 from
     /// [`singular_wrist_q6_candidates`] (the caller's `wrist_singular_q6` where the elbow
     /// reaches) whose solution has an elbow within all joint limits, else the first that
-    /// reaches at all. Each pair is (joints [rad], in limits?).
+    /// reaches at all. Each pair is (joints \[rad\], in limits?).
     fn singular_wrist_branch(
         &self,
         t16: &Isometry3<f64>,
@@ -308,14 +308,14 @@ impl ArmModel {
         })
     }
 
-    /// `T_1_4`: frame 4 in frame 1, from the flange in frame 1 and θ5, θ6 [rad].
+    /// `T_1_4`: frame 4 in frame 1, from the flange in frame 1 and θ5, θ6 \[rad\].
     fn frame4_in_frame1(&self, t16: &Isometry3<f64>, q5: f64, q6: f64) -> Isometry3<f64> {
         let t45 = dh_transform(&self.dh[4], q5);
         let t56 = dh_transform(&self.dh[5], q6);
         t16 * (t45 * t56).inverse()
     }
 
-    /// Shortest and longest distance the elbow (links a2, a3) spans [m].
+    /// Shortest and longest distance the elbow (links a2, a3) spans \[m\].
     fn elbow_span(&self) -> (f64, f64) {
         let (a2, a3) = (self.dh[1].a.abs(), self.dh[2].a.abs());
         ((a2 - a3).abs(), a2 + a3)
@@ -345,7 +345,7 @@ pub fn nearest_solution(solutions: &[IkSolution], current: &[f64; 6]) -> Option<
         .copied()
 }
 
-/// Euclidean distance between two joint vectors [rad].
+/// Euclidean distance between two joint vectors \[rad\].
 pub fn joint_distance(a: &[f64; 6], b: &[f64; 6]) -> f64 {
     a.iter()
         .zip(b)

@@ -1,7 +1,7 @@
 //! Geometric self-collision and clearance checks with the arm's capsules and a capsule model of
 //! the gripper, without any physics engine: fast enough to screen thousands of grasp poses.
 //!
-//! All positions are in `base_link` [m].
+//! All positions are in `base_link` \[m\].
 
 use nalgebra::{Point3, Vector3};
 
@@ -18,7 +18,7 @@ pub struct PlacedCapsule {
     pub radius: f64,
 }
 
-/// Shortest distance between segments `p1–q1` and `p2–q2` [m] (Ericson, Real-Time Collision
+/// Shortest distance between segments `p1–q1` and `p2–q2` \[m\] (Ericson, Real-Time Collision
 /// Detection, §5.1.9).
 pub fn segment_distance(p1: [f64; 3], q1: [f64; 3], p2: [f64; 3], q2: [f64; 3]) -> f64 {
     let (p1, q1, p2, q2) = (
@@ -60,7 +60,7 @@ pub fn segment_distance(p1: [f64; 3], q1: [f64; 3], p2: [f64; 3], q2: [f64; 3]) 
     ((p1 + d1 * s) - (p2 + d2 * t)).norm()
 }
 
-/// The gripper as capsules in the `tool0` frame with the pads' inner faces `opening` [m] apart:
+/// The gripper as capsules in the `tool0` frame with the pads' inner faces `opening` \[m\] apart:
 /// the palm, and each finger from the palm's bottom face to the pad's tip.
 fn gripper_capsules(
     model: &ArmModel,
@@ -103,7 +103,7 @@ impl ArmModel {
         self.placed_capsules_with_opening(q, self.gripper.opening(0.0))
     }
 
-    /// Like [`ArmModel::placed_capsules`], with the pads' inner faces `opening` [m] apart.
+    /// Like [`ArmModel::placed_capsules`], with the pads' inner faces `opening` \[m\] apart.
     pub fn placed_capsules_with_opening(&self, q: &[f64; 6], opening: f64) -> Vec<PlacedCapsule> {
         let poses = self.link_poses(q);
         let mut out = Vec::with_capacity(self.capsules.len() + 3);
@@ -163,7 +163,7 @@ impl ArmModel {
             .any(|(x, y)| (*x == a && *y == b) || (*x == b && *y == a))
     }
 
-    /// The checked pairs closer than `margin` [m] at `q`, with their clearance (negative =
+    /// The checked pairs closer than `margin` \[m\] at `q`, with their clearance (negative =
     /// overlapping). Empty means collision-free.
     pub fn self_collisions(
         &self,
@@ -186,14 +186,14 @@ impl ArmModel {
         hits
     }
 
-    /// The lowest point of any capsule except the base's, as a height in `base_link` [m].
+    /// The lowest point of any capsule except the base's, as a height in `base_link` \[m\].
     pub fn lowest_point(&self, q: &[f64; 6]) -> f64 {
         self.lowest_point_in(q, &Pose::identity())
     }
 
     /// The lowest point of any capsule except the base's, as a height along the z axis of
     /// `frame` (a frame given in `base_link`, e.g. the table frame: z up, origin on the table
-    /// top) [m]. A capsule's lowest point along a direction is its lower end minus its radius.
+    /// top) \[m\]. A capsule's lowest point along a direction is its lower end minus its radius.
     pub fn lowest_point_in(&self, q: &[f64; 6], frame: &Pose) -> f64 {
         let to_frame = frame.inverse();
         let height = |p: [f64; 3]| to_frame.transform_point(p)[2];

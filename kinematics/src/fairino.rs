@@ -21,7 +21,7 @@ pub const LINK_NAMES: [&str; 7] = [
 ];
 
 /// FAIRINO's published check of the FR3 at zero joints (docs/FR3.md, "Checks"): the flange
-/// (`tool0`) position in `base_link` [m]. The DH table below must reproduce it
+/// (`tool0`) position in `base_link` \[m\]. The DH table below must reproduce it
 /// (`kinematics/tests/fk.rs`), and `fairgrasp frames` prints the difference.
 pub const FR3_ZERO_FLANGE_XYZ: [f64; 3] = [-0.520, -0.202, 0.038];
 

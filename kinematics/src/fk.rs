@@ -104,8 +104,8 @@ impl ArmModel {
         }
     }
 
-    /// Geometric Jacobian of `frame` in `base_link`: rows 0–2 map joint rates [rad/s] to the
-    /// frame origin's linear velocity [m/s], rows 3–5 to its angular velocity [rad/s].
+    /// Geometric Jacobian of `frame` in `base_link`: rows 0–2 map joint rates \[rad/s\] to the
+    /// frame origin's linear velocity \[m/s\], rows 3–5 to its angular velocity \[rad/s\].
     ///
     /// Column i is `[z_{i-1} × (p − o_{i-1}); z_{i-1}]`, with joint i turning about DH axis z_{i-1}.
     pub fn jacobian(&self, q: &[f64; 6], frame: EndFrame) -> Matrix6<f64> {

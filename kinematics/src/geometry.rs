@@ -8,21 +8,21 @@
 
 use nalgebra::{Isometry3, Point3, Vector3};
 
-/// Below this squared norm [m²] a direction (segment or edge cross product) is treated as zero.
+/// Below this squared norm \[m²\] a direction (segment or edge cross product) is treated as zero.
 const DEGENERATE: f64 = 1e-18;
 
 /// An oriented box: centre and axes given by `pose` (the box frame in the common frame), extent
-/// `±half_extents[k]` [m] along box axis `k`.
+/// `±half_extents[k]` \[m\] along box axis `k`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cuboid {
     /// The box frame (centre, axes) in the common frame.
     pub pose: Isometry3<f64>,
-    /// Half sizes along the box's x, y, z [m]; non-negative.
+    /// Half sizes along the box's x, y, z \[m\]; non-negative.
     pub half_extents: [f64; 3],
 }
 
 impl Cuboid {
-    /// A box of half sizes `half_extents` [m] whose frame is `pose`.
+    /// A box of half sizes `half_extents` \[m\] whose frame is `pose`.
     pub fn new(pose: Isometry3<f64>, half_extents: [f64; 3]) -> Cuboid {
         Cuboid { pose, half_extents }
     }
@@ -33,14 +33,14 @@ impl Cuboid {
         [0, 1, 2].map(|k| m.matrix().column(k).into_owned())
     }
 
-    /// Radius [m] of the projection onto the unit direction `l` of a box with `axes`.
+    /// Radius \[m\] of the projection onto the unit direction `l` of a box with `axes`.
     fn projected_radius(&self, axes: &[Vector3<f64>; 3], l: &Vector3<f64>) -> f64 {
         (0..3)
             .map(|k| self.half_extents[k] * axes[k].dot(l).abs())
             .sum()
     }
 
-    /// Distance [m] from `p` (box frame) to the box; 0 inside.
+    /// Distance \[m\] from `p` (box frame) to the box; 0 inside.
     fn local_point_distance_squared(&self, p: &Vector3<f64>) -> f64 {
         (0..3)
             .map(|k| (p[k].abs() - self.half_extents[k]).max(0.0).powi(2))
@@ -48,7 +48,7 @@ impl Cuboid {
     }
 }
 
-/// Distance [m] between the segment `a → b` and the box; 0 when the segment touches or enters
+/// Distance \[m\] between the segment `a → b` and the box; 0 when the segment touches or enters
 /// it. Exact: in the box frame the squared distance from `a + t (b − a)` is a convex piecewise
 /// quadratic in `t` whose pieces change only where a coordinate crosses a face plane, so its
 /// minimum is at a crossing, an end, or the vertex of one piece's parabola.
@@ -104,7 +104,7 @@ pub fn segment_box_distance(a: [f64; 3], b: [f64; 3], cuboid: &Cuboid) -> f64 {
     best.sqrt()
 }
 
-/// How deep [m] the segment `a → b` reaches into the box: the shortest translation that moves
+/// How deep \[m\] the segment `a → b` reaches into the box: the shortest translation that moves
 /// it out (0 when it does not touch the box's interior). Separating-axis test over the box's
 /// three face normals and the segment's direction crossed with each box edge.
 pub fn segment_box_penetration(a: [f64; 3], b: [f64; 3], cuboid: &Cuboid) -> f64 {
@@ -128,7 +128,7 @@ pub fn segment_box_penetration(a: [f64; 3], b: [f64; 3], cuboid: &Cuboid) -> f64
     depth.max(0.0)
 }
 
-/// Signed distance [m] from the segment `a → b` to the box: the distance when apart, minus the
+/// Signed distance \[m\] from the segment `a → b` to the box: the distance when apart, minus the
 /// penetration depth when the segment enters it. A capsule of radius `r` on the segment has
 /// signed distance `segment_box_signed_distance − r` (exact: the capsule is the segment
 /// Minkowski-summed with a ball).
@@ -141,7 +141,7 @@ pub fn segment_box_signed_distance(a: [f64; 3], b: [f64; 3], cuboid: &Cuboid) ->
     }
 }
 
-/// The largest gap [m] between the boxes' projections over the 15 separating axes (the 3 + 3
+/// The largest gap \[m\] between the boxes' projections over the 15 separating axes (the 3 + 3
 /// face normals and the 9 edge cross products; near-parallel edge pairs, whose cross product
 /// vanishes, are covered by the face normals and skipped). Positive: the boxes are apart by at
 /// least this much (a lower bound on their distance, exact when a face normal separates
@@ -171,7 +171,7 @@ pub fn box_box_separation(a: &Cuboid, b: &Cuboid) -> f64 {
     separation
 }
 
-/// Penetration depth [m] of two overlapping boxes (`None` when they are apart or only touch).
+/// Penetration depth \[m\] of two overlapping boxes (`None` when they are apart or only touch).
 pub fn box_box_penetration(a: &Cuboid, b: &Cuboid) -> Option<f64> {
     let separation = box_box_separation(a, b);
     (separation < 0.0).then_some(-separation)

@@ -62,11 +62,11 @@ impl std::error::Error for MissingModelData {}
 /// One row of a standard (distal) DH table: `T_i = Rz(θ_i)·Tz(d)·Tx(a)·Rx(α)`, θ offset 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DhRow {
-    /// Offset along the previous z axis [m].
+    /// Offset along the previous z axis \[m\].
     pub d: f64,
-    /// Length along the new x axis [m].
+    /// Length along the new x axis \[m\].
     pub a: f64,
-    /// Twist about the new x axis [rad].
+    /// Twist about the new x axis \[rad\].
     pub alpha: f64,
 }
 
@@ -75,16 +75,16 @@ pub struct DhRow {
 pub struct JointSpec {
     /// URDF joint name ("j1" … "j6").
     pub name: &'static str,
-    /// Lower position limit [rad] (the manual's soft limit).
+    /// Lower position limit \[rad\] (the manual's soft limit).
     pub lower: f64,
-    /// Upper position limit [rad] (the manual's soft limit).
+    /// Upper position limit \[rad\] (the manual's soft limit).
     pub upper: f64,
-    /// Velocity limit [rad/s].
+    /// Velocity limit \[rad/s\].
     pub max_velocity: f64,
 }
 
 impl JointSpec {
-    /// Is `q` [rad] within `[lower, upper]`, allowing `tolerance` [rad] on either side?
+    /// Is `q` \[rad\] within `[lower, upper]`, allowing `tolerance` \[rad\] on either side?
     pub fn contains(&self, q: f64, tolerance: f64) -> bool {
         q >= self.lower - tolerance && q <= self.upper + tolerance
     }
@@ -95,24 +95,25 @@ impl JointSpec {
 pub struct LinkInertial {
     /// URDF link name.
     pub link: &'static str,
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass: f64,
-    /// Centre of mass in the link frame [m].
+    /// Centre of mass in the link frame \[m\].
     pub com: [f64; 3],
-    /// Principal moments `ixx, iyy, izz` about the CoM [kg·m²] (off-diagonal terms are zero).
+    /// Principal moments `ixx, iyy, izz` about the CoM \[kg·m²\] (off-diagonal terms are zero).
     pub inertia_diag: [f64; 3],
 }
 
-/// A capsule collision shape: the segment `from → to` in the link frame [m], swept by `radius` [m].
+/// A capsule collision shape: the segment `from → to` in the link frame \[m\], swept by
+/// `radius` \[m\].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinkCapsule {
     /// URDF link name.
     pub link: &'static str,
-    /// First end point of the axis segment, link frame [m].
+    /// First end point of the axis segment, link frame \[m\].
     pub from: [f64; 3],
-    /// Second end point of the axis segment, link frame [m].
+    /// Second end point of the axis segment, link frame \[m\].
     pub to: [f64; 3],
-    /// Radius [m].
+    /// Radius \[m\].
     pub radius: f64,
 }
 
@@ -121,26 +122,26 @@ pub struct LinkCapsule {
 /// Frame: `tool0` z points out of the flange; the fingers move along `tool0` x.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GripperSpec {
-    /// Travel of each finger from fully open (0) to fully closed [m].
+    /// Travel of each finger from fully open (0) to fully closed \[m\].
     pub finger_travel: f64,
-    /// Palm box size `x, y, z` [m]; the palm spans z ∈ [0, size.z] in `tool0`.
+    /// Palm box size `x, y, z` \[m\]; the palm spans z ∈ [0, size.z] in `tool0`.
     pub palm_size: [f64; 3],
-    /// Palm mass [kg].
+    /// Palm mass \[kg\].
     pub palm_mass: f64,
-    /// Mass of one finger including its pad [kg].
+    /// Mass of one finger including its pad \[kg\].
     pub finger_mass: f64,
-    /// Pad size `x` (thickness, along the closing direction), `y` (width), `z` (height) [m].
+    /// Pad size `x` (thickness, along the closing direction), `y` (width), `z` (height) \[m\].
     pub pad_size: [f64; 3],
     /// Pad friction coefficient.
     pub pad_friction: f64,
-    /// Default grip force per finger [N].
+    /// Default grip force per finger \[N\].
     pub grip_force: f64,
-    /// TCP (between the pad centres) in `tool0` [m]: along `tool0` z.
+    /// TCP (between the pad centres) in `tool0` \[m\]: along `tool0` z.
     pub tcp_offset: f64,
 }
 
 impl GripperSpec {
-    /// Distance between the pads' inner faces for a finger travel `q` [m] (same on both fingers).
+    /// Distance between the pads' inner faces for a finger travel `q` \[m\] (same on both fingers).
     pub fn opening(&self, q: f64) -> f64 {
         2.0 * (self.finger_travel - q)
     }
@@ -170,17 +171,17 @@ pub struct ArmModel {
 }
 
 impl ArmModel {
-    /// Lower joint limits [rad].
+    /// Lower joint limits \[rad\].
     pub fn lower_limits(&self) -> [f64; 6] {
         self.joints.map(|j| j.lower)
     }
 
-    /// Upper joint limits [rad].
+    /// Upper joint limits \[rad\].
     pub fn upper_limits(&self) -> [f64; 6] {
         self.joints.map(|j| j.upper)
     }
 
-    /// Velocity limits [rad/s].
+    /// Velocity limits \[rad/s\].
     pub fn velocity_limits(&self) -> [f64; 6] {
         self.joints.map(|j| j.max_velocity)
     }
@@ -202,12 +203,12 @@ impl ArmModel {
             .map(|i| (i, q[i]))
     }
 
-    /// Maximum reach of the wrist from the shoulder, `|a2| + |a3| + d5` [m].
+    /// Maximum reach of the wrist from the shoulder, `|a2| + |a3| + d5` \[m\].
     pub fn reach(&self) -> f64 {
         self.dh[1].a.abs() + self.dh[2].a.abs() + self.dh[4].d
     }
 
-    /// Height of the shoulder point (joint 2 axis) above `base_link` [m].
+    /// Height of the shoulder point (joint 2 axis) above `base_link` \[m\].
     pub fn shoulder_height(&self) -> f64 {
         self.dh[0].d
     }

@@ -48,11 +48,11 @@ pub enum PoseError {
 /// Plain-number view of a pose, for JSON output and tables.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct PoseRecord {
-    /// Position [m].
+    /// Position \[m\].
     pub xyz: [f64; 3],
     /// Orientation as a unit quaternion `[x, y, z, w]`.
     pub quat_xyzw: [f64; 4],
-    /// Orientation as URDF roll, pitch, yaw [rad].
+    /// Orientation as URDF roll, pitch, yaw \[rad\].
     pub rpy: [f64; 3],
 }
 
@@ -93,14 +93,14 @@ impl Pose {
         }
     }
 
-    /// A pure translation [m].
+    /// A pure translation \[m\].
     pub fn from_xyz(xyz: [f64; 3]) -> Self {
         Self {
             iso: Isometry3::translation(xyz[0], xyz[1], xyz[2]),
         }
     }
 
-    /// From a position [m] and URDF roll, pitch, yaw [rad] (`R = Rz(yaw)·Ry(pitch)·Rx(roll)`).
+    /// From a position \[m\] and URDF roll, pitch, yaw \[rad\] (`R = Rz(yaw)·Ry(pitch)·Rx(roll)`).
     pub fn from_xyz_rpy(xyz: [f64; 3], rpy: [f64; 3]) -> Self {
         let rotation = UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]);
         Self {
@@ -115,7 +115,7 @@ impl Pose {
         Ok(Self::from_xyz_rpy(xyz, rpy))
     }
 
-    /// From a position [m] and a quaternion `[x, y, z, w]`; the quaternion is renormalised if its
+    /// From a position \[m\] and a quaternion `[x, y, z, w]`; the quaternion is renormalised if its
     /// norm is within 1e-3 of 1 and refused otherwise.
     pub fn try_from_xyz_quat_xyzw(xyz: [f64; 3], quat_xyzw: [f64; 4]) -> Result<Self, PoseError> {
         check_finite("xyz", &xyz)?;
@@ -137,13 +137,13 @@ impl Pose {
         })
     }
 
-    /// Position [m].
+    /// Position \[m\].
     pub fn xyz(&self) -> [f64; 3] {
         let t = self.iso.translation.vector;
         [t.x, t.y, t.z]
     }
 
-    /// URDF roll, pitch, yaw [rad]; pitch in [−π/2, π/2].
+    /// URDF roll, pitch, yaw \[rad\]; pitch in [−π/2, π/2].
     pub fn rpy(&self) -> [f64; 3] {
         let (r, p, y) = self.iso.rotation.euler_angles();
         [r, p, y]
@@ -203,7 +203,7 @@ impl Pose {
         [v.x, v.y, v.z]
     }
 
-    /// Distance between the two origins [m] and the angle of the relative rotation [rad].
+    /// Distance between the two origins \[m\] and the angle of the relative rotation \[rad\].
     pub fn distance_to(&self, other: &Pose) -> (f64, f64) {
         let dp = (self.iso.translation.vector - other.iso.translation.vector).norm();
         let dr = self.iso.rotation.angle_to(&other.iso.rotation);

@@ -20,29 +20,29 @@ use crate::restart::SplitMix64;
 pub struct QpIkOptions {
     /// Which frame to place at the target.
     pub frame: EndFrame,
-    /// Converged when the position error is at most this [m].
+    /// Converged when the position error is at most this \[m\].
     pub position_tolerance: f64,
-    /// … and the orientation error at most this [rad].
+    /// … and the orientation error at most this \[rad\].
     pub orientation_tolerance: f64,
     /// Iterations per attempt.
     pub max_iterations: usize,
     /// Attempts: the first from the given start, the rest from random in-limit configurations.
     pub max_attempts: usize,
-    /// Largest step of any joint per iteration [rad] (the velocity limit over one iteration).
+    /// Largest step of any joint per iteration \[rad\] (the velocity limit over one iteration).
     pub max_step: f64,
-    /// Distance kept from the joint limits [rad].
+    /// Distance kept from the joint limits \[rad\].
     pub limit_margin: f64,
-    /// Constant damping λ₀ [per rad²].
+    /// Constant damping λ₀ \[per rad²\].
     pub damping: f64,
     /// Error-dependent damping κ: λ = λ₀ + κ·‖e‖² (e in m and rad).
     pub error_damping: f64,
-    /// Weight of position error [per m²].
+    /// Weight of position error \[per m²\].
     pub position_cost: f64,
-    /// Weight of orientation error [per rad²].
+    /// Weight of orientation error \[per rad²\].
     pub orientation_cost: f64,
-    /// Longest position error trusted in one step [m].
+    /// Longest position error trusted in one step \[m\].
     pub position_clamp: f64,
-    /// Longest orientation error trusted in one step [rad].
+    /// Longest orientation error trusted in one step \[rad\].
     pub orientation_clamp: f64,
     /// Seed of the restarts' random configurations.
     pub seed: u64,
@@ -72,11 +72,11 @@ impl Default for QpIkOptions {
 /// A converged QP IK solve.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct QpIkSolution {
-    /// Joint angles [rad], within the limits.
+    /// Joint angles \[rad\], within the limits.
     pub joints: [f64; 6],
-    /// Position error at the end [m].
+    /// Position error at the end \[m\].
     pub position_error_m: f64,
-    /// Orientation error at the end [rad].
+    /// Orientation error at the end \[rad\].
     pub orientation_error_rad: f64,
     /// QP steps taken over all attempts.
     pub iterations: usize,

@@ -12,7 +12,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use crate::angles::wrap_pi;
 
-/// How far inside the reaching arc a θ6 moved onto it is placed [rad], so that the elbow is
+/// How far inside the reaching arc a θ6 moved onto it is placed \[rad\], so that the elbow is
 /// not exactly straight or folded (where rounding could push it just out of reach).
 const ARC_MARGIN: f64 = 1e-6;
 /// Values of θ6 spread over each half of the reaching arc, tried when the preferred one puts
@@ -21,11 +21,11 @@ const SPREAD: usize = 8;
 /// `cos` bounds this far beyond ±1 are treated as rounding (a pose exactly at the reach).
 const COS_SLACK: f64 = 1e-9;
 
-/// θ6 values [rad] for which the elbow reaches, best first; empty if none does.
+/// θ6 values \[rad\] for which the elbow reaches, best first; empty if none does.
 ///
-/// `reach_sq(θ6)` is the squared distance [m²] the elbow must span for that θ6 (sinusoidal in
-/// θ6 at a singular wrist) and `reach_sq_range` the interval [m²] the elbow can span. First
-/// comes `seed` [rad] if it reaches, else the reaching θ6 nearest to it (moved [`ARC_MARGIN`]
+/// `reach_sq(θ6)` is the squared distance \[m²\] the elbow must span for that θ6 (sinusoidal in
+/// θ6 at a singular wrist) and `reach_sq_range` the interval \[m²\] the elbow can span. First
+/// comes `seed` \[rad\] if it reaches, else the reaching θ6 nearest to it (moved [`ARC_MARGIN`]
 /// inside the arc); then θ6 values spread
 /// over the reaching arc, nearest to `seed` first, for the caller to try when the first one puts
 /// θ4 or θ6 outside its limits. A non-finite seed counts as 0.

@@ -189,7 +189,7 @@ fn three_or_nearly_collinear_points_warn() {
 }
 
 /// A fixed camera `x` (in base) and a marker `y` (on the TCP): stations at random TCP poses
-/// with the marker in view, the detector's error up to `pos` [m] and `ang` [rad] per axis.
+/// with the marker in view, the detector's error up to `pos` \[m\] and `ang` \[rad\] per axis.
 fn stations(
     rng: &mut ChaCha8Rng,
     x: &Pose,

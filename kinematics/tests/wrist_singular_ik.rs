@@ -5,14 +5,14 @@ mod common;
 
 use fairgrasp_kinematics::{AnalyticIkOptions, ArmKind, EndFrame, Pose};
 
-/// Joint-5 angles at and near the singularity [rad].
+/// Joint-5 angles at and near the singularity \[rad\].
 const NEAR_ZERO_Q5: [f64; 11] = [
     0.0, 1e-14, -1e-12, 1e-10, -1e-10, 1e-9, -1e-9, 1e-6, -1e-6, 1e-4, -1e-4,
 ];
-/// What "reaches the pose" means here [m, rad].
+/// What "reaches the pose" means here \[m, rad\].
 const TOLERANCE: f64 = 1e-6;
 
-/// The smallest FK error (position [m], orientation [rad]) over the solutions, as the larger of
+/// The smallest FK error (position \[m\], orientation \[rad\]) over the solutions, as the larger of
 /// the two, and the error of the worst solution.
 fn best_and_worst(
     kind: ArmKind,

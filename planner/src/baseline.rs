@@ -26,18 +26,18 @@ pub use crate::phase::Phase;
 /// Settings of the scripted grasp.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BaselineConfig {
-    /// Pre-grasp height above the object centre [m].
+    /// Pre-grasp height above the object centre \[m\].
     pub pre_grasp_height: f64,
-    /// Lift above the grasp [m].
+    /// Lift above the grasp \[m\].
     pub lift_height: f64,
     /// Fraction of the action's velocity range the trajectories may use (the rest is headroom
     /// for the feedback term).
     pub velocity_fraction: f64,
-    /// Trajectory acceleration limit [rad/s²] (the env's arm limit is 10).
+    /// Trajectory acceleration limit \[rad/s²\] (the env's arm limit is 10).
     pub max_acceleration: f64,
-    /// Trajectory jerk limit [rad/s³].
+    /// Trajectory jerk limit \[rad/s³\].
     pub max_jerk: f64,
-    /// Feedback gain on the joint error [1/s].
+    /// Feedback gain on the joint error \[1/s\].
     pub feedback_gain: f64,
     /// Env steps the gripper closes before lifting.
     pub close_steps: usize,
@@ -46,7 +46,7 @@ pub struct BaselineConfig {
     /// Env steps a residual may hold the gripper open after the descent arrived
     /// ([`CloseTiming::Wait`]).
     pub max_close_delay_steps: usize,
-    /// Where the TCP grasps the cube: this far above its centre along the vertical [m] (0: at
+    /// Where the TCP grasps the cube: this far above its centre along the vertical \[m\] (0: at
     /// the centre; the place task grasps higher so that the cube stands out below the pads).
     pub grasp_height: f64,
 }
@@ -68,7 +68,7 @@ impl Default for BaselineConfig {
     }
 }
 
-/// Distances [m] across the table, nearest first, at which [`ScriptedGrasp`] looks for a
+/// Distances \[m\] across the table, nearest first, at which [`ScriptedGrasp`] looks for a
 /// graspable pose when the observed cube admits none (8 directions each).
 pub const NEAREST_GRASP_SEARCH: [f64; 5] = [0.005, 0.01, 0.015, 0.02, 0.03];
 
@@ -77,7 +77,7 @@ pub struct ScriptedGrasp {
     config: BaselineConfig,
     model: ArmModel,
     action_scale: f64,
-    /// Duration of one env step [s].
+    /// Duration of one env step \[s\].
     step_dt: f64,
     limits: MotionLimits,
     /// The arm's mount (base and table frame), known to the script like a real cell's layout.

@@ -27,7 +27,7 @@ use crate::baseline::{BaselineConfig, ScriptedGrasp};
 
 /// Marker spots touched per calibration.
 pub const TOUCHES: usize = 8;
-/// The largest error of one touch, per axis [m] (a careful touch with a pointed tool).
+/// The largest error of one touch, per axis \[m\] (a careful touch with a pointed tool).
 pub const TOUCH_ERROR: f64 = 0.001;
 /// The seed of the calibration's marker spots and touch errors.
 pub const CALIBRATION_SEED: u64 = 0xCA11_B8A7E;
@@ -40,7 +40,7 @@ pub struct CameraCalibration {
     pub fit: Result<PointFit, String>,
     /// `T⁻¹`, applied to every observed position [`base_link` → `base_link`].
     correction: Pose,
-    /// The correction's turn about the world vertical [rad], added to the observed yaw.
+    /// The correction's turn about the world vertical \[rad\], added to the observed yaw.
     yaw_correction: f64,
 }
 

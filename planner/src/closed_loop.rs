@@ -22,11 +22,11 @@ use crate::baseline::{BaselineConfig, Phase, ScriptedGrasp};
 /// Settings of the closed-loop script.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ClosedLoopConfig {
-    /// Plan again when the estimated cube centre is this far [m] from the planned-on one
+    /// Plan again when the estimated cube centre is this far \[m\] from the planned-on one
     /// (1 cm: well above a still cube's jitter, 0 without noise; well below the 1.75 cm the open
     /// fingers tolerate across the cube).
     pub replan_distance: f64,
-    /// Plan again when the estimated yaw (modulo 90°) turns this much [rad] (5°).
+    /// Plan again when the estimated yaw (modulo 90°) turns this much \[rad\] (5°).
     pub replan_yaw: f64,
     /// Env steps the gripper is given to open after a missed grasp before the arm moves.
     pub open_steps: usize,
@@ -60,7 +60,7 @@ pub struct ClosedLoopGrasp {
     config: ClosedLoopConfig,
     source: CubeSource,
     truth: Option<ObservedObject>,
-    /// The cube estimate (centre in `base_link` [m], yaw [rad]) the current plan was made on.
+    /// The cube estimate (centre in `base_link` \[m\], yaw \[rad\]) the current plan was made on.
     planned_on: Option<([f64; 3], f64)>,
     retries_left: usize,
     /// Env steps left of re-opening the gripper before the retry's plan.

@@ -1,5 +1,6 @@
-//! A task-space correction of the scripted grasp: an offset of the TCP [m] and of its yaw about
-//! the table's vertical [rad], both in the table frame, that the script's joint reference follows.
+//! A task-space correction of the scripted grasp: an offset of the TCP \[m\] and of its yaw about
+//! the table's vertical \[rad\], both in the table frame, that the script's joint reference
+//! follows.
 //!
 //! The offset is carried into joint space through the arm's Jacobian at the reference joints:
 //! a few damped least-squares Newton steps, `Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e`, toward the TCP pose
@@ -17,9 +18,9 @@ pub const DAMPING: f64 = 0.01;
 /// An offset of the grasp, table frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct TaskCorrection {
-    /// TCP offset along the table frame's x, y, z [m].
+    /// TCP offset along the table frame's x, y, z \[m\].
     pub offset: [f64; 3],
-    /// Yaw offset about the table's vertical [rad].
+    /// Yaw offset about the table's vertical \[rad\].
     pub yaw: f64,
 }
 
@@ -53,23 +54,23 @@ pub enum CloseTiming {
 /// How far and how fast a learned correction may go, and how it follows the policy.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct CorrectionLimits {
-    /// Largest offset along the table's x and y [m] (5 cm: above the families' 1.5–3 cm errors).
+    /// Largest offset along the table's x and y \[m\] (5 cm: above the families' 1.5–3 cm errors).
     pub max_offset: f64,
-    /// Largest offset along the table's vertical [m] (1 cm: the cube lies on the table; more
+    /// Largest offset along the table's vertical \[m\] (1 cm: the cube lies on the table; more
     /// lets exploration drive the fingers into it).
     pub max_height: f64,
-    /// Largest yaw offset [rad] (15°: the miscalibrated cells are off by 2–2.5°).
+    /// Largest yaw offset \[rad\] (15°: the miscalibrated cells are off by 2–2.5°).
     pub max_yaw: f64,
-    /// Fastest the offset may change [m/s].
+    /// Fastest the offset may change \[m/s\].
     pub speed: f64,
-    /// Fastest the yaw offset may change [rad/s].
+    /// Fastest the yaw offset may change \[rad/s\].
     pub yaw_rate: f64,
-    /// Time constant [s] of the first-order filter the correction follows the policy's command
+    /// Time constant \[s\] of the first-order filter the correction follows the policy's command
     /// through. It makes the correction persistent between steps, and turns per-step
     /// exploration noise into a slowly varying offset (time-correlated exploration) whose
     /// spread stays bounded: `σ·max·√(α/(2−α))` for `α = dt/τ`.
     pub time_constant: f64,
-    /// Squeeze per finger [N] added to the env's `gripper.force` at a squeeze command of +1,
+    /// Squeeze per finger \[N\] added to the env's `gripper.force` at a squeeze command of +1,
     /// when the residual has the squeeze ([`crate::residual::ResidualScript::squeezing`]). 7 N:
     /// 12 N on the default 5 N grip, which lifts the `heavy_slippery` cubes; at 15 N the
     /// fingers' closing impact trips the 35 N protective stop.
@@ -91,12 +92,12 @@ impl Default for CorrectionLimits {
 }
 
 impl CorrectionLimits {
-    /// The filter's step gain `α = min(1, dt/τ)` for a step of `dt` [s].
+    /// The filter's step gain `α = min(1, dt/τ)` for a step of `dt` \[s\].
     pub fn gain(&self, dt: f64) -> f64 {
         (dt / self.time_constant.max(1e-9)).min(1.0)
     }
 
-    /// `c` one step of `dt` [s] closer to the command `action[0..4]` (each clipped to [-1, 1],
+    /// `c` one step of `dt` \[s\] closer to the command `action[0..4]` (each clipped to [-1, 1],
     /// × the largest offset and yaw), within the rate limits.
     pub fn follow(&self, c: &TaskCorrection, action: &[f64], dt: f64) -> TaskCorrection {
         let a = |i: usize| action.get(i).copied().unwrap_or(0.0).clamp(-1.0, 1.0);
@@ -128,7 +129,7 @@ impl CorrectionLimits {
 /// for centimetre offsets.
 const NEWTON_STEPS: usize = 3;
 
-/// The joints near `q` [rad] that put the TCP where `c` moves it from `fk(q)`: translated by the
+/// The joints near `q` \[rad\] that put the TCP where `c` moves it from `fk(q)`: translated by the
 /// offset (table frame) and turned about the table's vertical through the TCP by the yaw.
 /// `table_in_base` is the table frame in `base_link`. Damped least-squares Newton steps from `q`
 /// through the Jacobian; exact to micrometres for the offsets a correction spans (a test checks
@@ -164,7 +165,7 @@ pub fn corrected(
     out
 }
 
-/// `corrected(q, c) − q` [rad].
+/// `corrected(q, c) − q` \[rad\].
 pub fn joint_offset(
     model: &ArmModel,
     table_in_base: &Pose,

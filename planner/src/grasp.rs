@@ -28,9 +28,9 @@ pub struct GraspPoses {
 /// The object pose a plan was made on, `base_link`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct PlannedObject {
-    /// Object centre [m].
+    /// Object centre \[m\].
     pub position: [f64; 3],
-    /// Object yaw about the world vertical, relative to the base's heading [rad].
+    /// Object yaw about the world vertical, relative to the base's heading \[rad\].
     pub yaw: f64,
 }
 
@@ -40,13 +40,13 @@ pub struct GraspJoints {
     pub pre_grasp: [f64; 6],
     pub grasp: [f64; 6],
     pub lift: [f64; 6],
-    /// TCP yaw of the chosen grasp [rad].
+    /// TCP yaw of the chosen grasp \[rad\].
     pub yaw: f64,
     /// Whether the QP IK was needed (no closed-form branch within the limits).
     pub used_qp_fallback: bool,
 }
 
-/// Yaw of the TCP's x axis about the world vertical, relative to the base's heading [rad].
+/// Yaw of the TCP's x axis about the world vertical, relative to the base's heading \[rad\].
 pub fn tcp_yaw(model: &ArmModel, mount: &Mount, q: &[f64; 6]) -> f64 {
     mount.yaw_on_table(&model.fk_tcp(q))
 }
@@ -62,7 +62,7 @@ pub fn candidate_yaws(object_yaw: f64, current_yaw: f64) -> [f64; 4] {
     yaws
 }
 
-/// The grasp poses, TCP in `base_link`, for an object centre [m] and grasp yaw [rad] given in
+/// The grasp poses, TCP in `base_link`, for an object centre \[m\] and grasp yaw \[rad\] given in
 /// the table frame: pre-grasp and lift straight above along the world vertical.
 pub fn grasp_poses(
     mount: &Mount,
@@ -107,9 +107,9 @@ fn solve(model: &ArmModel, pose: &Pose, near: &[f64; 6], table: &Pose) -> Option
 /// Where the grasp is: the observed object and the arm's mount.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GraspTarget {
-    /// Object centre in `base_link` [m].
+    /// Object centre in `base_link` \[m\].
     pub object: [f64; 3],
-    /// Object yaw about the world vertical, relative to the base's heading [rad] (as observed).
+    /// Object yaw about the world vertical, relative to the base's heading \[rad\] (as observed).
     pub object_yaw: f64,
     /// The base and the table frame (what "down" and "the table top" are in `base_link`).
     pub mount: Mount,

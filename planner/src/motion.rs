@@ -6,11 +6,11 @@ use serde::Serialize;
 /// Limits of a joint trajectory, per joint.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct MotionLimits {
-    /// [rad/s]
+    /// \[rad/s\]
     pub max_velocity: [f64; 6],
-    /// [rad/s²]
+    /// \[rad/s²\]
     pub max_acceleration: [f64; 6],
-    /// [rad/s³]
+    /// \[rad/s³\]
     pub max_jerk: [f64; 6],
 }
 
@@ -57,17 +57,18 @@ impl JointTrajectory {
         })
     }
 
-    /// Duration [s].
+    /// Duration \[s\].
     pub fn duration(&self) -> f64 {
         self.trajectory.get_duration()
     }
 
-    /// The target joints [rad].
+    /// The target joints \[rad\].
     pub fn target(&self) -> [f64; 6] {
         self.target
     }
 
-    /// Position [rad], velocity [rad/s] and acceleration [rad/s²] at time `t` (held at the end).
+    /// Position \[rad\], velocity \[rad/s\] and acceleration \[rad/s²\] at time `t`
+    /// (held at the end).
     pub fn sample(&self, t: f64) -> ([f64; 6], [f64; 6], [f64; 6]) {
         let mut p = daov([0.0; 6]);
         let mut v = daov([0.0; 6]);
@@ -88,9 +89,9 @@ impl JointTrajectory {
     }
 }
 
-/// The joint part of a velocity action that follows a reference from `q_now` to `q_next` [rad]
-/// over one env step of `dt` [s]: the reference's velocity plus `gain` [1/s] times the measured
-/// joints' (`q`) lag behind `q_now`, in units of the action's `scale` [rad/s], each clipped to
+/// The joint part of a velocity action that follows a reference from `q_now` to `q_next` \[rad\]
+/// over one env step of `dt` \[s\]: the reference's velocity plus `gain` \[1/s\] times the measured
+/// joints' (`q`) lag behind `q_now`, in units of the action's `scale` \[rad/s\], each clipped to
 /// [−1, 1]. The scripts' one tracking law.
 pub fn tracking_action(
     q_now: &[f64; 6],

@@ -22,17 +22,17 @@ use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
 use crate::motion::{JointTrajectory, MotionLimits, tracking_action};
 use crate::place_search::{ForceSearch, SearchParams};
 
-/// The cube's bottom above the pocket's floor when the gripper opens [m].
+/// The cube's bottom above the pocket's floor when the gripper opens \[m\].
 pub const DROP_HEIGHT: f64 = 0.002;
-/// Height of the carry above the place pose [m]: low, because the lower that follows is a joint
+/// Height of the carry above the place pose \[m\]: low, because the lower that follows is a joint
 /// trajectory, whose TCP path bows away from the vertical (6 mm off over a 10 cm lower, more
 /// than the pocket's clearance; about a tenth of that over 3 cm).
 pub const CARRY_HEIGHT: f64 = 0.03;
-/// Height of the retreat above the place pose [m].
+/// Height of the retreat above the place pose \[m\].
 pub const RETREAT_HEIGHT: f64 = 0.06;
 /// Env steps the gripper is given to open before the retreat.
 pub const RELEASE_STEPS: usize = 8;
-/// The carry has arrived when every joint is within this of its target [rad]: 0.2 mm at the
+/// The carry has arrived when every joint is within this of its target \[rad\]: 0.2 mm at the
 /// TCP for the FR3's 0.6 m reach (the grasp's 0.01 rad is 6 mm: far more than the clearance).
 pub const CARRY_TOLERANCE: f64 = 3e-4;
 /// The lower moves at this fraction of the script's velocity, acceleration and jerk limits, so
@@ -78,7 +78,7 @@ pub struct ScriptedPlace {
     mount: Mount,
     limits: MotionLimits,
     action_scale: f64,
-    /// Duration of one env step [s].
+    /// Duration of one env step \[s\].
     step_dt: f64,
     cube_size: f64,
     grasp_height: f64,
@@ -219,7 +219,7 @@ impl ScriptedPlace {
     }
 
     /// Where the cube seen in the hand at `obs` would be, horizontally, relative to the TCP
-    /// once the arm is at the place joints `place` [rad] (`base_link`, m; no vertical part):
+    /// once the arm is at the place joints `place` \[rad\] (`base_link`, m; no vertical part):
     /// the offset measured along the pads (the TCP's y; the fingers close along its x) now,
     /// carried along with the gripper's turn.
     fn in_hand_shift(&self, obs: &Observation, place: &[f64; 6]) -> [f64; 3] {
@@ -283,7 +283,7 @@ impl ScriptedPlace {
         Action(a)
     }
 
-    /// The current motion is over and every joint is within `tolerance` [rad] of its target.
+    /// The current motion is over and every joint is within `tolerance` \[rad\] of its target.
     fn arrived(&self, obs: &Observation, tolerance: f64) -> bool {
         let Some(traj) = &self.trajectory else {
             return true;

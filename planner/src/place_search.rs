@@ -22,19 +22,19 @@ use crate::correction::{TaskCorrection, corrected};
 /// The search's settings.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct SearchParams {
-    /// Descent speed [m/s].
+    /// Descent speed \[m/s\].
     pub descend_speed: f64,
-    /// Upward wrist force that counts as a touch [N].
+    /// Upward wrist force that counts as a touch \[N\].
     pub contact_force: f64,
     /// The admittance of the press while spiralling: the TCP's vertical speed per newton of
-    /// force below `contact_force` [m/s/N] (capped at `descend_speed` either way).
+    /// force below `contact_force` \[m/s/N\] (capped at `descend_speed` either way).
     pub admittance: f64,
-    /// The spiral's pitch: its radius grows this much per turn [m].
+    /// The spiral's pitch: its radius grows this much per turn \[m\].
     pub pitch: f64,
-    /// The spiral's speed along its path [m/s].
+    /// The spiral's speed along its path \[m/s\].
     pub speed: f64,
     /// The largest spiral radius searched before giving up (the cube is released where it is)
-    /// [m].
+    /// \[m\].
     pub max_radius: f64,
 }
 
@@ -54,9 +54,9 @@ impl Default for SearchParams {
 /// Where the search is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Stage {
-    /// Going down from the carry pose; `depth` how far [m].
+    /// Going down from the carry pose; `depth` how far \[m\].
     Descend { depth: f64 },
-    /// On the rim, touched at `touch` [m] below the carry pose, now at `depth`, `time` [s] into
+    /// On the rim, touched at `touch` \[m\] below the carry pose, now at `depth`, `time` \[s\] into
     /// the spiral.
     Spiral { touch: f64, depth: f64, time: f64 },
     /// Found: going down into the pocket.
@@ -65,32 +65,32 @@ enum Stage {
     Done,
 }
 
-/// A running search, from the carry pose's joints `carry` [rad], `to_floor` [m] above the
+/// A running search, from the carry pose's joints `carry` \[rad\], `to_floor` \[m\] above the
 /// depth where the cube sits just above the pocket's floor.
 pub struct ForceSearch {
     params: SearchParams,
     carry: [f64; 6],
-    /// Depth below the carry pose where the cube's bottom is just above the floor [m].
+    /// Depth below the carry pose where the cube's bottom is just above the floor \[m\].
     floor_depth: f64,
-    /// Depths above this are touches on the rim, not on the floor [m].
+    /// Depths above this are touches on the rim, not on the floor \[m\].
     rim_below: f64,
-    /// The pocket's depth [m].
+    /// The pocket's depth \[m\].
     wall_height: f64,
     stage: Stage,
-    /// The xy offset of the spiral when the press gave way [m, table frame].
+    /// The xy offset of the spiral when the press gave way \[m, table frame\].
     found_xy: [f64; 2],
     step_dt: f64,
     /// A residual's correction added to the search's own offset (zero for the engineer's
     /// search; [`crate::place_residual`]).
     correction: TaskCorrection,
     /// The offset the last step commanded: xy in the table plane, then depth below the carry
-    /// pose [m].
+    /// pose \[m\].
     last: [f64; 3],
 }
 
 impl ForceSearch {
-    /// A search starting at the carry pose `carry` [rad], the floor `floor_depth` [m] below it,
-    /// the rim's top `wall_height` [m] above the floor.
+    /// A search starting at the carry pose `carry` \[rad\], the floor `floor_depth` \[m\] below it,
+    /// the rim's top `wall_height` \[m\] above the floor.
     pub fn new(
         params: SearchParams,
         carry: [f64; 6],
@@ -118,12 +118,12 @@ impl ForceSearch {
     }
 
     /// The search's own offset at the last step: xy in the table plane and the depth below the
-    /// carry pose [m] (without the correction).
+    /// carry pose \[m\] (without the correction).
     pub fn last_offset(&self) -> [f64; 3] {
         self.last
     }
 
-    /// The depth below the carry pose where the cube sits just above the floor [m].
+    /// The depth below the carry pose where the cube sits just above the floor \[m\].
     pub fn floor_depth(&self) -> f64 {
         self.floor_depth
     }
@@ -153,7 +153,7 @@ impl ForceSearch {
         }
     }
 
-    /// The spiral's offset in the table plane after `time` [s] (radius `pitch·θ/2π`, the
+    /// The spiral's offset in the table plane after `time` \[s\] (radius `pitch·θ/2π`, the
     /// path's length `speed·time` ≈ `pitch·θ²/4π`).
     fn spiral(&self, time: f64) -> [f64; 2] {
         let p = &self.params;

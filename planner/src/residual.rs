@@ -69,13 +69,13 @@ pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
 /// Above this the gripper entry closes now; below its negative it waits.
 pub const CLOSE_THRESHOLD: f64 = 0.5;
 
-/// The weakest squeeze the residual may ask for, per finger [N].
+/// The weakest squeeze the residual may ask for, per finger \[N\].
 pub const MIN_GRIP_FORCE: f64 = 1.0;
 
 /// The squeeze a residual commands, when it has one.
 #[derive(Clone, Copy, Debug)]
 struct Squeeze {
-    /// The env's `gripper.force` [N].
+    /// The env's `gripper.force` \[N\].
     base: f64,
     /// The filtered squeeze command (in [-1, 1]).
     signal: f64,
@@ -91,7 +91,7 @@ pub struct ResidualScript {
     script: ScriptedGrasp,
     limits: CorrectionLimits,
     mount: Mount,
-    /// Duration of one env step [s].
+    /// Duration of one env step \[s\].
     step_dt: f64,
     /// The filtered close-timing command.
     close_signal: f64,
@@ -125,7 +125,7 @@ impl ResidualScript {
         self
     }
 
-    /// The grip force per finger [N] the squeeze asks for (None without the squeeze).
+    /// The grip force per finger \[N\] the squeeze asks for (None without the squeeze).
     pub fn grip_force(&self) -> Option<f64> {
         let s = self.squeeze?;
         let force = if s.signal >= 0.0 {
@@ -145,7 +145,7 @@ impl ResidualScript {
         &self.limits
     }
 
-    /// Duration of one env step [s].
+    /// Duration of one env step \[s\].
     pub fn step_dt(&self) -> f64 {
         self.step_dt
     }

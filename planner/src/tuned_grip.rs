@@ -11,7 +11,7 @@ use crate::baseline::{BaselineConfig, ScriptedGrasp};
 /// The open-loop script squeezing `control.grip_force` per finger, as a [`Policy`].
 pub struct TunedGripScript {
     script: ScriptedGrasp,
-    /// Squeeze per finger [N]; `None`: the env's `gripper.force`.
+    /// Squeeze per finger \[N\]; `None`: the env's `gripper.force`.
     grip_force: Option<f64>,
 }
 
@@ -21,7 +21,7 @@ impl TunedGripScript {
         Self::with_grip(env, env.control.grip_force)
     }
 
-    /// The open-loop script squeezing `grip_force` [N] per finger (`None`: `gripper.force`):
+    /// The open-loop script squeezing `grip_force` \[N\] per finger (`None`: `gripper.force`):
     /// one point of the grid an engineer searches.
     pub fn with_grip(env: &EnvConfig, grip_force: Option<f64>) -> Self {
         Self {

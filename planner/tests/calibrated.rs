@@ -12,8 +12,8 @@ use fairgrasp_kinematics::Pose;
 use fairgrasp_planner::calibrated::TOUCH_ERROR;
 use fairgrasp_planner::{BaselineConfig, CalibratedScript, CameraCalibration, ScriptedGrasp};
 
-/// The largest distance [m] between the calibration's prediction of what the camera reports and
-/// what it does report, and the largest yaw difference [rad], over 100 scenarios of `config`.
+/// The largest distance \[m\] between the calibration's prediction of what the camera reports and
+/// what it does report, and the largest yaw difference \[rad\], over 100 scenarios of `config`.
 fn prediction_error(config: &EnvConfig, calibration: &CameraCalibration) -> (f64, f64) {
     let mount = Mount::from_config(config);
     let (mut dp, mut dyaw) = (0.0f64, 0.0f64);

@@ -126,7 +126,7 @@ fn the_same_seed_gives_the_same_family_episodes_for_every_script() {
     }
 }
 
-/// Shows the closed loop a cube `shift` [m] (table frame) away from the truth until its gripper
+/// Shows the closed loop a cube `shift` \[m\] (table frame) away from the truth until its gripper
 /// first closes, then the truth: the first grasp closes beside the cube.
 struct MisleadUntilClose {
     inner: ClosedLoopGrasp,

@@ -9,19 +9,19 @@ use fairgrasp_env::task::Failure;
 use fairgrasp_env::{EnvConfig, GraspEnv};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
-/// The most the cube centre may go below its resting height [m].
+/// The most the cube centre may go below its resting height \[m\].
 const MAX_SINK: f64 = 0.002;
 
 /// What one baseline episode did.
 struct Episode {
     seed: u64,
-    /// Deepest the cube centre went below its resting height, over every env step [m].
+    /// Deepest the cube centre went below its resting height, over every env step \[m\].
     sink: f64,
     success: bool,
     failure: Option<Failure>,
 }
 
-/// The cube centre's height in `world` [m].
+/// The cube centre's height in `world` \[m\].
 fn object_world_z(env: &GraspEnv) -> f64 {
     (env.base_in_world().iso * env.object_in_base().iso)
         .translation

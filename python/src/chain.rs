@@ -1,6 +1,6 @@
 //! IK for any serial arm from Python: `fairgrasp.kinematics.Chain(urdf, tip)` with `fk(q)` and
 //! `ik(pose, start, seed)` ([`fairgrasp_kinematics::chain_ik`]; `fairgrasp fk/ik --urdf` on
-//! the CLI). Poses are x y z [m] and URDF fixed-axis roll pitch yaw [rad] in the chain's root.
+//! the CLI). Poses are x y z \[m\] and URDF fixed-axis roll pitch yaw \[rad\] in the chain's root.
 
 use fairgrasp_kinematics::chain_ik::{ChainIk, ChainIkOptions};
 use fairgrasp_kinematics::{Pose, UrdfRobot};

@@ -1,6 +1,6 @@
 //! The FR3/FR5 kinematics for Python, NumPy in and out: `fk`, `ik` (every closed-form branch),
-//! `ik_qp` (the clarabel QP solver) and `world_to_base`. Poses are x y z [m] and URDF fixed-axis
-//! roll pitch yaw [rad] in base_link, as on the CLI (`fairgrasp fk/ik --json` give the same).
+//! `ik_qp` (the clarabel QP solver) and `world_to_base`. Poses are x y z \[m\] and URDF fixed-axis
+//! roll pitch yaw \[rad\] in base_link, as on the CLI (`fairgrasp fk/ik --json` give the same).
 
 use fairgrasp_kinematics::{AnalyticIkOptions, ArmKind, ArmModel, EndFrame, Pose, QpIkOptions};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};

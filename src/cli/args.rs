@@ -155,7 +155,7 @@ pub fn positive_seconds(text: &str) -> Result<f64, String> {
     Ok(value)
 }
 
-/// The most scenarios one command runs, records or checks [scenarios]: 10⁶ (`eval` and
+/// The most scenarios one command runs, records or checks \[scenarios\]: 10⁶ (`eval` and
 /// `baseline` had this cap first; `compare` runs it for every method and preset). Every count of episodes, scenarios or resets on the command line is bounded by it where it is
 /// parsed, and every index into a scenario set by it minus one.
 pub const MAX_EPISODES: u32 = 1_000_000;

@@ -150,7 +150,7 @@ impl BaselineArgs {
     }
 }
 
-/// A grip force [N] in (0, 100].
+/// A grip force \[N\] in (0, 100].
 fn grip_force(text: &str) -> Result<f64, String> {
     let f: f64 = text
         .parse()

@@ -4,7 +4,7 @@ use std::process::ExitCode;
 
 use fairgrasp_bench::ppo::bench_ppo;
 
-/// Peak resident set size of this process [MB] (getrusage `ru_maxrss`, kB on Linux).
+/// Peak resident set size of this process \[MB\] (getrusage `ru_maxrss`, kB on Linux).
 pub fn peak_rss_mb() -> f64 {
     let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
     // SAFETY: getrusage writes a complete rusage into the pointer it is given.

@@ -95,7 +95,7 @@ pub struct Place {
     pub episode: Option<usize>,
     pub seed: Option<u64>,
     pub base: Option<Pose>,
-    /// The cube's x, y [m] in the table frame and yaw [rad].
+    /// The cube's x, y \[m\] in the table frame and yaw \[rad\].
     pub cube: Option<[f64; 3]>,
 }
 

@@ -13,7 +13,7 @@ use std::path::Path;
 
 use anyhow::{Context, bail};
 
-/// The largest measurement file read [bytes].
+/// The largest measurement file read \[bytes\].
 pub const MAX_BYTES: u64 = 1 << 20;
 /// The most measurement rows read.
 pub const MAX_ROWS: usize = 10_000;

@@ -18,7 +18,7 @@ use serde_json::{Value, json};
 use super::args::{OutputArgs, print_json};
 use super::export::{EpisodeArgs, Place, choose};
 
-/// The largest stream file read [bytes] (a 10-minute stream at 1 ms is about 40 MB).
+/// The largest stream file read \[bytes\] (a 10-minute stream at 1 ms is about 40 MB).
 const MAX_STREAM_BYTES: u64 = 256 << 20;
 
 #[derive(Args, Debug)]

@@ -6,7 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
-/// A pose `[x, y, z, qx, qy, qz, qw]`: position [m] and unit quaternion.
+/// A pose `[x, y, z, qx, qy, qz, qw]`: position \[m\] and unit quaternion.
 pub type Pose7 = [f64; 7];
 
 /// The identity pose.
@@ -24,7 +24,7 @@ pub struct BodyShape {
     pub geometry: Geometry,
 }
 
-/// A primitive shape in its body's frame [m].
+/// A primitive shape in its body's frame \[m\].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Geometry {
@@ -41,7 +41,7 @@ pub enum Geometry {
     },
 }
 
-/// An axis-aligned box in the world: centre and half extents [m].
+/// An axis-aligned box in the world: centre and half extents \[m\].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct WorldBox {
     pub centre: [f64; 3],

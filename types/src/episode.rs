@@ -71,7 +71,7 @@ pub struct EpisodeRecord {
     pub steps: usize,
     /// Sum of the rewards.
     pub episode_return: f64,
-    /// Object start position in the table frame [m], for workspace maps.
+    /// Object start position in the table frame \[m\], for workspace maps.
     pub object_xy: [f64; 2],
     /// The two parts of the collision or protective stop that ended it (robot part first for a
     /// stop), by their URDF link names (`table`, `cube` for those).

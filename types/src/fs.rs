@@ -36,10 +36,10 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
-/// The largest config, `meta.json` or other small text input read [bytes] (1 MiB: the largest
+/// The largest config, `meta.json` or other small text input read \[bytes\] (1 MiB: the largest
 /// shipped config is 4 KB).
 pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
-/// The largest data file read whole (`metrics.csv`, `compare.json`, a network's weights) [bytes]
+/// The largest data file read whole (`metrics.csv`, `compare.json`, a network's weights) \[bytes\]
 /// (1 GiB: the largest network the trainer allows is about 1 GB of f32 weights).
 pub const MAX_DATA_BYTES: u64 = 1 << 30;
 

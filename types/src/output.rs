@@ -14,7 +14,7 @@ pub const GENERATOR: &str = "fairgrasp";
 /// The file a report folder holds that lists what `compare` / `report` wrote into it.
 pub const REPORT_MARKER: &str = ".fairgrasp-report";
 
-/// How far into a file its mark is looked for [bytes].
+/// How far into a file its mark is looked for \[bytes\].
 const HEAD_BYTES: u64 = 64 * 1024;
 
 /// PNG's signature.

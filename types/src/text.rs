@@ -2,7 +2,7 @@
 //! line numbers (LF, CRLF and old-Mac CR files alike) and for excerpts of input in messages
 //! (a quoted line or list stays short however long the input is).
 
-/// The most characters of an input line a message quotes [characters].
+/// The most characters of an input line a message quotes \[characters\].
 pub const MAX_QUOTED_CHARS: usize = 80;
 
 /// 1-based line numbers of byte offsets, counted incrementally: a pass asking for increasing

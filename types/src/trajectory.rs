@@ -1,6 +1,6 @@
 //! One recorded episode, written by the env and read by the report (one type, one schema):
 //! per step the joints, gripper, TCP and object poses, action, reward, the arm's capsules, the
-//! robot's body poses, the pad contacts and the policy's phase, all in `base_link` [m],
+//! robot's body poses, the pad contacts and the policy's phase, all in `base_link` \[m\],
 //! quaternions `[x, y, z, w]`; the scene says where `base_link` stands in the world. Saved as
 //! CSV and JSON, or compactly as gzipped JSON with every number rounded to 1e-5 (10 µm, 10 µrad:
 //! below what any chart or replay shows; `<stem>.json.gz`, what comparison folders hold). Fields
@@ -24,7 +24,7 @@ pub struct TrajectoryRow {
     /// Step index (0 = the state after reset).
     #[serde(default)]
     pub step: usize,
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub time_s: f64,
     pub joints: [f64; 6],
     pub gripper_opening_m: f64,
@@ -40,7 +40,7 @@ pub struct TrajectoryRow {
     #[serde(default)]
     pub reward: f64,
     /// The arm's and gripper's collision capsules at this step, in the order of
-    /// [`TrajectoryScene::capsule_names`]: `[ax, ay, az, bx, by, bz, radius]` in `base_link` [m]
+    /// [`TrajectoryScene::capsule_names`]: `[ax, ay, az, bx, by, bz, radius]` in `base_link` \[m\]
     /// (JSON only; for replays).
     #[serde(default)]
     pub capsules: Vec<[f64; 7]>,
@@ -61,7 +61,7 @@ pub struct TrajectoryRow {
     pub phase: Option<String>,
 }
 
-/// What a replay needs besides the rows: the table and cube in `base_link` [m].
+/// What a replay needs besides the rows: the table and cube in `base_link` \[m\].
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct TrajectoryScene {
     /// Table top corners x, y in `base_link` (the table is axis-aligned in `world`).
@@ -102,7 +102,7 @@ pub struct Trajectory {
 }
 
 impl TrajectoryRow {
-    /// The cube's 8 corners in `base_link` for edge length `size` [m].
+    /// The cube's 8 corners in `base_link` for edge length `size` \[m\].
     pub fn cube_corners(&self, size: f64) -> [[f64; 3]; 8] {
         let h = 0.5 * size;
         let mut out = [[0.0; 3]; 8];

@@ -27,7 +27,8 @@ pub struct Mount {
 }
 
 impl Mount {
-    /// The mount of a base at `base_in_world` over a table top at world height `table_height` [m].
+    /// The mount of a base at `base_in_world` over a table top at world height
+    /// `table_height` \[m\].
     pub fn new(base_in_world: Pose, table_height: f64) -> Mount {
         let origin = base_in_world.xyz();
         let x = base_in_world.transform_vector([1.0, 0.0, 0.0]);
@@ -46,13 +47,13 @@ impl Mount {
         }
     }
 
-    /// Angle between the base's z axis and the world's z axis [rad]: 0 for a level base.
+    /// Angle between the base's z axis and the world's z axis \[rad\]: 0 for a level base.
     pub fn tilt(&self) -> f64 {
         let z = self.base_in_world.transform_vector([0.0, 0.0, 1.0]);
         z[2].clamp(-1.0, 1.0).acos()
     }
 
-    /// Height of the base origin above the table top [m] (negative: below it).
+    /// Height of the base origin above the table top \[m\] (negative: below it).
     pub fn base_height_above_table(&self) -> f64 {
         self.base_in_world.xyz()[2] - self.table_in_world.xyz()[2]
     }
@@ -67,13 +68,13 @@ impl Mount {
         self.table_in_base.inverse().compose(pose_in_base)
     }
 
-    /// Height of a point given in `base_link` above the table top [m].
+    /// Height of a point given in `base_link` above the table top \[m\].
     pub fn height_above_table(&self, p_base: [f64; 3]) -> f64 {
         self.table_in_base.inverse().transform_point(p_base)[2]
     }
 
-    /// The pose, in `base_link`, of a cube of edge `cube_size` [m] resting on the table top at
-    /// `xy` [m] in the table frame, turned by `yaw` [rad] about the world vertical (relative to
+    /// The pose, in `base_link`, of a cube of edge `cube_size` \[m\] resting on the table top at
+    /// `xy` \[m\] in the table frame, turned by `yaw` \[rad\] about the world vertical (relative to
     /// the base's heading).
     pub fn resting_object_in_base(&self, xy: [f64; 2], yaw: f64, cube_size: f64) -> Pose {
         let on_table = Pose::from_xyz_rpy([xy[0], xy[1], cube_size / 2.0], [0.0, 0.0, yaw]);
@@ -81,7 +82,7 @@ impl Mount {
     }
 
     /// Yaw of a pose given in `base_link` about the world vertical, relative to the base's
-    /// heading [rad]: where its x axis points, projected onto the table top.
+    /// heading \[rad\]: where its x axis points, projected onto the table top.
     pub fn yaw_on_table(&self, pose_in_base: &Pose) -> f64 {
         let x = self
             .base_to_table(pose_in_base)

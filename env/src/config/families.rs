@@ -14,17 +14,17 @@ use crate::config::range::Range;
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraOffset {
-    /// Point on the table the error turns about (where the camera looks), table frame x, y [m].
+    /// Point on the table the error turns about (where the camera looks), table frame x, y \[m\].
     pub origin: [f64; 2],
-    /// Translation error, table frame [m] (each component at most [`MAX_CAMERA_SHIFT`]).
+    /// Translation error, table frame \[m\] (each component at most [`MAX_CAMERA_SHIFT`]).
     pub xyz: [f64; 3],
-    /// Yaw error about the world vertical [rad] (at most [`MAX_CAMERA_YAW`] either way).
+    /// Yaw error about the world vertical \[rad\] (at most [`MAX_CAMERA_YAW`] either way).
     pub yaw: f64,
 }
 
-/// Largest accepted translation error per axis [m].
+/// Largest accepted translation error per axis \[m\].
 pub const MAX_CAMERA_SHIFT: f64 = 0.05;
-/// Largest accepted yaw error [rad] (15°).
+/// Largest accepted yaw error \[rad\] (15°).
 pub const MAX_CAMERA_YAW: f64 = 15.0 * std::f64::consts::PI / 180.0;
 
 impl CameraOffset {
@@ -42,22 +42,22 @@ impl CameraOffset {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NudgeConfig {
-    /// Push length on the table [m], drawn uniformly (0 < min ≤ max ≤ [`MAX_NUDGE`]).
+    /// Push length on the table \[m\], drawn uniformly (0 < min ≤ max ≤ [`MAX_NUDGE`]).
     pub distance: Range,
     /// Env step (0-based, before that step's action) at which the push happens, drawn
     /// uniformly in `[min, max]`.
     pub step: [usize; 2],
-    /// The push is skipped unless the TCP is at least this far from the cube centre [m], before
+    /// The push is skipped unless the TCP is at least this far from the cube centre \[m\], before
     /// and after it (≥ [`MIN_TCP_DISTANCE`]: 5 cm of gap plus the cube's half-diagonal and the
     /// open fingers' reach).
     pub min_tcp_distance: f64,
 }
 
-/// Longest accepted push [m].
+/// Longest accepted push \[m\].
 pub const MAX_NUDGE: f64 = 0.15;
 
 /// A wrist camera (`[randomization] wrist_camera = { range }`): once the TCP is within `range`
-/// [m] of the cube's centre, the observation also carries the cube's pose as the wrist camera
+/// \[m\] of the cube's centre, the observation also carries the cube's pose as the wrist camera
 /// sees it, exactly ([`crate::Observation::wrist_camera`]); farther away, nothing. The fixed
 /// camera's view (the observation's cube) keeps its error.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -66,7 +66,7 @@ pub struct WristCamera {
     pub range: f64,
 }
 
-/// The longest wrist-camera range accepted [m].
+/// The longest wrist-camera range accepted \[m\].
 pub const MAX_WRIST_RANGE: f64 = 0.5;
-/// Smallest accepted `min_tcp_distance` [m].
+/// Smallest accepted `min_tcp_distance` \[m\].
 pub const MIN_TCP_DISTANCE: f64 = 0.12;

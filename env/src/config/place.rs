@@ -24,37 +24,37 @@ pub enum TaskKind {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct PlaceConfig {
-    /// Gap between the cube and each wall of the square pocket [m] (the pocket's side is the
+    /// Gap between the cube and each wall of the square pocket \[m\] (the pocket's side is the
     /// cube's edge plus twice this).
     pub clearance: f64,
-    /// Height of the pocket's walls above the table top [m]; the pocket's floor is the table.
+    /// Height of the pocket's walls above the table top \[m\]; the pocket's floor is the table.
     pub wall_height: f64,
-    /// Thickness of each wall [m].
+    /// Thickness of each wall \[m\].
     pub wall_thickness: f64,
     /// Draw the fixture's position in `fixture_radius` × `fixture_angle` (else `fixture_xy`).
     pub randomize: bool,
-    /// The fixture's centre when not randomised, table frame x, y [m].
+    /// The fixture's centre when not randomised, table frame x, y \[m\].
     pub fixture_xy: [f64; 2],
-    /// Sector the fixture's centre is drawn in: distance from under the base origin [m] and
-    /// angle from the base's heading [rad].
+    /// Sector the fixture's centre is drawn in: distance from under the base origin \[m\] and
+    /// angle from the base's heading \[rad\].
     pub fixture_radius: Range,
     pub fixture_angle: Range,
     /// Draw the fixture's yaw in [0, π/2) (else 0; the pocket repeats every 90°).
     pub random_yaw: bool,
-    /// The fixture's centre is drawn at least this far from the cube's start [m].
+    /// The fixture's centre is drawn at least this far from the cube's start \[m\].
     pub min_distance_from_cube: f64,
-    /// Seated: the cube's bottom at most this far above the table top [m] and tilted at most
-    /// `max_tilt` [rad].
+    /// Seated: the cube's bottom at most this far above the table top \[m\] and tilted at most
+    /// `max_tilt` \[rad\].
     pub seated_height: f64,
     pub max_tilt: f64,
-    /// Clear: the TCP at least this far above the cube's top [m], neither pad touching it.
+    /// Clear: the TCP at least this far above the cube's top \[m\], neither pad touching it.
     pub clear_height: f64,
-    /// Where the TCP holds the cube: this far above its centre [m] (the grasp the place script
+    /// Where the TCP holds the cube: this far above its centre \[m\] (the grasp the place script
     /// plans, so that the cube stands out below the pads and the pads pass over the walls).
     pub grasp_height: f64,
     /// How well the cell knows where the fixture is (its layout's tolerance, or a second
-    /// camera): a per-episode error on the *observed* fixture's position, table plane [m], and
-    /// yaw [rad] (standard deviations; 0 = exact). The physics is unaffected; the cube's own
+    /// camera): a per-episode error on the *observed* fixture's position, table plane \[m\], and
+    /// yaw \[rad\] (standard deviations; 0 = exact). The physics is unaffected; the cube's own
     /// camera errors (`[randomization]`) do not apply to the fixture.
     pub observed_position_noise: f64,
     pub observed_yaw_noise: f64,
@@ -83,7 +83,7 @@ impl Default for PlaceConfig {
 }
 
 impl PlaceConfig {
-    /// The pocket's inner half side for a cube of edge `cube_size` [m].
+    /// The pocket's inner half side for a cube of edge `cube_size` \[m\].
     pub fn pocket_half_side(&self, cube_size: f64) -> f64 {
         0.5 * cube_size + self.clearance
     }

@@ -9,13 +9,13 @@ use serde::{Deserialize, Serialize};
 pub struct StagedReward {
     /// Weight of the reach term.
     pub reach: f64,
-    /// Reach sharpness [1/m] (ManiSkill 5, robosuite 10).
+    /// Reach sharpness \[1/m\] (ManiSkill 5, robosuite 10).
     pub reach_sharpness: f64,
     /// Weight of the grasp term (both pads on the cube).
     pub grasp: f64,
     /// Weight of the lift shaping, paid only while grasped.
     pub lift: f64,
-    /// Lift sharpness [1/m]: the shaping reaches 1 at `task.lift_height`.
+    /// Lift sharpness \[1/m\]: the shaping reaches 1 at `task.lift_height`.
     pub lift_sharpness: f64,
     /// Paid on the step that succeeds (ends the episode).
     pub success: f64,

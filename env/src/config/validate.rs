@@ -7,7 +7,7 @@ use crate::config::env_config::EnvConfig;
 pub use crate::config::error::ConfigError;
 pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
 
-/// The largest tilt of the base from upright that the env accepts [rad] (15°).
+/// The largest tilt of the base from upright that the env accepts \[rad\] (15°).
 pub const MAX_BASE_TILT: f64 = 15.0 * std::f64::consts::PI / 180.0;
 
 /// Refuses any non-finite number or out-of-range integer in a configuration, naming the field.
@@ -22,7 +22,7 @@ pub fn check_all_finite(config: &impl serde::Serialize) -> Result<(), ConfigErro
 pub const MAX_SUBSTEPS: usize = 200;
 /// The most solver iterations per substep the env accepts.
 pub const MAX_SOLVER_ITERATIONS: usize = 100;
-/// The longest episode the env accepts [steps].
+/// The longest episode the env accepts \[steps\].
 pub const MAX_EPISODE_STEPS: usize = 100_000;
 
 impl EnvConfig {

@@ -73,7 +73,7 @@ pub struct Contact {
     /// Scene part names.
     pub a: String,
     pub b: String,
-    /// Signed distance [m] (negative: penetrating).
+    /// Signed distance \[m\] (negative: penetrating).
     pub distance_m: f64,
     pub verdict: ContactVerdict,
 }
@@ -83,7 +83,7 @@ pub struct Contact {
 pub struct CapsuleOverlap {
     pub a: &'static str,
     pub b: &'static str,
-    /// Penetration depth [m] (positive).
+    /// Penetration depth \[m\] (positive).
     pub overlap_m: f64,
     /// Never checked (adjacent links, the model's ignored pairs, the gripper's own parts).
     pub ignored: bool,
@@ -97,12 +97,12 @@ pub struct SceneDiagnosis {
     /// Why the scenario of `seed` is refused at reset (then the config's own, unchecked cube
     /// position is shown).
     pub refused: Option<String>,
-    /// Object position after the reset and one step, in `base_link` [m].
+    /// Object position after the reset and one step, in `base_link` \[m\].
     pub object_xyz_base: [f64; 3],
-    /// How far the object moved from its spawn on the table plane [m] (a spawn overlap pushes
+    /// How far the object moved from its spawn on the table plane \[m\] (a spawn overlap pushes
     /// it away).
     pub object_pushed_m: f64,
-    /// The gripper's widest opening between the pads [m].
+    /// The gripper's widest opening between the pads \[m\].
     pub max_opening_m: f64,
     pub contacts: Vec<Contact>,
     /// Capsule pairs overlapping at the config's home joints.
@@ -129,7 +129,7 @@ fn scenario_or_refusal(env: &GraspEnv, seed: u64) -> (Scenario, Option<String>) 
 }
 
 /// The touching pairs after resetting to `scenario` and one step that holds the arm still, and
-/// how far the object is from its spawn on the table plane [m].
+/// how far the object is from its spawn on the table plane \[m\].
 fn contacts_at_start(
     env: &mut GraspEnv,
     scenario: &Scenario,
@@ -141,7 +141,7 @@ fn contacts_at_start(
     Ok((env.touching_pairs(), (after[0] - x).hypot(after[1] - y)))
 }
 
-/// Capsule pairs of `model` overlapping at joints `q` [rad]: the counted ones from the
+/// Capsule pairs of `model` overlapping at joints `q` \[rad\]: the counted ones from the
 /// kinematics' self-collision check, then the ignored ones it skips (measured here to show what
 /// the filter hides).
 pub fn capsule_overlaps(model: &ArmModel, q: &[f64; 6]) -> Vec<CapsuleOverlap> {

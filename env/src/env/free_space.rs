@@ -12,7 +12,7 @@
 //! moment (each part's motion during a substep is bounded by the joints' motion times their
 //! reach, plus the fingers' travel), the robot is put back and the step runs physics instead.
 //! Everything here is a pure function of the state, so seeded replays stay bit-identical.
-//! Positions are in `world` [m].
+//! Positions are in `world` \[m\].
 
 use fairgrasp_kinematics::ArmModel;
 use fairgrasp_kinematics::geometry::Cuboid;
@@ -24,10 +24,10 @@ use crate::sim::contacts::{CollisionFilter, ContactReport};
 use crate::sim::part::Part;
 use crate::sim::shapes::{CheckedPairs, RobotShapes};
 
-/// The closest any robot part may come to the object, at any moment of a free-space step [m]:
+/// The closest any robot part may come to the object, at any moment of a free-space step \[m\]:
 /// rapier's default contact prediction distance (2 mm) with room to spare.
 pub const CONTACT_MARGIN: f64 = 0.005;
-/// Below these the object counts as at rest [m/s, rad/s] (a sleeping object always does).
+/// Below these the object counts as at rest \[m/s, rad/s\] (a sleeping object always does).
 pub const REST_SPEED: f64 = 0.002;
 pub const REST_TURN_RATE: f64 = 0.02;
 
@@ -39,10 +39,10 @@ pub struct FreeSpace {
     /// Those of them rapier does not compute for the servo arm: both parts never moved by
     /// forces (links, palm, table; [`Part::never_moved_by_forces`]).
     kinematic_pairs: CheckedPairs,
-    /// For joint i (0 = j1): an upper bound on the distance [m] from its axis to any point of
+    /// For joint i (0 = j1): an upper bound on the distance \[m\] from its axis to any point of
     /// the links and gripper it moves, for any joint angles.
     reach: [f64; 6],
-    /// Half the cube's edge [m].
+    /// Half the cube's edge \[m\].
     object_half: f64,
 }
 
@@ -59,8 +59,8 @@ impl FreeSpace {
         }
     }
 
-    /// Tries to advance `robot` through `substeps` substeps of `dt` [s] toward `command`
-    /// [rad/s] without physics, the object at `object` (world, at rest). Returns the step's
+    /// Tries to advance `robot` through `substeps` substeps of `dt` \[s\] toward `command`
+    /// \[rad/s\] without physics, the object at `object` (world, at rest). Returns the step's
     /// contact report (table and self-collisions; no object contact by construction), or
     /// `None` with `robot` unchanged when something could touch the object: then the step
     /// must run physics.
@@ -133,7 +133,7 @@ impl FreeSpace {
         place(&mut self.shapes, robot);
     }
 
-    /// An upper bound on how far any point of the robot moved from `from` to `to` [m]: each
+    /// An upper bound on how far any point of the robot moved from `from` to `to` \[m\]: each
     /// joint's turn times its reach, plus the larger finger travel.
     fn motion_bound(&self, from: &MotionState, to: &MotionState) -> f64 {
         let arm: f64 = (0..6)
@@ -152,7 +152,7 @@ fn place(shapes: &mut RobotShapes, robot: &Robot) {
     shapes.place(&robot.model, &robot.base, &robot.q, travel);
 }
 
-/// For each joint, an upper bound on the distance from its axis to any point it moves [m]: the
+/// For each joint, an upper bound on the distance from its axis to any point it moves \[m\]: the
 /// joint origins' spacing along the chain (fixed for any joint angles) plus the farthest point
 /// of each moved link's capsule and of the gripper from its own frame's origin.
 pub fn joint_reach(model: &ArmModel) -> [f64; 6] {

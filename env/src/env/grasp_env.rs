@@ -91,7 +91,7 @@ impl GraspEnv {
         Sim::build(config, model, base, &config.arm.home_joints, &cube_world)
     }
 
-    /// Where a cube resting at `xy` [m], `yaw` [rad] (table frame) spawns in the world: 1 mm
+    /// Where a cube resting at `xy` \[m\], `yaw` \[rad\] (table frame) spawns in the world: 1 mm
     /// above the table top, along the world vertical, so that it settles onto it.
     fn spawn_pose_in_world(
         config: &EnvConfig,
@@ -204,7 +204,7 @@ impl GraspEnv {
     }
 
     /// One physics step; returns why the robot stopped if a robot contact with the cube or the
-    /// table pushed harder than `task.protective_stop_force` [N] in it: a protective stop, or,
+    /// table pushed harder than `task.protective_stop_force` \[N\] in it: a protective stop, or,
     /// on the table, the collision that any robot–table touch is.
     fn physics_substep(&mut self, joint_command: &[f64; 6]) -> Option<Failure> {
         self.robot
@@ -324,7 +324,7 @@ impl GraspEnv {
         }
     }
 
-    /// The joints' velocity [rad/s] at the end of the latest step: the rate-limited command
+    /// The joints' velocity \[rad/s\] at the end of the latest step: the rate-limited command
     /// the servo arm moves at (zero after a reset).
     pub fn joint_velocities(&self) -> [f64; 6] {
         self.robot.qd
@@ -340,7 +340,7 @@ impl GraspEnv {
         self.robot.tcp_in_base()
     }
 
-    /// Each finger's squeeze force in effect [N]: `gripper.force` after a reset.
+    /// Each finger's squeeze force in effect \[N\]: `gripper.force` after a reset.
     pub fn grip_force(&self) -> f64 {
         self.robot.grip_force()
     }
@@ -355,7 +355,7 @@ impl GraspEnv {
         Ok(())
     }
 
-    /// Current finger travels [m] (0 open … 0.0425 closed).
+    /// Current finger travels \[m\] (0 open … 0.0425 closed).
     pub fn finger_travel(&self) -> [f64; 2] {
         self.robot.fingers.map(|f| f.travel)
     }
@@ -385,7 +385,7 @@ impl GraspEnv {
         pairs
     }
 
-    /// Current joint angles [rad].
+    /// Current joint angles \[rad\].
     pub fn joints(&self) -> [f64; 6] {
         self.robot.q
     }

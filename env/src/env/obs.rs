@@ -1,6 +1,6 @@
 //! The observation: a documented, named layout with a flat `[f32]` view.
 //!
-//! Positions are in the arm's `base_link` frame [m], angles in radians.
+//! Positions are in the arm's `base_link` frame \[m\], angles in radians.
 
 use serde::Serialize;
 
@@ -39,19 +39,19 @@ pub const OBS_NAMES: [&str; OBS_DIM] = [
 /// What the agent sees each step. The first 16 values are the seed recipe's.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Observation {
-    /// Joint angles j1 … j6 [rad].
+    /// Joint angles j1 … j6 \[rad\].
     pub joints: [f64; 6],
-    /// Joint velocities [rad/s], averaged over the last env step.
+    /// Joint velocities \[rad/s\], averaged over the last env step.
     pub joint_velocities: [f64; 6],
-    /// Object centre minus TCP, in `base_link` [m].
+    /// Object centre minus TCP, in `base_link` \[m\].
     pub object_rel_tcp: [f64; 3],
-    /// Distance between the pads' inner faces [m] (0.085 fully open).
+    /// Distance between the pads' inner faces \[m\] (0.085 fully open).
     pub gripper_opening: f64,
     /// Object yaw about the world vertical, relative to the base's heading (the table frame,
-    /// see [`crate::Mount`]) [rad]; for a level base, yaw about base z. The cube repeats every
+    /// see [`crate::Mount`]) \[rad\]; for a level base, yaw about base z. The cube repeats every
     /// 90°: see `yaw_features`.
     pub object_yaw: f64,
-    /// TCP position in `base_link` [m].
+    /// TCP position in `base_link` \[m\].
     pub tcp_position: [f64; 3],
     /// Left and right pads touching the object.
     pub pad_contact: [bool; 2],
@@ -62,11 +62,11 @@ pub struct Observation {
     pub wrist_camera: Option<ObservedObject>,
     /// The place task's fixture as the cell knows it (its pose with the scenario's error,
     /// `task.place.observed_*_noise`; the cube's camera errors do not apply): the pocket's
-    /// centre on the table top in `base_link` [m] and its yaw; `None` for the lift task. Not
+    /// centre on the table top in `base_link` \[m\] and its yaw; `None` for the lift task. Not
     /// part of the flat view ([`OBS_NAMES`]).
     pub fixture: Option<ObservedObject>,
     /// The place task's force sensing: what a wrist force/torque sensor reads, tared, in
-    /// `base_link` [N] — the push of the table and the fixture on the gripper and on the cube
+    /// `base_link` \[N\] — the push of the table and the fixture on the gripper and on the cube
     /// while both pads hold it (`crate::sim::contacts::wrist_load`), after the step's last
     /// physics substep (zero after a step without physics: nothing touched). `None` for the
     /// lift task. Not part of the flat view ([`OBS_NAMES`]).
@@ -79,7 +79,7 @@ impl Observation {
         [(4.0 * self.object_yaw).sin(), (4.0 * self.object_yaw).cos()]
     }
 
-    /// The object centre in `base_link` [m].
+    /// The object centre in `base_link` \[m\].
     pub fn object_position(&self) -> [f64; 3] {
         [0, 1, 2].map(|i| self.tcp_position[i] + self.object_rel_tcp[i])
     }

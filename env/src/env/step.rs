@@ -33,9 +33,9 @@ impl Action {
 /// start, how fast they should move through it, and the gripper command during it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ServoSetpoint {
-    /// Joint angles [rad] at the start of the substep.
+    /// Joint angles \[rad\] at the start of the substep.
     pub position: [f64; 6],
-    /// Joint velocities [rad/s] through the substep.
+    /// Joint velocities \[rad/s\] through the substep.
     pub velocity: [f64; 6],
     /// Gripper command in [-1, 1] (-1 open, +1 closed).
     pub gripper: f64,
@@ -50,7 +50,7 @@ pub struct Info {
     pub success: bool,
     /// Why the episode failed, if it did.
     pub failure: Option<Failure>,
-    /// Deepest penetration of the reported collision [m].
+    /// Deepest penetration of the reported collision \[m\].
     pub collision_depth_m: Option<f64>,
     /// A non-finite physics state ended the episode (as truncated): what was found.
     pub physics_fault: Option<String>,

@@ -30,7 +30,7 @@ pub trait Policy {
     fn phase(&self) -> Option<&'static str> {
         None
     }
-    /// The squeeze per finger [N] the policy asks for with its latest `act` (applied before the
+    /// The squeeze per finger \[N\] the policy asks for with its latest `act` (applied before the
     /// step, as [`GraspEnv::set_grip_force`]); `None` (the default) keeps the env's.
     fn grip_force(&self) -> Option<f64> {
         None

@@ -19,7 +19,7 @@ use crate::task::Failure;
 
 /// Recording an episode from the env into a [`Trajectory`].
 pub trait Recorder {
-    /// Records the state right after a reset (`opening`: the gripper opening [m]); clears
+    /// Records the state right after a reset (`opening`: the gripper opening \[m\]); clears
     /// earlier rows.
     fn record_reset(&mut self, env: &GraspEnv, opening: f64);
     /// Records the state after a step; `phase` is the policy's phase when it chose the action
@@ -129,8 +129,8 @@ fn body_names(model: &ArmModel) -> Vec<String> {
         .collect()
 }
 
-/// The pose of every body of [`body_names`] in `base_link` at joints `q` [rad] and finger
-/// travels `travel` [m] (0 = open), placed as the simulation places them.
+/// The pose of every body of [`body_names`] in `base_link` at joints `q` \[rad\] and finger
+/// travels `travel` \[m\] (0 = open), placed as the simulation places them.
 fn body_poses(model: &ArmModel, q: &[f64; 6], travel: [f64; 2]) -> Vec<Pose7> {
     let tool0 = model.fk_flange(q).iso;
     model

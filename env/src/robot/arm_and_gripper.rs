@@ -12,21 +12,21 @@ use crate::sim::Sim;
 use crate::sim::finger_drive::{FingerDrive, FingerState};
 use crate::sim::scene::finger_anchor;
 
-/// Centring stiffness: how much the two squeeze forces differ per metre of asymmetry [N/m].
+/// Centring stiffness: how much the two squeeze forces differ per metre of asymmetry \[N/m\].
 const CENTRING_GAIN: f64 = 2000.0;
-/// Centring damping, per m/s of asymmetry rate [N·s/m] (about critical for fingers + cube).
+/// Centring damping, per m/s of asymmetry rate \[N·s/m\] (about critical for fingers + cube).
 const CENTRING_DAMPING: f64 = 20.0;
 
 /// What a substep changes: joints, reference, joint velocity command, fingers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MotionState {
-    /// Joint angles [rad].
+    /// Joint angles \[rad\].
     pub q: [f64; 6],
-    /// Reference joint angles [rad].
+    /// Reference joint angles \[rad\].
     pub q_ref: [f64; 6],
-    /// Rate-limited joint velocity command [rad/s].
+    /// Rate-limited joint velocity command \[rad/s\].
     pub qd: [f64; 6],
-    /// Finger travel [m] and rate [m/s].
+    /// Finger travel \[m\] and rate \[m/s\].
     pub fingers: [FingerState; 2],
 }
 
@@ -39,20 +39,20 @@ pub struct Robot {
     pub model: ArmModel,
     /// `base_link` in `world`.
     pub base: Pose,
-    /// Joint angles [rad] (servo: the reference itself; multibody: read back each substep).
+    /// Joint angles \[rad\] (servo: the reference itself; multibody: read back each substep).
     pub q: [f64; 6],
-    /// Reference joint angles: the integral of the rate-limited command [rad].
+    /// Reference joint angles: the integral of the rate-limited command \[rad\].
     pub q_ref: [f64; 6],
-    /// Rate-limited joint velocity command [rad/s].
+    /// Rate-limited joint velocity command \[rad/s\].
     pub qd: [f64; 6],
     /// Gripper command in [-1, 1] (-1 open, +1 closed).
     pub gripper_command: f64,
-    /// Left and right finger: closing travel [m] and rate [m/s] relative to the palm (read back
+    /// Left and right finger: closing travel \[m\] and rate \[m/s\] relative to the palm (read back
     /// from the simulator after a physics substep, integrated by the drive in free space).
     pub fingers: [FingerState; 2],
-    /// Joint acceleration limit [rad/s²].
+    /// Joint acceleration limit \[rad/s²\].
     max_acceleration: f64,
-    /// Squeeze force of each finger [N] (the config's `gripper.force` unless a policy asks for
+    /// Squeeze force of each finger \[N\] (the config's `gripper.force` unless a policy asks for
     /// another: [`Robot::set_grip_force`]).
     grip_force: f64,
 }
@@ -93,7 +93,7 @@ impl Robot {
         self.fingers = state.fingers;
     }
 
-    /// Moves arm and fingers to `q` [rad] at rest, gripper open.
+    /// Moves arm and fingers to `q` \[rad\] at rest, gripper open.
     pub fn teleport(&mut self, sim: &mut Sim, q: &[f64; 6]) {
         self.q = *q;
         self.q_ref = *q;
@@ -107,8 +107,8 @@ impl Robot {
         sim.place_fingers_open(&self.model, &self.base, q);
     }
 
-    /// Advances the reference by one substep of `dt` [s] toward joint velocities `command`
-    /// [rad/s]: clamps to the velocity limits, reaches them at most at the acceleration limit,
+    /// Advances the reference by one substep of `dt` \[s\] toward joint velocities `command`
+    /// \[rad/s\]: clamps to the velocity limits, reaches them at most at the acceleration limit,
     /// and stops at the soft joint limits.
     fn advance_reference(&mut self, command: &[f64; 6], dt: f64) {
         let a = self.max_acceleration * dt;
@@ -126,7 +126,7 @@ impl Robot {
         }
     }
 
-    /// Sets up one physics substep of `dt` [s] toward joint velocities `command` [rad/s]:
+    /// Sets up one physics substep of `dt` \[s\] toward joint velocities `command` \[rad/s\]:
     /// rate-limits, integrates, places or drives the arm, drives the fingers. Call before
     /// stepping the simulator, and [`Robot::sync`] after.
     pub fn substep(&mut self, sim: &mut Sim, command: &[f64; 6], dt: f64) {
@@ -143,9 +143,9 @@ impl Robot {
         sim.set_finger_motors(target, forces);
     }
 
-    /// One substep of `dt` [s] of the servo arm in free space, without the simulator: the
+    /// One substep of `dt` \[s\] of the servo arm in free space, without the simulator: the
     /// joints follow the rate-limited reference and each finger follows its motor
-    /// ([`FingerState::advance`]) with `gravity_along_axis` [m/s²] (see
+    /// ([`FingerState::advance`]) with `gravity_along_axis` \[m/s²\] (see
     /// [`Robot::finger_gravity`]).
     pub fn free_substep(&mut self, command: &[f64; 6], dt: f64, gravity_along_axis: [f64; 2]) {
         self.advance_reference(command, dt);
@@ -163,7 +163,7 @@ impl Robot {
         }
     }
 
-    /// Gravity's component along each finger's closing axis at the current joints [m/s²].
+    /// Gravity's component along each finger's closing axis at the current joints \[m/s²\].
     pub fn finger_gravity(&self) -> [f64; 2] {
         let palm = self.base.iso.rotation * self.model.fk_flange(&self.q).iso.rotation;
         std::array::from_fn(|f| {
@@ -201,12 +201,12 @@ impl Robot {
         );
     }
 
-    /// The fingers' motor target travel [m] and each finger's force limit [N].
+    /// The fingers' motor target travel \[m\] and each finger's force limit \[N\].
     ///
     /// Both fingers are force-limited position motors toward the commanded travel. Independent
     /// force-limited fingers drift sideways together, so the two force limits are split around
     /// the grip force by the asymmetry: a finger that has travelled less pushes harder, which
-    /// re-centres the pair; the mean squeeze stays the grip force [N].
+    /// re-centres the pair; the mean squeeze stays the grip force \[N\].
     fn finger_motor_setpoint(&self) -> (f64, [f64; 2]) {
         let force = self.grip_force;
         let target =
@@ -218,17 +218,17 @@ impl Robot {
         (target, [force + correction, force - correction])
     }
 
-    /// Squeeze force of each finger [N].
+    /// Squeeze force of each finger \[N\].
     pub fn grip_force(&self) -> f64 {
         self.grip_force
     }
 
-    /// Sets the squeeze force of each finger [N] (checked by the caller).
+    /// Sets the squeeze force of each finger \[N\] (checked by the caller).
     pub fn set_grip_force(&mut self, newtons: f64) {
         self.grip_force = newtons;
     }
 
-    /// Distance between the pads' inner faces [m] (0.085 fully open).
+    /// Distance between the pads' inner faces \[m\] (0.085 fully open).
     pub fn gripper_opening(&self) -> f64 {
         let [left, right] = self.fingers;
         self.model

@@ -20,21 +20,21 @@ use crate::config::env_config::{ArmConfig, GripperCommand, TcpSaturation};
 
 /// Damping λ of the least-squares map (mixed units: m and rad).
 pub const DAMPING: f64 = 0.01;
-/// How fast a tilted gripper is turned back to pointing down [1/s].
+/// How fast a tilted gripper is turned back to pointing down \[1/s\].
 pub const ORIENTATION_GAIN: f64 = 4.0;
 
 /// A task-space command, in the table frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TcpCommand {
-    /// TCP linear velocity [m/s] along the table frame's axes.
+    /// TCP linear velocity \[m/s\] along the table frame's axes.
     pub linear: [f64; 3],
-    /// Yaw rate about the table's vertical [rad/s].
+    /// Yaw rate about the table's vertical \[rad/s\].
     pub yaw_rate: f64,
 }
 
 impl TcpCommand {
-    /// The command of action entries 0–3 (each clipped to [-1, 1]) at `speed` [m/s] and
-    /// `yaw_rate` [rad/s] per unit.
+    /// The command of action entries 0–3 (each clipped to [-1, 1]) at `speed` \[m/s\] and
+    /// `yaw_rate` \[rad/s\] per unit.
     pub fn from_action(action: &[f64; 7], speed: f64, yaw_rate: f64) -> TcpCommand {
         let a = |i: usize| action[i].clamp(-1.0, 1.0);
         TcpCommand {
@@ -44,7 +44,7 @@ impl TcpCommand {
     }
 }
 
-/// Joint velocities [rad/s] at joints `q` [rad] that move the TCP as `command` says while
+/// Joint velocities \[rad/s\] at joints `q` \[rad\] that move the TCP as `command` says while
 /// turning it back toward pointing down. `table_in_base` is the table frame in `base_link`
 /// ([`crate::Mount::table_in_base`]).
 pub fn joint_velocities(
@@ -89,11 +89,11 @@ pub struct TaskSpaceAction {
     model: ArmModel,
     /// The table frame in `base_link`.
     table_in_base: Pose,
-    /// TCP speed per unit of action [m/s].
+    /// TCP speed per unit of action \[m/s\].
     tcp_speed: f64,
-    /// Yaw rate per unit of action [rad/s].
+    /// Yaw rate per unit of action \[rad/s\].
     tcp_yaw_rate: f64,
-    /// Joint velocity per unit of a joint action [rad/s].
+    /// Joint velocity per unit of a joint action \[rad/s\].
     action_scale: f64,
     saturation: TcpSaturation,
     gripper: GripperCommand,
@@ -125,7 +125,7 @@ impl TaskSpaceAction {
 
     /// The joint-space action (`q̇ / arm.action_scale` per joint, and the gripper) that a
     /// `joint`-mode env turns into the same motion as this task-space `action` at joints `q`
-    /// [rad] — exactly, for [`TcpSaturation::ActionScale`] (for `JointLimits` a joint-mode env
+    /// \[rad\] — exactly, for [`TcpSaturation::ActionScale`] (for `JointLimits` a joint-mode env
     /// clips what exceeds `action_scale`).
     pub fn to_joint_action(&self, q: &[f64; 6], action: &[f64; 7]) -> [f64; 7] {
         let command = TcpCommand::from_action(action, self.tcp_speed, self.tcp_yaw_rate);
@@ -145,8 +145,8 @@ impl TaskSpaceAction {
         out
     }
 
-    /// Joint velocities [rad/s] and the gripper command for the task-space `action` at joints
-    /// `q` [rad] (what the env's `tcp` mode applies).
+    /// Joint velocities \[rad/s\] and the gripper command for the task-space `action` at joints
+    /// `q` \[rad\] (what the env's `tcp` mode applies).
     pub fn joint_command(&self, q: &[f64; 6], action: &[f64; 7]) -> ([f64; 6], f64) {
         match self.saturation {
             TcpSaturation::JointLimits => {

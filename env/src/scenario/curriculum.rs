@@ -71,7 +71,7 @@ const LATER_STAGES: [&str; 3] = ["position", "position+yaw", "position+yaw+frict
 pub struct Curriculum {
     config: CurriculumConfig,
     target: RandomizationConfig,
-    /// The cube position of the `fixed` stage, table frame [m] (`scene.cube_xy`).
+    /// The cube position of the `fixed` stage, table frame \[m\] (`scene.cube_xy`).
     fixed_xy: [f64; 2],
     stage: usize,
     recent: VecDeque<bool>,
@@ -82,7 +82,7 @@ pub struct Curriculum {
 
 impl Curriculum {
     /// Starts at stage 0; `target` is the randomisation of the last stage, `fixed_xy` the cube
-    /// position [m] of the first (`scene.cube_xy`).
+    /// position \[m\] of the first (`scene.cube_xy`).
     pub fn new(config: CurriculumConfig, target: RandomizationConfig, fixed_xy: [f64; 2]) -> Self {
         Self {
             config,
@@ -131,7 +131,7 @@ impl Curriculum {
         self.record_at(success, None)
     }
 
-    /// Records an episode outcome and where its cube was (table frame [m], if known); returns
+    /// Records an episode outcome and where its cube was (table frame \[m\], if known); returns
     /// true if this advanced the stage. A stage advances only with a full window (with
     /// `both_sides`, once positions vary: a full window on each side, each passing the
     /// threshold); the windows then start empty again.

@@ -24,8 +24,8 @@ pub use crate::config::families::{
 };
 use crate::scenario::graspable::top_down_grasp;
 
-/// One scenario's push: at env step `step`, the cube is moved by `offset_xy` (table frame) [m],
-/// keeping its height and yaw, at rest, unless the TCP is nearer than `min_tcp_distance` [m]
+/// One scenario's push: at env step `step`, the cube is moved by `offset_xy` (table frame) \[m\],
+/// keeping its height and yaw, at rest, unless the TCP is nearer than `min_tcp_distance` \[m\]
 /// to the cube centre before or after the push (then it is skipped).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Nudge {

@@ -17,12 +17,12 @@ use crate::scenario::noise::gauss;
 /// The fixture's pose in one scenario: the pocket's centre on the table top, table frame.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct FixturePose {
-    /// Centre x, y [m].
+    /// Centre x, y \[m\].
     pub xy: [f64; 2],
-    /// Yaw about the world vertical, relative to the base's heading [rad] (the pocket repeats
+    /// Yaw about the world vertical, relative to the base's heading \[rad\] (the pocket repeats
     /// every 90°).
     pub yaw: f64,
-    /// The error on the observed position, table plane x, y [m], and yaw [rad]
+    /// The error on the observed position, table plane x, y \[m\], and yaw \[rad\]
     /// (`task.place.observed_position_noise`, `observed_yaw_noise`).
     pub observed_xy_error: [f64; 2],
     pub observed_yaw_error: f64,

@@ -13,11 +13,11 @@ use fairgrasp_kinematics::{AnalyticIkOptions, ArmModel, EndFrame, IkSolution, Po
 
 use crate::cell::mount::Mount;
 
-/// Height of the pre-grasp pose above the grasp pose [m].
+/// Height of the pre-grasp pose above the grasp pose \[m\].
 pub const PRE_GRASP_HEIGHT: f64 = 0.10;
 
-/// The TCP pose in `base_link` for a top-down grasp at `xyz` (table frame) [m]: tool z along
-/// world gravity (down), the fingers closing across the table-frame direction `yaw` + 90° [rad].
+/// The TCP pose in `base_link` for a top-down grasp at `xyz` (table frame) \[m\]: tool z along
+/// world gravity (down), the fingers closing across the table-frame direction `yaw` + 90° \[rad\].
 pub fn top_down_in_base(mount: &Mount, xyz: [f64; 3], yaw: f64) -> Pose {
     mount.table_to_base(&Pose::from_xyz_rpy(xyz, [PI, 0.0, yaw]))
 }
@@ -26,7 +26,7 @@ pub fn top_down_in_base(mount: &Mount, xyz: [f64; 3], yaw: f64) -> Pose {
 /// across a pair of faces) and its pre-grasp 10 cm above (along the world vertical), as joint
 /// angles: among the yaws `yaw + k·90°` and the IK branches that admit both within the joint
 /// limits and without self-collision or table contact, the pair whose pre-grasp is nearest to
-/// `current` [rad]. `None` if none does.
+/// `current` \[rad\]. `None` if none does.
 pub fn top_down_grasp(
     model: &ArmModel,
     mount: &Mount,
@@ -66,7 +66,7 @@ pub fn top_down_grasp(
     best.map(|(_, g, a)| (g, a))
 }
 
-/// Clearance every part but the base keeps above the table top [m].
+/// Clearance every part but the base keeps above the table top \[m\].
 pub const TABLE_CLEARANCE: f64 = 0.002;
 
 /// No self-collision (capsules), and nothing but the base lower than [`TABLE_CLEARANCE`] above

@@ -14,7 +14,7 @@ use crate::sim::Sim;
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub enum NudgeEvent {
     /// The cube was pushed before the action of env step `step` (0-based), from `from` to `to`
-    /// (cube centre in `world` [m]), with the TCP `tcp_distance` [m] from the cube centre (the
+    /// (cube centre in `world` \[m\]), with the TCP `tcp_distance` \[m\] from the cube centre (the
     /// nearer of before and after).
     Pushed {
         step: usize,
@@ -44,7 +44,7 @@ impl NudgeHook {
     }
 
     /// Before env step `step`'s action: pushes the cube if the scenario draws a push for this
-    /// step. `tcp` is the TCP position in `world` [m].
+    /// step. `tcp` is the TCP position in `world` \[m\].
     pub fn before_step(
         &mut self,
         step: usize,

@@ -17,9 +17,9 @@ use crate::scenario::Scenario;
 /// The object as a policy observes it.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct ObservedObject {
-    /// Object centre in `base_link` [m].
+    /// Object centre in `base_link` \[m\].
     pub position: [f64; 3],
-    /// Object yaw about the world vertical, relative to the base's heading [rad].
+    /// Object yaw about the world vertical, relative to the base's heading \[rad\].
     pub yaw: f64,
 }
 

@@ -25,19 +25,19 @@ const MAX_DRAWS: usize = 1000;
 pub struct Scenario {
     /// The seed it was drawn from.
     pub seed: u64,
-    /// Object centre x, y in the table frame [m].
+    /// Object centre x, y in the table frame \[m\].
     pub object_xy: [f64; 2],
-    /// Object yaw about the world vertical, relative to the base's heading [rad].
+    /// Object yaw about the world vertical, relative to the base's heading \[rad\].
     pub object_yaw: f64,
     /// Object friction coefficient.
     pub friction: f64,
-    /// Object mass [kg].
+    /// Object mass \[kg\].
     pub mass: f64,
-    /// Home joints plus noise [rad].
+    /// Home joints plus noise \[rad\].
     pub start_joints: [f64; 6],
-    /// Error added to the observed object position, in the table frame [m] (perception noise).
+    /// Error added to the observed object position, in the table frame \[m\] (perception noise).
     pub observed_position_error: [f64; 3],
-    /// Error added to the observed object yaw [rad] (perception noise).
+    /// Error added to the observed object yaw \[rad\] (perception noise).
     pub observed_yaw_error: f64,
     /// The push the cube gets during the approach (the `nudged` family), if any.
     pub nudge: Option<crate::scenario::families::Nudge>,
@@ -67,9 +67,9 @@ pub struct UngraspableRegion {
     pub angle: [f64; 2],
     /// The fixed object position when `randomization.position` is off.
     pub fixed_xy: Option<[f64; 2]>,
-    /// Height of the base origin above the table top [m] (negative: below it).
+    /// Height of the base origin above the table top \[m\] (negative: below it).
     pub base_height_above_table: f64,
-    /// Tilt of the base from upright [rad].
+    /// Tilt of the base from upright \[rad\].
     pub base_tilt: f64,
 }
 
@@ -221,7 +221,7 @@ impl Scenario {
     }
 }
 
-/// The home joints with `randomization.joint_noise` added, each within its limits [rad].
+/// The home joints with `randomization.joint_noise` added, each within its limits \[rad\].
 fn noisy_home(config: &EnvConfig, model: &ArmModel, rng: &mut ChaCha8Rng) -> [f64; 6] {
     let sigma = config.randomization.joint_noise;
     let mut q = config.arm.home_joints;

@@ -1,17 +1,17 @@
 //! The gripper's finger drive: the position motor both the simulator and the free-space step use.
 //!
-//! Each finger slides on a prismatic joint of the palm, `travel` [m] from fully open (0) to
+//! Each finger slides on a prismatic joint of the palm, `travel` \[m\] from fully open (0) to
 //! closed (`finger_travel`), driven by a force-limited spring-damper motor toward a target
 //! travel. rapier solves the motor implicitly inside its joint solver; [`FingerState::advance`]
 //! integrates the same motor for a finger that touches nothing (implicit Euler, so it is stable
 //! at the physics time step), which is all a free-space step needs.
 
-/// Motor stiffness [N/m] of each finger.
+/// Motor stiffness \[N/m\] of each finger.
 pub const FINGER_STIFFNESS: f64 = 1.0e4;
-/// Motor damping [N·s/m] of each finger.
+/// Motor damping \[N·s/m\] of each finger.
 pub const FINGER_DAMPING: f64 = 1.0e2;
 
-/// One finger's closing travel [m] and travel rate [m/s], relative to the palm.
+/// One finger's closing travel \[m\] and travel rate \[m/s\], relative to the palm.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FingerState {
     pub travel: f64,
@@ -21,20 +21,20 @@ pub struct FingerState {
 /// What moves a free finger during one physics step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FingerDrive {
-    /// Target travel [m].
+    /// Target travel \[m\].
     pub target: f64,
-    /// Motor force limit [N].
+    /// Motor force limit \[N\].
     pub max_force: f64,
-    /// Finger mass [kg].
+    /// Finger mass \[kg\].
     pub mass: f64,
-    /// Gravity's component along the closing axis [m/s²].
+    /// Gravity's component along the closing axis \[m/s²\].
     pub gravity_along_axis: f64,
-    /// Travel limit [m] (the joint's range is `[0, limit]`).
+    /// Travel limit \[m\] (the joint's range is `[0, limit]`).
     pub limit: f64,
 }
 
 impl FingerState {
-    /// The state after one time step `dt` [s] of a finger touching nothing: the motor force
+    /// The state after one time step `dt` \[s\] of a finger touching nothing: the motor force
     /// `k·(target − travel) − c·rate`, taken at the end of the step and clamped to the force
     /// limit, plus gravity along the axis; the travel stops at the joint limits.
     pub fn advance(self, drive: &FingerDrive, dt: f64) -> FingerState {

@@ -8,7 +8,7 @@ use rapier3d::prelude::*;
 use crate::config::{EnvConfig, PlaceConfig};
 use crate::sim::part::{ColliderParts, Part};
 
-/// The four walls' half extents and centres in the fixture frame [m]: two along x (which also
+/// The four walls' half extents and centres in the fixture frame \[m\]: two along x (which also
 /// close the corners) and two along y.
 pub fn wall_boxes(place: &PlaceConfig, cube_size: f64) -> [([f64; 3], [f64; 3]); 4] {
     let h = place.pocket_half_side(cube_size);

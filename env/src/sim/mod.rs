@@ -2,7 +2,7 @@
 //!
 //! The robot, the task and the scenario code never touch rapier's sets; they ask this facade to
 //! place the arm, drive the fingers, place the object, step, and report contacts. Poses cross
-//! this boundary as f64 nalgebra isometries in `world` [m]; rapier's f32 types stay inside.
+//! this boundary as f64 nalgebra isometries in `world` \[m\]; rapier's f32 types stay inside.
 
 pub mod collision_filter;
 pub mod contacts;

@@ -35,7 +35,7 @@ pub struct SceneHandles {
     pub parts: ColliderParts,
 }
 
-/// Finger joint origin in the palm (= tool0) frame, open position [m], and closing axis.
+/// Finger joint origin in the palm (= tool0) frame, open position \[m\], and closing axis.
 pub fn finger_anchor(model: &ArmModel, finger: usize) -> ([f64; 3], [f64; 3]) {
     let g = &model.gripper;
     let x = g.finger_travel + 0.5 * g.pad_size[0];
@@ -47,7 +47,7 @@ pub fn finger_anchor(model: &ArmModel, finger: usize) -> ([f64; 3], [f64; 3]) {
     }
 }
 
-/// Pad centre in the finger frame [m] (pads are centred on the TCP height).
+/// Pad centre in the finger frame \[m\] (pads are centred on the TCP height).
 pub fn pad_offset(model: &ArmModel) -> [f64; 3] {
     [
         0.0,
@@ -56,15 +56,15 @@ pub fn pad_offset(model: &ArmModel) -> [f64; 3] {
     ]
 }
 
-/// Half thickness of the table slab [m]: its top face is at `scene.table_height`.
+/// Half thickness of the table slab \[m\]: its top face is at `scene.table_height`.
 pub const TABLE_HALF_THICKNESS: f64 = 0.05;
-/// Half height of a finger strut [m]: it spans z ∈ [0, 2 · this] in the finger frame, from the
+/// Half height of a finger strut \[m\]: it spans z ∈ [0, 2 · this] in the finger frame, from the
 /// palm's outer face up to the pad.
 pub const STRUT_HALF_HEIGHT: f64 = 0.0105;
-/// How far a strut's centre sits outboard of its finger frame [m], away from the other finger.
+/// How far a strut's centre sits outboard of its finger frame \[m\], away from the other finger.
 pub const STRUT_OUTBOARD: f64 = 0.002;
 
-/// The table box in the world: half extents and centre [m]. It is centred under the base
+/// The table box in the world: half extents and centre \[m\]. It is centred under the base
 /// (`base_xy`, world) with its top face at `scene.table_height`.
 pub fn table_box(config: &EnvConfig, base_xy: [f64; 2]) -> ([f64; 3], [f64; 3]) {
     let s = &config.scene;
@@ -77,13 +77,13 @@ pub fn table_box(config: &EnvConfig, base_xy: [f64; 2]) -> ([f64; 3], [f64; 3]) 
     (half, centre)
 }
 
-/// The palm box on `tool0`: half extents and centre in `tool0` [m] (it spans z ∈ [0, size.z]).
+/// The palm box on `tool0`: half extents and centre in `tool0` \[m\] (it spans z ∈ [0, size.z]).
 pub fn palm_box(model: &ArmModel) -> ([f64; 3], [f64; 3]) {
     let p = model.gripper.palm_size;
     ([p[0] / 2.0, p[1] / 2.0, p[2] / 2.0], [0.0, 0.0, p[2] / 2.0])
 }
 
-/// Finger `finger`'s strut box: half extents and centre in the finger frame [m].
+/// Finger `finger`'s strut box: half extents and centre in the finger frame \[m\].
 pub fn strut_box(model: &ArmModel, finger: usize) -> ([f64; 3], [f64; 3]) {
     let g = &model.gripper;
     let outboard = if finger == 0 {
@@ -97,13 +97,13 @@ pub fn strut_box(model: &ArmModel, finger: usize) -> ([f64; 3], [f64; 3]) {
     )
 }
 
-/// A finger's pad box: half extents and centre in the finger frame [m].
+/// A finger's pad box: half extents and centre in the finger frame \[m\].
 pub fn pad_box(model: &ArmModel) -> ([f64; 3], [f64; 3]) {
     let p = model.gripper.pad_size;
     ([p[0] / 2.0, p[1] / 2.0, p[2] / 2.0], pad_offset(model))
 }
 
-/// The finger frame of finger `finger` in `tool0` after closing by `travel` [m] (0 = open) along
+/// The finger frame of finger `finger` in `tool0` after closing by `travel` \[m\] (0 = open) along
 /// its axis (see [`finger_anchor`]); the fingers do not rotate.
 pub fn finger_in_tool0(model: &ArmModel, finger: usize, travel: f64) -> Isometry3<f64> {
     let (anchor, axis) = finger_anchor(model, finger);

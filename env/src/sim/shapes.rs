@@ -5,7 +5,7 @@
 //!
 //! Every shape is the one [`crate::sim::scene::build`] gives rapier (same sizes and offsets, from the
 //! same functions of [`crate::sim::scene`]): a capsule per link, boxes for the palm, the two finger
-//! struts and the two pads, and the table box. All positions are in `world` [m].
+//! struts and the two pads, and the table box. All positions are in `world` \[m\].
 
 use fairgrasp_kinematics::collision::segment_distance;
 use fairgrasp_kinematics::geometry::{
@@ -24,7 +24,7 @@ const ROBOT_SHAPES: usize = 12;
 /// One robot collider placed in the world.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Shape {
-    /// The segment `a → b` (world [m]) swept by `radius` [m].
+    /// The segment `a → b` (world \[m\]) swept by `radius` \[m\].
     Capsule {
         a: [f64; 3],
         b: [f64; 3],
@@ -34,7 +34,7 @@ enum Shape {
 }
 
 impl Shape {
-    /// A sphere (centre, radius; world [m]) that contains the shape.
+    /// A sphere (centre, radius; world \[m\]) that contains the shape.
     fn bounding_sphere(&self) -> ([f64; 3], f64) {
         match self {
             Shape::Capsule { a, b, radius } => {
@@ -54,7 +54,7 @@ impl Shape {
     }
 }
 
-/// Signed distance [m] between two shapes when it is negative (minus the exact penetration
+/// Signed distance \[m\] between two shapes when it is negative (minus the exact penetration
 /// depth); when they are apart, a positive number no larger than their distance.
 fn signed_distance(x: &Shape, y: &Shape) -> f64 {
     match (x, y) {
@@ -94,11 +94,11 @@ fn placed_box(frame: &Isometry3<f64>, (half, centre): ([f64; 3], [f64; 3])) -> C
 /// [`RobotShapes::clearance_to`] then allocate nothing.
 #[derive(Clone, Debug)]
 pub struct RobotShapes {
-    /// Link capsules in their link frames: `(from, to, radius)` [m].
+    /// Link capsules in their link frames: `(from, to, radius)` \[m\].
     capsules: [([f64; 3], [f64; 3], f64); 7],
     /// The shapes in the order of [`RobotShapes::PARTS`], placed in the world.
     placed: [Shape; ROBOT_SHAPES],
-    /// A bounding sphere of each placed shape (centre world [m], radius [m]).
+    /// A bounding sphere of each placed shape (centre world \[m\], radius \[m\]).
     spheres: [([f64; 3], f64); ROBOT_SHAPES],
     /// The table box in the world.
     table: Cuboid,
@@ -141,8 +141,8 @@ impl RobotShapes {
         shapes
     }
 
-    /// Places every shape for joints `q` [rad] on a base at `base_in_world`, each finger closed
-    /// by `finger_travel[f]` [m] (0 = open, `gripper.finger_travel` = closed; used as given, the
+    /// Places every shape for joints `q` \[rad\] on a base at `base_in_world`, each finger closed
+    /// by `finger_travel[f]` \[m\] (0 = open, `gripper.finger_travel` = closed; used as given, the
     /// convention of `Sim::finger_travel`).
     pub fn place(
         &mut self,
@@ -214,7 +214,7 @@ impl RobotShapes {
     }
 
     /// Calls `found` with every penetrating pair among those `counts`, `(part, part, depth
-    /// [m])`; bounding spheres screen the pairs first.
+    /// \[m\])`; bounding spheres screen the pairs first.
     fn each_penetrating(
         &self,
         counts: impl Fn(Part, Part) -> bool,
@@ -239,7 +239,7 @@ impl RobotShapes {
         }
     }
 
-    /// Penetration depth [m] of `a` into `b` (robot parts or the table; exact), 0 when they
+    /// Penetration depth \[m\] of `a` into `b` (robot parts or the table; exact), 0 when they
     /// are apart or only touch; `None` for the cube or a part paired with itself.
     pub fn penetration(&self, a: Part, b: Part) -> Option<f64> {
         let table = Shape::Box(self.table);
@@ -248,7 +248,7 @@ impl RobotShapes {
         (a != b).then(|| (-signed_distance(x, y)).max(0.0))
     }
 
-    /// A lower bound on the distance [m] from every robot part (links, palm, struts, pads) to
+    /// A lower bound on the distance \[m\] from every robot part (links, palm, struts, pads) to
     /// `cuboid` (world), 0 when touching: exact for the link capsules, the largest
     /// separating-axis gap for the boxes (exact when a face separates them).
     pub fn clearance_to(&self, cuboid: &Cuboid) -> f64 {

@@ -2,7 +2,7 @@
 //!
 //! The robot, the task and the scenario code never touch rapier's sets; they ask this facade to
 //! place the arm, drive the fingers, place the object, step, and report contacts. Poses cross
-//! this boundary as f64 nalgebra isometries in `world` [m]; rapier's f32 types stay inside.
+//! this boundary as f64 nalgebra isometries in `world` \[m\]; rapier's f32 types stay inside.
 
 use fairgrasp_kinematics::{ArmModel, Pose};
 use nalgebra::Isometry3;
@@ -15,7 +15,7 @@ use crate::sim::finger_drive::{FINGER_DAMPING, FINGER_STIFFNESS, FingerState};
 use crate::sim::scene::{SceneHandles, build, finger_anchor};
 use crate::sim::snapshot::Snapshot;
 
-/// Multibody joint servo: stiffness [N·m/rad] and damping [N·m·s/rad] of the position motors.
+/// Multibody joint servo: stiffness \[N·m/rad\] and damping \[N·m·s/rad\] of the position motors.
 const MOTOR_STIFFNESS: f32 = 2.0e4;
 const MOTOR_DAMPING: f32 = 4.0e2;
 
@@ -28,7 +28,7 @@ pub struct Sim {
 }
 
 impl Sim {
-    /// Builds the world: the arm at `q` [rad] on `base` (`T_world_base`), the fingers open, the
+    /// Builds the world: the arm at `q` \[rad\] on `base` (`T_world_base`), the fingers open, the
     /// cube at `cube_in_world`.
     pub fn build(
         config: &EnvConfig,
@@ -61,7 +61,7 @@ impl Sim {
         from_rapier(self.world.bodies[self.handles.cube].position())
     }
 
-    /// Places the object at rest at `pose` (`world`), with friction coefficient and mass [kg].
+    /// Places the object at rest at `pose` (`world`), with friction coefficient and mass \[kg\].
     pub fn place_object(&mut self, pose: &Isometry3<f64>, friction: f64, mass: f64) {
         if let Some(body) = self.world.bodies.get_mut(self.handles.cube) {
             body.set_position(to_rapier(pose), true);
@@ -120,7 +120,7 @@ impl Sim {
         }
     }
 
-    /// Sets the multibody arm's position motors toward `q_ref` [rad] at velocity `qd` [rad/s].
+    /// Sets the multibody arm's position motors toward `q_ref` \[rad\] at velocity `qd` \[rad/s\].
     /// Does nothing for a kinematic arm.
     pub fn set_arm_motors(&mut self, q_ref: &[f64; 6], qd: &[f64; 6]) {
         let Some(joints) = self.handles.arm_joints else {
@@ -138,7 +138,7 @@ impl Sim {
         }
     }
 
-    /// Joint angles of the multibody arm [rad]; `None` for a kinematic arm.
+    /// Joint angles of the multibody arm \[rad\]; `None` for a kinematic arm.
     pub fn multibody_joints(&self) -> Option<[f64; 6]> {
         let joints = self.handles.arm_joints?;
         let mut q = [0.0; 6];
@@ -152,7 +152,7 @@ impl Sim {
         Some(q)
     }
 
-    /// Moves the multibody arm to `q` [rad] at rest. Does nothing for a kinematic arm.
+    /// Moves the multibody arm to `q` \[rad\] at rest. Does nothing for a kinematic arm.
     pub fn teleport_multibody_arm(&mut self, q: &[f64; 6]) {
         let (Some(joints), Some(current)) = (self.handles.arm_joints, self.multibody_joints())
         else {
@@ -185,7 +185,7 @@ impl Sim {
         }
     }
 
-    /// Closing travel of each finger [m] (0 = open, `finger_travel` = closed), from the bodies.
+    /// Closing travel of each finger \[m\] (0 = open, `finger_travel` = closed), from the bodies.
     pub fn finger_travel(&self, model: &ArmModel) -> [f64; 2] {
         let palm = from_rapier(self.world.bodies[self.handles.palm].position());
         std::array::from_fn(|f| {
@@ -196,7 +196,7 @@ impl Sim {
         })
     }
 
-    /// Closing speed of each finger relative to the palm [m/s].
+    /// Closing speed of each finger relative to the palm \[m/s\].
     pub fn finger_travel_rate(&self, model: &ArmModel) -> [f64; 2] {
         let palm = &self.world.bodies[self.handles.palm];
         std::array::from_fn(|f| {
@@ -209,7 +209,7 @@ impl Sim {
         })
     }
 
-    /// Drives both fingers toward travel `target` [m], each with its own force limit [N].
+    /// Drives both fingers toward travel `target` \[m\], each with its own force limit \[N\].
     pub fn set_finger_motors(&mut self, target: f64, max_forces: [f64; 2]) {
         for (f, max_force) in max_forces.into_iter().enumerate() {
             if let Some(joint) = self
@@ -230,9 +230,9 @@ impl Sim {
         }
     }
 
-    /// Places each finger at its closing travel [m] on the flange at FK(`q`) on `base`, moving
-    /// with the palm (its velocity from the flange's motion `previous → q` over `dt` [s]) plus
-    /// its travel rate [m/s]; the finger joints' solver impulses restart from zero.
+    /// Places each finger at its closing travel \[m\] on the flange at FK(`q`) on `base`, moving
+    /// with the palm (its velocity from the flange's motion `previous → q` over `dt` \[s\]) plus
+    /// its travel rate \[m/s\]; the finger joints' solver impulses restart from zero.
     pub fn place_fingers(
         &mut self,
         model: &ArmModel,
@@ -268,8 +268,8 @@ impl Sim {
         }
     }
 
-    /// Is the object at rest: moving slower than `max_speed` [m/s] and turning slower than
-    /// `max_turn_rate` [rad/s] (a sleeping object is)?
+    /// Is the object at rest: moving slower than `max_speed` \[m/s\] and turning slower than
+    /// `max_turn_rate` \[rad/s\] (a sleeping object is)?
     pub fn object_at_rest(&self, max_speed: f64, max_turn_rate: f64) -> bool {
         let body = &self.world.bodies[self.handles.cube];
         body.is_sleeping()
@@ -307,7 +307,7 @@ impl Sim {
     }
 
     /// What a wrist force/torque sensor reads after the last physics step, tared, in `world`
-    /// [N] ([`crate::sim::contacts::wrist_load`]).
+    /// \[N\] ([`crate::sim::contacts::wrist_load`]).
     pub fn wrist_load(&self, holding: bool) -> [f64; 3] {
         let dt = f64::from(self.world.integration_parameters.dt);
         crate::sim::contacts::wrist_load(&self.world, &self.handles.parts, dt, holding)

@@ -6,17 +6,17 @@ use fairgrasp_types::{EpisodeFacts, EpisodeRecord};
 
 use crate::task::judge::Failure;
 
-/// The object must rise this far above rest while both pads touch it to count as lifted [m].
+/// The object must rise this far above rest while both pads touch it to count as lifted \[m\].
 const LIFTED: f64 = 0.01;
-/// The gripper counts as closed past the object below its size minus this [m].
+/// The gripper counts as closed past the object below its size minus this \[m\].
 const CLOSED_PAST: f64 = 0.005;
 
 /// What an episode has shown so far.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct EpisodeTracker {
-    /// The object's height at rest after the reset, `base_link` z [m].
+    /// The object's height at rest after the reset, `base_link` z \[m\].
     object_rest_z: f64,
-    /// The object's edge length [m].
+    /// The object's edge length \[m\].
     object_size: f64,
     facts: EpisodeFacts,
     episode_return: f64,
@@ -27,9 +27,9 @@ pub struct EpisodeTracker {
 pub struct StepFacts {
     /// Left and right pad touching the object.
     pub pad_contact: [bool; 2],
-    /// The object's height, `base_link` z [m].
+    /// The object's height, `base_link` z \[m\].
     pub object_z: f64,
-    /// Distance between the pads [m].
+    /// Distance between the pads \[m\].
     pub gripper_opening: f64,
     pub reward: f64,
 }
@@ -37,7 +37,7 @@ pub struct StepFacts {
 /// How the terminal step ended the episode.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ending<'a> {
-    /// Scenario seed and the object's start in the table frame [m].
+    /// Scenario seed and the object's start in the table frame \[m\].
     pub seed: u64,
     pub object_xy: [f64; 2],
     /// Steps taken.
@@ -48,7 +48,7 @@ pub struct Ending<'a> {
 }
 
 impl EpisodeTracker {
-    /// A new episode whose object rests at `object_rest_z` (`base_link` z) [m].
+    /// A new episode whose object rests at `object_rest_z` (`base_link` z) \[m\].
     pub fn start(object_rest_z: f64, object_size: f64) -> Self {
         Self {
             object_rest_z,

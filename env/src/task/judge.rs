@@ -13,7 +13,7 @@ pub enum Failure {
     /// The object fell off the table.
     ObjectOffTable,
     /// A robot part pushed on the cube or the table harder than `task.protective_stop_force`:
-    /// the robot's part, the other part and the contact force [N].
+    /// the robot's part, the other part and the contact force \[N\].
     ProtectiveStop {
         robot_part: String,
         other_part: String,

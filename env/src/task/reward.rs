@@ -5,8 +5,8 @@
 //! `PickCube` (reach `1 − tanh(5·d)`, a grasped term, shaping toward the goal gated on the grasp,
 //! normalised per step, success worth the maximum), robosuite's `Lift` (reach `1 − tanh(10·d)`,
 //! a grasp bonus, a lifted bonus) and Isaac Lab's Franka lift (reach, lifted, goal tracking gated
-//! on lifting). Here, per step, with `d` the TCP–cube distance [m] and `Δz` the cube's rise
-//! above its resting height [m]:
+//! on lifting). Here, per step, with `d` the TCP–cube distance \[m\] and `Δz` the cube's rise
+//! above its resting height \[m\]:
 //!
 //! ```text
 //! r = ( reach · (1 − tanh(reach_sharpness · d))
@@ -24,7 +24,7 @@
 pub use crate::config::reward::StagedReward;
 use crate::task::state::{TaskState, tcp_object_distance};
 
-/// The staged reward of a step that ended in `s` with `lift_height` [m] the success lift.
+/// The staged reward of a step that ended in `s` with `lift_height` \[m\] the success lift.
 pub fn staged_reward(
     s: &TaskState,
     success: bool,

@@ -1,6 +1,6 @@
 //! The state a step is judged on ([`TaskState`]), in the world frame.
 
-/// The facts the task is judged on, all in the world frame [m].
+/// The facts the task is judged on, all in the world frame \[m\].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TaskState {
     /// Object centre.
@@ -11,9 +11,9 @@ pub struct TaskState {
     pub tcp: [f64; 3],
     /// Left and right pads touching the object.
     pub pad_contact: [bool; 2],
-    /// Distance between the pads' inner faces [m].
+    /// Distance between the pads' inner faces \[m\].
     pub gripper_opening: f64,
-    /// The object's edge length [m].
+    /// The object's edge length \[m\].
     pub object_size: f64,
     /// Table top height.
     pub table_height: f64,
@@ -24,7 +24,7 @@ pub struct TaskState {
     pub place: Option<PlaceFacts>,
 }
 
-/// Distance from the TCP to the object centre [m].
+/// Distance from the TCP to the object centre \[m\].
 pub fn tcp_object_distance(s: &TaskState) -> f64 {
     (0..3)
         .map(|i| (s.object[i] - s.tcp[i]).powi(2))
@@ -32,15 +32,15 @@ pub fn tcp_object_distance(s: &TaskState) -> f64 {
         .sqrt()
 }
 
-/// The facts about the cube and the fixture a place step is judged on (world frame, [m]).
+/// The facts about the cube and the fixture a place step is judged on (world frame, \[m\]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlaceFacts {
-    /// The cube's centre in the fixture frame (x, y along its walls) [m].
+    /// The cube's centre in the fixture frame (x, y along its walls) \[m\].
     pub offset_in_fixture: [f64; 2],
-    /// The cube's lowest corner above the table top [m].
+    /// The cube's lowest corner above the table top \[m\].
     pub bottom_above_table: f64,
-    /// The cube's tilt from standing on a face [rad].
+    /// The cube's tilt from standing on a face \[rad\].
     pub tilt: f64,
-    /// The fixture's centre on the table top, world [m].
+    /// The fixture's centre on the table top, world \[m\].
     pub fixture: [f64; 3],
 }

@@ -90,7 +90,7 @@ pub(crate) struct Chunk {
     pub(crate) base_seed: u64,
     /// A worker's actions, copied in by the calling thread.
     pub(crate) actions: Vec<Action>,
-    /// Each env's squeeze per finger [N] for this step, if asked (copied in with the actions).
+    /// Each env's squeeze per finger \[N\] for this step, if asked (copied in with the actions).
     pub(crate) grip: Vec<Option<f64>>,
     pub(crate) out: VecStep,
 }
@@ -113,7 +113,7 @@ impl Chunk {
         Ok(())
     }
 
-    /// Steps env `j` with `actions[j]`, squeezing with `grip[j]` [N] first if given.
+    /// Steps env `j` with `actions[j]`, squeezing with `grip[j]` \[N\] first if given.
     pub(crate) fn step(
         &mut self,
         actions: &[Action],

@@ -134,7 +134,7 @@ impl VecEnv {
         self.step_gripping(actions, &[])
     }
 
-    /// [`VecEnv::step`], each env `i` first squeezing with `grip[i]` per finger [N] if given
+    /// [`VecEnv::step`], each env `i` first squeezing with `grip[i]` per finger \[N\] if given
     /// ([`GraspEnv::set_grip_force`]; an empty `grip` changes nothing).
     pub fn step_gripping(
         &mut self,

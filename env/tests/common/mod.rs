@@ -4,7 +4,7 @@
 use fairgrasp_env::scenario::top_down_grasp;
 use fairgrasp_env::{Action, ArmSimulation, EnvConfig, GraspEnv, Step};
 
-/// Action driving the joints toward `target` [rad] with gripper command `grip`.
+/// Action driving the joints toward `target` \[rad\] with gripper command `grip`.
 pub fn toward(env: &GraspEnv, target: [f64; 6], grip: f64) -> Action {
     let q = env.joints();
     let scale = env.config().arm.action_scale;

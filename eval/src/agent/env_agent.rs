@@ -65,7 +65,7 @@ impl EnvAgent {
         )
     }
 
-    /// The grip force per finger [N] the script's squeeze asks for after the latest `act`
+    /// The grip force per finger \[N\] the script's squeeze asks for after the latest `act`
     /// (None without the squeeze): hand it to the env before the step.
     pub fn grip_force(&self) -> Option<f64> {
         self.script.as_ref().and_then(Script::grip_force)
@@ -86,7 +86,7 @@ impl EnvAgent {
 
 /// The bounds of a policy input's script part ([`AgentConfig::input_names`] after the
 /// observation's), given `object_bound`: a bound on every coordinate of the observed cube's
-/// position in `base_link` [m] (the observation space's). Empty in pure mode.
+/// position in `base_link` \[m\] (the observation space's). Empty in pure mode.
 pub fn script_input_bounds(
     agent: &AgentConfig,
     env: &EnvConfig,

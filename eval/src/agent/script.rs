@@ -40,7 +40,7 @@ impl Script {
         Script::Place(Box::new(PlaceResidual::new(env)))
     }
 
-    /// The grip force per finger [N] the task script's squeeze asks for (None otherwise).
+    /// The grip force per finger \[N\] the task script's squeeze asks for (None otherwise).
     pub fn grip_force(&self) -> Option<f64> {
         match self {
             Script::Joint(_) | Script::Place(_) => None,

@@ -48,7 +48,7 @@ pub struct CheckpointMeta {
     pub timesteps: u64,
     /// PPO updates done so far.
     pub updates: u64,
-    /// Training wall-clock time so far, over all invocations [s].
+    /// Training wall-clock time so far, over all invocations \[s\].
     #[serde(default)]
     pub wall_time_s: f64,
     /// Evaluation success rate of this checkpoint, if evaluated.

@@ -30,11 +30,11 @@ pub struct HandEyeSample {
 /// Bounds of a hand-eye fit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HandEyeOptions {
-    /// The largest accepted position residual of a station [m] (default 5 mm).
+    /// The largest accepted position residual of a station \[m\] (default 5 mm).
     pub max_position_residual: f64,
-    /// The largest accepted angle residual of a station [rad] (default 1°).
+    /// The largest accepted angle residual of a station \[rad\] (default 1°).
     pub max_angle_residual: f64,
-    /// Motions rotating less than this [rad] carry no axis and are left out of the rotation
+    /// Motions rotating less than this \[rad\] carry no axis and are left out of the rotation
     /// solve (default 2°).
     pub min_motion_angle: f64,
     /// Below this spread of the motions' rotation axes off one axis (as a fraction of their
@@ -61,11 +61,11 @@ pub struct HandEyeFit {
     /// `Y = T_tcp_marker`: the marker's pose on the gripper.
     pub marker_in_tcp: Pose,
     /// Per station, the distance between the marker placed by the arm (`G_i·Y`) and by the
-    /// camera (`X·C_i`) [m].
+    /// camera (`X·C_i`) \[m\].
     pub position_residuals: Vec<f64>,
-    /// Per station, the angle between the same two marker orientations [rad].
+    /// Per station, the angle between the same two marker orientations \[rad\].
     pub angle_residuals: Vec<f64>,
-    /// Root mean squares of the two [m], [rad].
+    /// Root mean squares of the two \[m\], \[rad\].
     pub rms_position: f64,
     pub rms_angle: f64,
     /// Pose pairs used for the rotation (motions rotating enough).

@@ -12,25 +12,25 @@ use nalgebra::{Matrix3, Matrix6, Rotation3, Vector3, Vector6};
 use super::{CalibrationError, kabsch, mm, principal_spread};
 use crate::Pose;
 
-/// One touched point: the same physical point in both frames [m].
+/// One touched point: the same physical point in both frames \[m\].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointPair {
-    /// Its known coordinates in the world (or table) frame [m].
+    /// Its known coordinates in the world (or table) frame \[m\].
     pub world: [f64; 3],
-    /// The TCP's position in `base_link` when it touched the point [m].
+    /// The TCP's position in `base_link` when it touched the point \[m\].
     pub base: [f64; 3],
 }
 
 /// Bounds of a point fit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointFitOptions {
-    /// The largest residual accepted for any point [m] (default 5 mm: FR3 repeatability is
+    /// The largest residual accepted for any point \[m\] (default 5 mm: FR3 repeatability is
     /// ±0.02 mm; a careful touch with a pointed tool is within 1–2 mm).
     pub max_residual: f64,
-    /// Below this spread of the points off their best line [m], the rotation about that line is
+    /// Below this spread of the points off their best line \[m\], the rotation about that line is
     /// poorly determined and the fit warns (default 5 cm).
     pub warn_spread: f64,
-    /// Below this spread off their best line [m] the points are collinear and refused (1 mm).
+    /// Below this spread off their best line \[m\] the points are collinear and refused (1 mm).
     pub min_spread: f64,
     /// The largest accepted `|scale − 1|` of the Umeyama fit with scale (default 0.05).
     pub scale_tolerance: f64,
@@ -52,17 +52,17 @@ impl Default for PointFitOptions {
 pub struct PointFit {
     /// `T_world_base`: where `base_link` stands in the world.
     pub base_in_world: Pose,
-    /// `|T·p_base − p_world|` of every pair, in input order [m].
+    /// `|T·p_base − p_world|` of every pair, in input order \[m\].
     pub residuals: Vec<f64>,
-    /// Root mean square of the residuals [m].
+    /// Root mean square of the residuals \[m\].
     pub rms: f64,
-    /// The closed form's RMS before the least-squares refinement [m].
+    /// The closed form's RMS before the least-squares refinement \[m\].
     pub closed_form_rms: f64,
     /// Gauss–Newton iterations the refinement took.
     pub iterations: usize,
     /// Umeyama's scale (world size / base size); 1 for consistent units.
     pub scale: f64,
-    /// Spread of the base points along their principal axes, largest first [m].
+    /// Spread of the base points along their principal axes, largest first \[m\].
     pub spread: [f64; 3],
     /// What the fit could do but a person should know (nearly collinear points, only three).
     pub warnings: Vec<String>,
@@ -179,7 +179,7 @@ pub fn fit_points(
     })
 }
 
-/// `Σ |R·b + t − w|²` over the pairs [m²]: what the fit minimises.
+/// `Σ |R·b + t − w|²` over the pairs \[m²\]: what the fit minimises.
 fn squared_distances(
     base: &[Vector3<f64>],
     world: &[Vector3<f64>],

@@ -7,7 +7,7 @@ use crate::urdf::SerialChain;
 
 impl SerialChain {
     /// The tip's pose in the root frame and the geometric Jacobian (6 × N, rows: linear
-    /// velocity [m/s] then angular velocity [rad/s] of the tip, in the root frame; columns: the
+    /// velocity \[m/s\] then angular velocity \[rad/s\] of the tip, in the root frame; columns: the
     /// movable joints in order, per rad/s or m/s) at joint values `q`. Panics if
     /// `q.len() != dof()`.
     pub fn fk_jacobian(&self, q: &[f64]) -> (Pose, DMatrix<f64>) {

@@ -12,25 +12,25 @@ use crate::urdf::{SerialChain, UrdfError, UrdfRobot};
 /// Settings of [`ChainIk::solve`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ChainIkOptions {
-    /// Converged when the position error is at most this [m] …
+    /// Converged when the position error is at most this \[m\] …
     pub position_tolerance: f64,
-    /// … and the orientation error at most this [rad].
+    /// … and the orientation error at most this \[rad\].
     pub orientation_tolerance: f64,
     /// Iterations per attempt.
     pub max_iterations: usize,
     /// Attempts: the first from the given start, the rest from random in-limit configurations.
     pub max_attempts: usize,
-    /// Largest step of any joint per iteration [rad or m].
+    /// Largest step of any joint per iteration \[rad or m\].
     pub max_step: f64,
     /// Constant damping λ₀.
     pub damping: f64,
     /// Error-dependent damping κ: λ = λ₀ + κ·‖e‖².
     pub error_damping: f64,
-    /// Weight of orientation error relative to position error [m²/rad²].
+    /// Weight of orientation error relative to position error \[m²/rad²\].
     pub orientation_weight: f64,
-    /// Longest position error trusted in one step [m].
+    /// Longest position error trusted in one step \[m\].
     pub position_clamp: f64,
-    /// Longest orientation error trusted in one step [rad].
+    /// Longest orientation error trusted in one step \[rad\].
     pub orientation_clamp: f64,
     /// Seed of the restarts' random configurations (the same seed, the same answer).
     pub seed: u64,
@@ -57,11 +57,11 @@ impl Default for ChainIkOptions {
 /// A converged solve.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ChainIkSolution {
-    /// The movable joints' values [rad or m], in chain order, within their limits.
+    /// The movable joints' values \[rad or m\], in chain order, within their limits.
     pub joints: Vec<f64>,
-    /// Position error at the end [m].
+    /// Position error at the end \[m\].
     pub position_error_m: f64,
-    /// Orientation error at the end [rad].
+    /// Orientation error at the end \[rad\].
     pub orientation_error_rad: f64,
     /// QP steps over all attempts.
     pub iterations: usize,
@@ -107,7 +107,7 @@ pub struct ChainIk {
     pub chain: SerialChain,
     /// Names of the movable joints, in chain order.
     pub names: Vec<String>,
-    /// Lower and upper limits of each movable joint [rad or m] (continuous joints: ±2π).
+    /// Lower and upper limits of each movable joint \[rad or m\] (continuous joints: ±2π).
     pub lower: Vec<f64>,
     pub upper: Vec<f64>,
 }
@@ -151,7 +151,7 @@ impl ChainIk {
     }
 
     /// At `q`: the Gauss–Newton normal equations of the weighted, clamped tip error — `JᵀWJ`
-    /// and `JᵀWe` — and the unclamped position [m] and orientation [rad] errors.
+    /// and `JᵀWe` — and the unclamped position \[m\] and orientation \[rad\] errors.
     fn normal_equations(
         &self,
         target: &Pose,

@@ -1,8 +1,9 @@
 //! Differential IK as one QP, mink/pink style: tasks give an error and a Jacobian, limits give
 //! inequality rows, and [`solve_step`] stacks them and calls clarabel.
 //!
-//! The unknown is the joint displacement `Δq` [rad] of one step. A task with rows `(j_k, e_k, w_k)`
-//! wants `j_k · Δq = e_k`; a limit row `(g, h)` demands `g · Δq ≤ h`. The QP is
+//! The unknown is the joint displacement `Δq` \[rad\] of one step. A task with rows
+//! `(j_k, e_k, w_k)` wants `j_k · Δq = e_k`; a limit row `(g, h)` demands `g · Δq ≤ h`.
+//! The QP is
 //!
 //! ```text
 //! minimise   ½ Σ_k w_k (j_k·Δq − e_k)² + ½ λ ‖Δq‖²     subject to   G Δq ≤ h

@@ -18,18 +18,18 @@ pub struct TaskRow {
 pub struct LimitRow {
     /// Row of G.
     pub g: [f64; 6],
-    /// Right-hand side [rad].
+    /// Right-hand side \[rad\].
     pub h: f64,
 }
 
 /// Something the solver should achieve, as rows of error and Jacobian.
 pub trait Task {
-    /// Appends this task's rows at configuration `q` [rad].
+    /// Appends this task's rows at configuration `q` \[rad\].
     fn rows(&self, model: &ArmModel, q: &[f64; 6], out: &mut Vec<TaskRow>);
 }
 
 /// Something the step must respect, as inequality rows.
 pub trait Limit {
-    /// Appends this limit's rows at configuration `q` [rad].
+    /// Appends this limit's rows at configuration `q` \[rad\].
     fn rows(&self, model: &ArmModel, q: &[f64; 6], out: &mut Vec<LimitRow>);
 }

@@ -130,7 +130,7 @@ fn settings() -> DefaultSettings<f64> {
 }
 
 /// One differential-IK step: stacks `tasks` and `limits` at `q` into a QP with damping
-/// `damping` (per rad²) and returns the optimal `Δq` [rad].
+/// `damping` (per rad²) and returns the optimal `Δq` \[rad\].
 pub fn solve_step(
     model: &ArmModel,
     q: &[f64; 6],

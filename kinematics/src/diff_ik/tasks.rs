@@ -19,9 +19,9 @@ pub struct FrameTask {
     pub target: Pose,
     pub position_cost: f64,
     pub orientation_cost: f64,
-    /// Longest position error used in one step [m].
+    /// Longest position error used in one step \[m\].
     pub position_clamp: f64,
-    /// Longest orientation error used in one step [rad].
+    /// Longest orientation error used in one step \[rad\].
     pub orientation_clamp: f64,
 }
 
@@ -45,7 +45,7 @@ fn clamp_norm(v: Vector3<f64>, max: f64) -> Vector3<f64> {
 }
 
 impl FrameTask {
-    /// The position [m] and orientation [rad] errors at `q`.
+    /// The position \[m\] and orientation \[rad\] errors at `q`.
     pub fn residual(&self, model: &ArmModel, q: &[f64; 6]) -> (f64, f64) {
         model.fk(q, self.frame).distance_to(&self.target)
     }
@@ -79,7 +79,7 @@ impl Task for FrameTask {
     }
 }
 
-/// Pull the joints toward `target` [rad]: error `q* − q`, Jacobian I, cost per rad².
+/// Pull the joints toward `target` \[rad\]: error `q* − q`, Jacobian I, cost per rad².
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PostureTask {
     pub target: [f64; 6],
@@ -100,7 +100,7 @@ impl Task for PostureTask {
     }
 }
 
-/// Keep `q + Δq` within the joint limits shrunk by `margin` [rad].
+/// Keep `q + Δq` within the joint limits shrunk by `margin` \[rad\].
 ///
 /// A joint already inside the margin may not go deeper but is not forced out, so the QP stays
 /// feasible and, from any in-limit start, the limits themselves are never crossed.
@@ -130,7 +130,7 @@ impl Limit for JointPositionLimit {
 /// `|Δq_i| ≤ v_max,i · dt`: the model's velocity limits over a step of `dt` seconds, scaled.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VelocityLimit {
-    /// Step duration [s].
+    /// Step duration \[s\].
     pub dt: f64,
     /// Fraction of the model's velocity limits to allow (1.0 = the full limits).
     pub scale: f64,

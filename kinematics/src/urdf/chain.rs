@@ -32,7 +32,7 @@ impl SerialChain {
             .collect()
     }
 
-    /// `T_root_tip` for movable-joint values `q` [rad or m]. Panics if `q.len() != dof()`.
+    /// `T_root_tip` for movable-joint values `q` \[rad or m\]. Panics if `q.len() != dof()`.
     pub fn fk(&self, q: &[f64]) -> Pose {
         self.walk(q, |_, _, _| {})
     }

@@ -16,7 +16,7 @@ use quick_xml::events::{BytesStart, Event};
 use crate::urdf::error::UrdfError;
 use crate::urdf::joint::JointKind;
 
-/// The largest URDF text read [bytes]. A URDF names its mesh files rather than holding them:
+/// The largest URDF text read \[bytes\]. A URDF names its mesh files rather than holding them:
 /// the shipped FR3 file is 8 kB, a humanoid's a few hundred kB.
 pub const MAX_URDF_BYTES: usize = 16 * 1024 * 1024;
 

@@ -29,9 +29,9 @@ pub enum UrdfError {
     )]
     TooLarge {
         file: String,
-        /// Size of the file or text [bytes].
+        /// Size of the file or text \[bytes\].
         bytes: u64,
-        /// [`crate::urdf::MAX_URDF_BYTES`] [bytes].
+        /// [`crate::urdf::MAX_URDF_BYTES`] \[bytes\].
         limit: u64,
     },
     /// Elements nest deeper than any URDF does.

@@ -68,15 +68,15 @@ pub struct UrdfJoint {
     pub kind: JointKind,
     pub parent: String,
     pub child: String,
-    /// `T_parent_joint` at zero joint value [m, rad].
+    /// `T_parent_joint` at zero joint value \[m, rad\].
     #[serde(skip)]
     pub origin: Pose,
     /// Unit axis in the joint frame.
     pub axis: [f64; 3],
-    /// Position limits [rad or m]; `None` for continuous and fixed joints.
+    /// Position limits \[rad or m\]; `None` for continuous and fixed joints.
     pub limits: Option<[f64; 2]>,
-    /// Velocity limit [rad/s or m/s] (0 where the URDF gives none).
+    /// Velocity limit \[rad/s or m/s\] (0 where the URDF gives none).
     pub max_velocity: f64,
-    /// Effort limit [N·m or N] (0 where the URDF gives none).
+    /// Effort limit \[N·m or N\] (0 where the URDF gives none).
     pub max_effort: f64,
 }

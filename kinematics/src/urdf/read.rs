@@ -28,12 +28,12 @@ pub(crate) struct JointText {
     pub kind: JointKind,
     pub parent: String,
     pub child: String,
-    /// `<origin xyz rpy>` [m, rad].
+    /// `<origin xyz rpy>` \[m, rad\].
     pub xyz: [f64; 3],
     pub rpy: [f64; 3],
     /// `<axis xyz>`.
     pub axis: [f64; 3],
-    /// `<limit lower upper velocity effort>` [rad or m, rad/s or m/s, N·m or N].
+    /// `<limit lower upper velocity effort>` \[rad or m, rad/s or m/s, N·m or N\].
     pub lower: f64,
     pub upper: f64,
     pub velocity: f64,

@@ -10,12 +10,12 @@ pub fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
 }
 
-/// A configuration drawn uniformly within the joint limits [rad].
+/// A configuration drawn uniformly within the joint limits \[rad\].
 pub fn random_in_limits(model: &ArmModel, rng: &mut ChaCha8Rng) -> [f64; 6] {
     model.joints.map(|j| rng.random_range(j.lower..=j.upper))
 }
 
-/// Largest absolute difference between two joint vectors [rad].
+/// Largest absolute difference between two joint vectors \[rad\].
 pub fn max_abs_diff(a: &[f64; 6], b: &[f64; 6]) -> f64 {
     a.iter()
         .zip(b)

@@ -11,14 +11,14 @@ use crate::compare::Comparison;
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 
-/// Width of the method-name column [px].
+/// Width of the method-name column \[px\].
 const NAME_WIDTH: u32 = 300;
-/// Size of one cell [px].
+/// Size of one cell \[px\].
 const CELL: (u32, u32) = (118, 44);
-/// Height of the title and the preset names above the cells [px].
+/// Height of the title and the preset names above the cells \[px\].
 const HEAD: u32 = 84;
 
-/// The image size for `methods` rows and `presets` columns [px].
+/// The image size for `methods` rows and `presets` columns \[px\].
 pub fn heatmap_size(methods: usize, presets: usize) -> (u32, u32) {
     (
         NAME_WIDTH + CELL.0 * presets.max(1) as u32 + 16,

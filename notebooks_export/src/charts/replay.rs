@@ -113,7 +113,7 @@ pub fn replay_frame_rgb(t: &Trajectory, title: &str, step: usize) -> Result<Vec<
         .map_err(|e| ReportError::chart(here, e))
 }
 
-/// The fixed view bounds of a replay [m]: everything that moves, over the whole episode.
+/// The fixed view bounds of a replay \[m\]: everything that moves, over the whole episode.
 struct ViewBounds {
     x: (f64, f64),
     y: (f64, f64),

@@ -15,7 +15,7 @@ use fairgrasp_types::Outcome;
 /// Pixel size of the chart.
 pub const SIZE: (u32, u32) = (1000, 760);
 
-/// One episode on the chart: the squeeze needed [N], the grip force at lift [N], its outcome.
+/// One episode on the chart: the squeeze needed \[N\], the grip force at lift \[N\], its outcome.
 pub type SqueezePoint = (f64, f64, Outcome);
 
 /// Draws `points` (episodes that never lifted are left out by the caller) under `title`.

@@ -14,7 +14,7 @@ use crate::raster::{FONT, de, render_png};
 /// Pixel size of the success-rate chart.
 pub const SIZE: (u32, u32) = (1000, 560);
 
-/// The narrowest bar [px] that carries its value on top ("100.0" at 14 px is ~34 px wide).
+/// The narrowest bar \[px\] that carries its value on top ("100.0" at 14 px is ~34 px wide).
 const VALUE_LABEL_MIN_PIXELS: f64 = 34.0;
 
 /// Draws `success_rate.png`: one group per preset, one bar per method, value on top where it

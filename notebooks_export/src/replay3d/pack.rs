@@ -15,7 +15,7 @@ use serde_json::{Value, json};
 
 use crate::replay3d::ReplayEpisode;
 
-/// Position quantum [m].
+/// Position quantum \[m\].
 pub const POSITION_STEP: f64 = 1e-4;
 /// Quaternion component scale (1.0 ↦ this).
 pub const QUAT_SCALE: f64 = 30_000.0;

@@ -25,7 +25,7 @@ pub enum Quantity {
 pub struct StreamViolation {
     /// Index of the sample (0 = the start).
     pub sample: usize,
-    /// Time of the sample from the start [s].
+    /// Time of the sample from the start \[s\].
     pub time_sec: f64,
     /// Joint number, 1 … 6 (FAIRINO's j1 … j6).
     pub joint: usize,
@@ -78,7 +78,7 @@ impl std::error::Error for StreamViolation {}
 /// Relative slack for values computed from written samples (decimal rounding of degrees).
 const SLACK: f64 = 1e-6;
 
-/// Checks `joints` [rad], one sample per `period` [s], against `limits`: every joint within its
+/// Checks `joints` \[rad\], one sample per `period` \[s\], against `limits`: every joint within its
 /// soft limits, every step within `max_step`, every velocity within the joint's limit and every
 /// acceleration within `max_acceleration`, the stream taken as starting and ending at rest.
 /// Returns the first violation in sample order (position, step, velocity, then acceleration
@@ -145,15 +145,15 @@ pub fn check_stream(
 /// starting and ending at rest, as in [`check_stream`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct Peaks {
-    /// Largest change of a joint between two samples [deg].
+    /// Largest change of a joint between two samples \[deg\].
     pub step_deg: f64,
-    /// Largest joint speed [rad/s].
+    /// Largest joint speed \[rad/s\].
     pub velocity_rad_s: f64,
-    /// Largest joint acceleration [rad/s²].
+    /// Largest joint acceleration \[rad/s²\].
     pub acceleration_rad_s2: f64,
 }
 
-/// The peaks of `joints` [rad] sampled every `period` [s].
+/// The peaks of `joints` \[rad\] sampled every `period` \[s\].
 pub fn peaks(joints: &[[f64; 6]], period: f64) -> Peaks {
     let n = joints.len() as isize;
     let at = |k: isize| joints[k.clamp(0, n - 1) as usize];
@@ -179,7 +179,7 @@ mod tests {
         StreamLimits::of(&fairgrasp_kinematics::fairino::fr3())
     }
 
-    /// `n` samples every `period` of j2 speeding up at 5 rad/s² to `speed` [rad/s] and slowing
+    /// `n` samples every `period` of j2 speeding up at 5 rad/s² to `speed` \[rad/s\] and slowing
     /// down at 5 rad/s² to rest at the last sample.
     fn ramp(speed: f64, period: f64, n: usize) -> Vec<[f64; 6]> {
         let mut q = [0.0, -3.0, 1.5, -2.0, -1.57, 0.0];

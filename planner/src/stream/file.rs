@@ -45,7 +45,7 @@ fn fail<T>(message: impl Into<String>) -> Result<T, StreamFileError> {
 
 /// The stream as JSON (keys in alphabetical order): `period_sec` and `joints_deg` (N×6, flat,
 /// row by row), and beside them what a person or a script needs: the joint order, the sample
-/// count, the hold, the gripper events (command and commanded opening [m], when the stream has
+/// count, the hold, the gripper events (command and commanded opening \[m\], when the stream has
 /// any), the peaks, and `source` (where it came from, as the caller describes it).
 pub fn to_json(stream: &ServoStream, model: &ArmModel, source: &Value) -> Vec<u8> {
     let period = stream.period_sec;
@@ -127,7 +127,7 @@ pub fn to_npy(values: &[f64], shape: &[usize]) -> Vec<u8> {
     bytes
 }
 
-/// The joints as an N×6 `.npy` array [deg].
+/// The joints as an N×6 `.npy` array \[deg\].
 pub fn joints_npy(stream: &ServoStream) -> Vec<u8> {
     let flat: Vec<f64> = stream
         .joints

@@ -17,11 +17,11 @@ pub struct PlaybackReport {
     pub outcome: Outcome,
     /// Env steps taken.
     pub steps: usize,
-    /// Largest distance between a joint and the stream at the end of an env step [rad] (the
+    /// Largest distance between a joint and the stream at the end of an env step \[rad\] (the
     /// servo arm's lag behind the samples).
     pub max_tracking_error: f64,
     /// Largest difference between the stream's first sample and the scenario's own start
-    /// joints [rad] (0 for a stream exported from this scenario).
+    /// joints \[rad\] (0 for a stream exported from this scenario).
     pub start_offset: f64,
 }
 

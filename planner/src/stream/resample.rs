@@ -12,7 +12,7 @@ use rsruckig::prelude::*;
 use crate::motion::MotionError;
 use crate::stream::{GripperEvent, ServoStream, StreamLimits};
 
-/// Jerk limit of the resampled trajectory [rad/s³]: fairgrasp's choice (FAIRINO publishes none);
+/// Jerk limit of the resampled trajectory \[rad/s³\]: fairgrasp's choice (FAIRINO publishes none);
 /// high enough that a segment keeps the env step's duration under the 10 rad/s² limit.
 pub const MAX_JERK: f64 = 2000.0;
 /// Fraction of the velocity limits the resampled trajectory may use (the rest is margin for
@@ -22,12 +22,12 @@ const VELOCITY_FRACTION: f64 = 0.95;
 /// An episode's joints as the env recorded them.
 #[derive(Clone, Copy, Debug)]
 pub struct EpisodeJoints<'a> {
-    /// The joints [rad] after the reset and after every env step.
+    /// The joints \[rad\] after the reset and after every env step.
     pub waypoints: &'a [[f64; 6]],
-    /// The joints' velocities [rad/s] at the same moments
+    /// The joints' velocities \[rad/s\] at the same moments
     /// ([`fairgrasp_env::GraspEnv::joint_velocities`]).
     pub velocities: &'a [[f64; 6]],
-    /// Duration of an env step [s].
+    /// Duration of an env step \[s\].
     pub step_sec: f64,
     /// The gripper command of every env step (`waypoints.len() − 1` of them, or none).
     pub gripper: &'a [f64],
@@ -37,11 +37,11 @@ pub struct EpisodeJoints<'a> {
 #[derive(Clone, Debug)]
 pub struct Resampled {
     pub stream: ServoStream,
-    /// Time [s] at which the stream reaches each waypoint.
+    /// Time \[s\] at which the stream reaches each waypoint.
     pub waypoint_sec: Vec<f64>,
     /// Segments that took longer than the env step (the limits demanded it).
     pub stretched_segments: usize,
-    /// The episode's duration [s] (waypoints × step).
+    /// The episode's duration \[s\] (waypoints × step).
     pub episode_sec: f64,
 }
 
@@ -51,7 +51,7 @@ fn daov(values: [f64; 6]) -> DataArrayOrVec<f64, 6> {
     ]
 }
 
-/// Resamples `episode` to a stream of one sample every `period_sec` [s], with `hold_samples`
+/// Resamples `episode` to a stream of one sample every `period_sec` \[s\], with `hold_samples`
 /// repeats of the final sample. Each segment between waypoints is Ruckig's time-synchronised
 /// trajectory within `limits` (velocity also within `max_step` per period) and [`MAX_JERK`], at
 /// least one env step long; after the last waypoint the arm stops (Ruckig's velocity
@@ -147,7 +147,7 @@ pub fn resample(
     })
 }
 
-/// The position [rad] of `trajectory` at `t` [s] (clamped to its duration).
+/// The position \[rad\] of `trajectory` at `t` \[s\] (clamped to its duration).
 fn position_at(trajectory: &Trajectory<6>, t: f64) -> [f64; 6] {
     let mut p = daov([0.0; 6]);
     let t = t.clamp(0.0, trajectory.get_duration());

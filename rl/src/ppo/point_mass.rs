@@ -6,9 +6,9 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::ppo::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 
-/// Time step [s].
+/// Time step \[s\].
 const DT: f32 = 0.1;
-/// Episode length [steps].
+/// Episode length \[steps\].
 pub const HORIZON: usize = 30;
 
 #[derive(Clone, Copy, Debug)]

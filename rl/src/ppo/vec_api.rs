@@ -72,9 +72,9 @@ pub struct EpisodeStats {
     pub outcome: Option<fairgrasp_types::Outcome>,
     /// Sum of the episode's rewards.
     pub episode_return: f32,
-    /// Steps [env steps].
+    /// Steps \[env steps\].
     pub length: usize,
-    /// Where the episode's cube started, table frame [m] (None where there is no cube).
+    /// Where the episode's cube started, table frame \[m\] (None where there is no cube).
     pub object_xy: Option<[f64; 2]>,
 }
 

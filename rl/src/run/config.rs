@@ -40,7 +40,7 @@ pub struct TrainConfig {
     pub seed: u64,
     /// Environment steps to train for.
     pub total_timesteps: u64,
-    /// Stop earlier once this much wall-clock time has passed in this invocation [s] (for
+    /// Stop earlier once this much wall-clock time has passed in this invocation \[s\] (for
     /// comparisons at an equal time budget); None = no limit.
     pub max_wall_time_s: Option<f64>,
     /// Parallel environments.

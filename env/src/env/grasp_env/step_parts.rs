@@ -14,21 +14,21 @@ use crate::task::state::TaskState;
 use crate::task::{Failure, Judgement, judge, judge_protective_stop, void_success_after_collision};
 use fairgrasp_kinematics::ArmModel;
 
-/// Gain of a servo step's feedback on the joints' distance from the setpoint [1/s]: a tenth of
+/// Gain of a servo step's feedback on the joints' distance from the setpoint \[1/s\]: a tenth of
 /// the error corrected per 1/240 s substep, the feedforward velocity doing the rest.
 const SERVO_GAIN: f64 = 24.0;
 
 /// How the arm moves during one env step.
 #[derive(Clone, Copy)]
 pub(super) enum Drive<'a> {
-    /// One joint-velocity command [rad/s] for every substep (an [`Action`]).
+    /// One joint-velocity command \[rad/s\] for every substep (an [`Action`]).
     Velocity([f64; 6]),
     /// A setpoint per substep (a servo stream).
     Servo(&'a [ServoSetpoint]),
 }
 
 impl Drive<'_> {
-    /// The joint-velocity command [rad/s] of substep `j`, from the reference `q_ref` [rad]:
+    /// The joint-velocity command \[rad/s\] of substep `j`, from the reference `q_ref` \[rad\]:
     /// the action's, or the setpoint's velocity plus [`SERVO_GAIN`] times the distance to its
     /// position. The robot's rate limiter still applies.
     pub(super) fn command(&self, j: usize, q_ref: &[f64; 6]) -> [f64; 6] {
@@ -159,7 +159,7 @@ impl GraspEnv {
         report
     }
 
-    /// Checks an action and hands it to the robot: returns the joint-velocity command [rad/s]
+    /// Checks an action and hands it to the robot: returns the joint-velocity command \[rad/s\]
     /// (from joint velocities, or from the TCP command through the Jacobian in `tcp` mode).
     pub(super) fn apply_action(&mut self, action: &Action) -> Result<[f64; 6], EnvError> {
         if let Some((index, &value)) = action.0.iter().enumerate().find(|(_, v)| !v.is_finite()) {
@@ -178,7 +178,7 @@ impl GraspEnv {
         Ok(qd)
     }
 
-    /// The facts the task judges, in `world` [m].
+    /// The facts the task judges, in `world` \[m\].
     pub(super) fn task_state(&self, contacts: &ContactReport) -> TaskState {
         let object = self.sim.object_pose().translation.vector;
         let tcp = self.robot.tcp_in_world().xyz();
@@ -254,7 +254,7 @@ impl GraspEnv {
         }
     }
 
-    /// The wrist force/torque sensor's reading in `base_link` [N] ([`Observation::wrist_force`]):
+    /// The wrist force/torque sensor's reading in `base_link` \[N\] ([`Observation::wrist_force`]):
     /// zero when the step ran no physics (the simulator's contacts are then stale).
     fn wrist_force(&self, contacts: &ContactReport) -> [f64; 3] {
         if !self.sim_in_sync {
