@@ -13,7 +13,7 @@ use fairgrasp_env::scenario::Scenario;
 use fairgrasp_env::scenario::perception::ObservedObject;
 use fairgrasp_env::{Action, EnvConfig, EnvError, Observation};
 
-/// Standard gravity [m/s²] (the env's world uses it).
+/// Standard gravity \[m/s²\] (the env's world uses it).
 const GRAVITY: f64 = 9.81;
 
 /// One episode of a squeeze probe.
@@ -21,21 +21,21 @@ const GRAVITY: f64 = 9.81;
 pub struct SqueezeRow {
     /// The scenario's seed.
     pub seed: u64,
-    /// Cube mass [kg].
+    /// Cube mass \[kg\].
     pub mass_kg: f64,
     /// Cube friction coefficient.
     pub friction: f64,
-    /// The squeeze per finger the cube needs [N] ([`needed_squeeze`]).
+    /// The squeeze per finger the cube needs \[N\] ([`needed_squeeze`]).
     pub needed_n: f64,
-    /// The policy's grip force per finger as the lift began [N] (the env's `gripper.force` for
+    /// The policy's grip force per finger as the lift began \[N\] (the env's `gripper.force` for
     /// a policy without a squeeze of its own); None if it never lifted.
     pub at_lift_n: Option<f64>,
-    /// The weakest grip force per finger from the lift on [N] (None if it never lifted).
+    /// The weakest grip force per finger from the lift on \[N\] (None if it never lifted).
     pub weakest_after_lift_n: Option<f64>,
     pub outcome: Outcome,
 }
 
-/// The squeeze per finger [N] that holds `scenario`'s cube against gravity in `config`'s
+/// The squeeze per finger \[N\] that holds `scenario`'s cube against gravity in `config`'s
 /// pads: `m·g / (2·μ)`, `μ = (pad_friction + cube friction) / 2`.
 pub fn needed_squeeze(config: &EnvConfig, scenario: &Scenario) -> f64 {
     let mu = 0.5 * (config.gripper.pad_friction + scenario.friction);
@@ -102,7 +102,7 @@ impl<P: Policy> Policy for Probe<P> {
     }
 }
 
-/// Runs a fresh policy from `make` on every scenario (as [`evaluate`] does, on `threads`
+/// Runs a fresh policy from `make` on every scenario (as [`evaluate()`] does, on `threads`
 /// threads) and returns one row per scenario, in order.
 pub fn probe_squeeze<P: Policy>(
     config: &EnvConfig,

@@ -109,7 +109,7 @@ fn palette_lookup(palette: &[[u8; 3]]) -> Vec<u8> {
 /// Renders one frame per entry of `delays_cs` (hundredths of a second each) with
 /// `draw(frame_index, area)` and writes them as a looping GIF (atomically). Pixels are mapped
 /// to the nearest colour of `palette` (see [`gif_palette`]): flat colours compress well. After
-/// the first frame, each frame holds only the rectangle that changed ([`changed_rect`]).
+/// the first frame, each frame holds only the rectangle that changed (`changed_rect`).
 pub fn render_gif(
     path: &Path,
     (width, height): (u32, u32),

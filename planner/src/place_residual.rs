@@ -4,11 +4,11 @@
 //! An all-zero action is the engineer's search exactly, so an untrained residual starts from
 //! the strongest hand-written control, not from the open loop (Johannink et al. 2019).
 //!
-//! Each step the policy's action (7 values in [-1, 1]) is read as: entries 0–3 a command for
-//! the [`TaskCorrection`] added to the search's offset (TCP along the table frame's x, y, z and
-//! yaw about its vertical, × [`place_limits`]' largest values), through the same filter and
-//! rate limits as the lift residual's ([`CorrectionLimits::follow`]); entries 4–6 unused. The
-//! correction moves only while the search runs and is held from then on.
+//! Each step the policy's action (7 values in [-1, 1]) is read as: entries 0–3 a command for the
+//! [`TaskCorrection`](crate::TaskCorrection) added to the search's offset (TCP along the table
+//! frame's x, y, z and yaw about its vertical, × [`place_limits`]' largest values), through the
+//! same filter and rate limits as the lift residual's ([`CorrectionLimits::follow`]); entries 4–6
+//! unused. The correction moves only while the search runs and is held from then on.
 //!
 //! The policy sees, besides the observation, [`FEATURE_DIM`] values ([`FEATURE_NAMES`]): the
 //! script's phase, the wrist force in the table frame (in units of the search's contact force;
@@ -82,7 +82,7 @@ pub struct PlaceResidual {
     limits: CorrectionLimits,
     mount: Mount,
     wall_height: f64,
-    /// Duration of one env step [s].
+    /// Duration of one env step \[s\].
     step_dt: f64,
 }
 

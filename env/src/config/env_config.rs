@@ -10,7 +10,7 @@ pub use crate::config::range::Range;
 
 pub use fairgrasp_types::ArmSimulation;
 
-/// Home joints [rad]: the TCP 0.30 m in front of the base (+x), 0.25 m above it, pointing down.
+/// Home joints \[rad\]: the TCP 0.30 m in front of the base (+x), 0.25 m above it, pointing down.
 pub const HOME_JOINTS: [f64; 6] = [
     0.3469,
     -1.3981,
@@ -40,7 +40,7 @@ pub struct EnvConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
 #[serde(default, deny_unknown_fields)]
 pub struct ControlConfig {
-    /// Squeeze per finger [N] of the "script + tuned grip" control, found by a grid search on
+    /// Squeeze per finger \[N\] of the "script + tuned grip" control, found by a grid search on
     /// training scenarios (docs/contact.md); `None`: the control squeezes `gripper.force`, as
     /// the open-loop script does.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -58,11 +58,11 @@ impl ControlConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct PhysicsConfig {
-    /// Physics time step [s] (the seed's 1/240).
+    /// Physics time step \[s\] (the seed's 1/240).
     pub dt: f64,
     /// Physics steps per environment step (the seed's 20).
     pub substeps: usize,
-    /// Contact softness natural frequency [Hz]; rapier's 30 Hz lets a squeeze sink the fingers.
+    /// Contact softness natural frequency \[Hz\]; rapier's 30 Hz lets a squeeze sink the fingers.
     pub contact_natural_frequency: f64,
     /// Solver iterations per physics step.
     pub solver_iterations: usize,
@@ -90,22 +90,23 @@ impl Default for PhysicsConfig {
 pub struct ArmConfig {
     /// `servo` (fast, default) or `multibody` (dynamic, motor-driven).
     pub model: ArmSimulation,
-    /// `base_link` position in the world [m].
+    /// `base_link` position in the world \[m\].
     pub base_xyz: [f64; 3],
-    /// `base_link` orientation in the world, URDF roll, pitch, yaw [rad].
+    /// `base_link` orientation in the world, URDF roll, pitch, yaw \[rad\].
     pub base_rpy: [f64; 3],
-    /// Joint angles at reset [rad].
+    /// Joint angles at reset \[rad\].
     pub home_joints: [f64; 6],
-    /// Joint velocity for an action of 1.0 [rad/s] (the seed's 0.5).
+    /// Joint velocity for an action of 1.0 \[rad/s\] (the seed's 0.5).
     pub action_scale: f64,
-    /// Joint acceleration limit [rad/s²] (FAIRINO publishes none, see docs/FR3.md: fairgrasp's choice).
+    /// Joint acceleration limit \[rad/s²\] (FAIRINO publishes none, see docs/FR3.md: fairgrasp's
+    /// choice).
     pub max_acceleration: f64,
     /// What an action's first entries command: `joint` velocities (the seed's) or the `tcp`'s
     /// velocity and yaw rate in the table frame ([`crate::robot::tcp_action`]).
     pub action_space: ActionSpace,
-    /// TCP speed for an action of 1.0 in `tcp` mode [m/s].
+    /// TCP speed for an action of 1.0 in `tcp` mode \[m/s\].
     pub tcp_speed: f64,
-    /// Yaw rate for an action of 1.0 in `tcp` mode [rad/s].
+    /// Yaw rate for an action of 1.0 in `tcp` mode \[rad/s\].
     pub tcp_yaw_rate: f64,
     /// In `tcp` mode, how a command that asks a joint for more than it may give is scaled
     /// down (direction kept): to the FR3's `joint_limits` (default), or so that no joint
@@ -172,7 +173,7 @@ impl Default for ArmConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct GripperConfig {
-    /// Squeeze force of each finger [N]. 5 N holds a 0.1 kg cube (μ 0.8) with 0.6 mm pad
+    /// Squeeze force of each finger \[N\]. 5 N holds a 0.1 kg cube (μ 0.8) with 0.6 mm pad
     /// penetration; 20 N (the low end of real grippers) sinks the pads 2.2 mm at 120 Hz contacts.
     pub force: f64,
     /// Finger pad friction coefficient.
@@ -192,19 +193,19 @@ impl Default for GripperConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SceneConfig {
-    /// Height of the table top above world z = 0 [m].
+    /// Height of the table top above world z = 0 \[m\].
     pub table_height: f64,
-    /// Table top size x, y [m], centred on the arm base's x, y.
+    /// Table top size x, y \[m\], centred on the arm base's x, y.
     pub table_size: [f64; 2],
     /// Table friction coefficient (the seed's 1.2).
     pub table_friction: f64,
-    /// Cube edge length [m].
+    /// Cube edge length \[m\].
     pub cube_size: f64,
-    /// Cube mass [kg].
+    /// Cube mass \[kg\].
     pub cube_mass: f64,
     /// Cube friction coefficient (the seed's 0.8).
     pub cube_friction: f64,
-    /// Cube position when not randomised: x, y [m] on the table top in the table frame (origin
+    /// Cube position when not randomised: x, y \[m\] on the table top in the table frame (origin
     /// under the base origin, x along the base's heading; for a level base, base x, y).
     pub cube_xy: [f64; 2],
 }
@@ -235,7 +236,7 @@ pub struct TaskConfig {
     pub place: crate::config::place::PlaceConfig,
     /// Steps before the episode is truncated (the seed's 200).
     pub max_steps: usize,
-    /// Lift above the resting height that counts as success [m].
+    /// Lift above the resting height that counts as success \[m\].
     pub lift_height: f64,
     /// Reward on success.
     pub success_reward: f64,
@@ -256,7 +257,7 @@ pub struct TaskConfig {
     pub terminate_on_self_collision: bool,
     /// Which reward the task pays (the evaluation's success criterion is the same for all).
     pub reward: RewardKind,
-    /// Protective stop threshold [N]: a contact between the robot (links, palm, finger struts,
+    /// Protective stop threshold \[N\]: a contact between the robot (links, palm, finger struts,
     /// pads) and the cube or the table pushing harder than this ends the episode with
     /// `protective_stop`, as a real cobot's collision detection stops the arm. Checked after
     /// every physics substep; the force is the contact pair's solver impulse over `physics.dt`.
@@ -282,11 +283,11 @@ pub enum RewardKind {
     #[default]
     Seed,
     /// Reach, grasp, lift shaping gated on the grasp, success; bounded per step
-    /// ([`crate::task::reward`], weights in `[task.staged]`).
+    /// ([`mod@crate::task::reward`], weights in `[task.staged]`).
     Staged,
 }
 
-/// Default protective stop threshold [N] (see [`TaskConfig::protective_stop_force`]).
+/// Default protective stop threshold \[N\] (see [`TaskConfig::protective_stop_force`]).
 pub const DEFAULT_PROTECTIVE_STOP_FORCE: f64 = 35.0;
 
 fn is_lift(kind: &crate::config::place::TaskKind) -> bool {
@@ -323,10 +324,10 @@ impl Default for TaskConfig {
 pub struct RandomizationConfig {
     /// Sample the object position in a sector in front of the base.
     pub position: bool,
-    /// Sector radius on the table top, from the point under the base origin [m] (for a level
+    /// Sector radius on the table top, from the point under the base origin \[m\] (for a level
     /// base, from the joint-1 axis).
     pub radius: Range,
-    /// Sector angle about the world vertical, 0 = the base's heading (base +x) [rad].
+    /// Sector angle about the world vertical, 0 = the base's heading (base +x) \[rad\].
     pub angle: Range,
     /// Sample the object yaw in [0, 2π).
     pub yaw: bool,
@@ -334,10 +335,10 @@ pub struct RandomizationConfig {
     pub friction: Option<Range>,
     /// Multiply the object mass by a factor in this range (None = 1).
     pub mass_scale: Option<Range>,
-    /// Standard deviation of Gaussian noise on the home joints [rad] (0 = none).
+    /// Standard deviation of Gaussian noise on the home joints \[rad\] (0 = none).
     pub joint_noise: f64,
-    /// Perception noise: a per-episode error on the *observed* object position [m] and yaw
-    /// [rad] (standard deviations; 0 = exact). The physics is unaffected.
+    /// Perception noise: a per-episode error on the *observed* object position \[m\] and yaw
+    /// \[rad\] (standard deviations; 0 = exact). The physics is unaffected.
     pub observed_position_noise: f64,
     pub observed_yaw_noise: f64,
     /// A miscalibrated camera: a fixed error on every observed cube pose (None = calibrated).

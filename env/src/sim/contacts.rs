@@ -6,19 +6,19 @@ pub use crate::sim::collision_filter::CollisionFilter;
 use crate::sim::part::{ColliderParts, Part};
 use crate::sim::scene::SceneHandles;
 
-/// A contact counts as touching below this signed distance [m] (negative = penetrating).
+/// A contact counts as touching below this signed distance \[m\] (negative = penetrating).
 const TOUCH_DISTANCE: f32 = 0.0;
-/// A pad counts as touching the cube within this distance [m].
+/// A pad counts as touching the cube within this distance \[m\].
 const PAD_CONTACT_DISTANCE: f32 = 0.001;
 
 /// What the contacts say after a step.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ContactReport {
-    /// The first colliding pair found, deepest first: (part, part, penetration [m]).
+    /// The first colliding pair found, deepest first: (part, part, penetration \[m\]).
     pub collision: Option<(Part, Part, f64)>,
     /// Left and right pad touching the cube.
     pub pad_contact: [bool; 2],
-    /// Deepest penetration of a pad into the cube [m] (0 when apart).
+    /// Deepest penetration of a pad into the cube \[m\] (0 when apart).
     pub pad_penetration: f64,
 }
 
@@ -35,7 +35,7 @@ pub enum PairKind {
     Scene,
 }
 
-/// One touching pair: its parts, signed distance [m] (negative = penetrating) and kind.
+/// One touching pair: its parts, signed distance \[m\] (negative = penetrating) and kind.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TouchingPair {
     pub a: Part,
@@ -45,7 +45,7 @@ pub struct TouchingPair {
 }
 
 /// The deepest contact of every narrow-phase pair between two scene parts: `(a, b, signed
-/// distance [m])`.
+/// distance \[m\])`.
 fn part_contacts<'a>(
     world: &'a PhysicsWorld,
     handles: &'a SceneHandles,
@@ -58,7 +58,7 @@ fn part_contacts<'a>(
     })
 }
 
-/// Every pair of the narrow phase closer than [`TOUCH_DISTANCE`], deepest first, judged by
+/// Every pair of the narrow phase closer than `TOUCH_DISTANCE`, deepest first, judged by
 /// `filter`. Pairs excluded by collision groups, and pairs of two bodies forces never move (the
 /// servo arm's links and palm, the table), are never computed and do not appear here
 /// (`GraspEnv::touching_pairs` adds the latter from the exact shapes).
@@ -123,12 +123,12 @@ pub struct RobotContactForce {
     pub robot: Part,
     /// What it pushes on: [`Part::Cube`] or [`Part::Table`].
     pub other: Part,
-    /// Magnitude of the pair's net contact force [N] (solver impulse over the physics step).
+    /// Magnitude of the pair's net contact force \[N\] (solver impulse over the physics step).
     pub force: f64,
 }
 
-/// The strongest robot–cube or robot–table contact force of the last physics step of `dt` [s]:
-/// each pair's net impulse [N·s] (normal impulses summed over its manifolds) divided by `dt`.
+/// The strongest robot–cube or robot–table contact force of the last physics step of `dt` \[s\]:
+/// each pair's net impulse \[N·s\] (normal impulses summed over its manifolds) divided by `dt`.
 ///
 /// Only the pairs of `cube` and `table` are visited (through the narrow phase's per-collider
 /// adjacency, no allocation). A kinematic link or palm against the fixed table is not in the
@@ -167,8 +167,8 @@ pub fn strongest_robot_contact(
     strongest
 }
 
-/// The force [N, world] the table and the fixture push with, over the last physics step of `dt`
-/// [s], on the gripper (palm, fingers, pads) and, when `holding`, on the cube: what a wrist
+/// The force \[N, world\] the table and the fixture push with, over the last physics step of `dt`
+/// \[s\], on the gripper (palm, fingers, pads) and, when `holding`, on the cube: what a wrist
 /// force/torque sensor between the flange and the gripper reads once the held load's weight is
 /// tared (a real FR3 cell reads it from FAIRINO's F/T option, or estimates it from the joint
 /// torques: docs/place.md). Each pair's net contact impulse (normal impulses along its

@@ -1,5 +1,5 @@
 //! Success, failure and reward: pure functions of the state, testable without physics. The
-//! lift task's rules are in [`judge`] and [`reward`], the place task's in [`place`].
+//! lift task's rules are in [`mod@judge`] and [`mod@reward`], the place task's in [`place`].
 
 pub mod episode;
 pub mod judge;

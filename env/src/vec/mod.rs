@@ -5,8 +5,9 @@
 //! step here). Environment `i` draws the seed of its `k`-th episode as
 //! `base_seed + i · 1 000 000 + k`, so a run is reproducible whatever the number of threads.
 //!
-//! The batch holds the environments' own [`Observation`]s (f64, `base_link`), not a flattened
-//! copy: a policy reads exactly what a single [`GraspEnv`] would have handed it.
+//! The batch holds the environments' own [`Observation`](crate::Observation)s (f64, `base_link`),
+//! not a flattened copy: a policy reads exactly what a single [`GraspEnv`](crate::GraspEnv) would
+//! have handed it.
 //!
 //! A step allocates nothing of its own once every buffer has reached its size (after the first
 //! reset and step): the actions handed to a worker, a chunk's outcomes and the batch handed back

@@ -68,7 +68,7 @@ pub const PLACE_SCRIPTS: [&str; 4] = [
 
 /// The scripts a comparison on presets of `config`'s task runs first: [`SCRIPTS`] for the lift
 /// task, [`PLACE_SCRIPTS`] for the place task. Method `i` of a comparison is script `i` while `i`
-/// is below their number, then the learned policies in order ([`make_policy`]).
+/// is below their number, then the learned policies in order (`make_policy`).
 pub fn scripts_for(config: &EnvConfig) -> &'static [&'static str] {
     match config.task.kind {
         TaskKind::Lift => &SCRIPTS,

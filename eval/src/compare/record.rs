@@ -23,7 +23,7 @@ pub struct Recording {
     pub trajectory: Trajectory,
 }
 
-/// Runs and records every method of `methods` (indices, see [`make_policy`]) on every scenario
+/// Runs and records every method of `methods` (indices, see `make_policy`) on every scenario
 /// of `picked` (indices into `scenarios`) of `config`, on `threads` threads. Returns the
 /// recordings ordered by method, then by the order of `picked`.
 pub fn record_episodes(

@@ -20,7 +20,7 @@ use crate::urdf::read::{JointText, RobotText, read_robot};
 /// A parsed robot: its joints in depth-first order from the root link.
 #[derive(Clone, Debug, PartialEq)]
 pub struct UrdfRobot {
-    /// The file it came from (or "<string>"), for messages.
+    /// The file it came from (or `"<string>"`), for messages.
     pub file: String,
     /// `<robot name>`.
     pub name: String,

@@ -4,10 +4,10 @@
 //! and the policy's output correcting it. Python's recipe envs step through the same
 //! [`EnvAgent`].
 //!
-//! The script acts on the environments' own typed [`Observation`]s (f64, `base_link`), at
-//! every step and at episode ends, exactly as in evaluation; the policy input is built from the
-//! same observation by [`AgentConfig::write_input`]. Every buffer is sized in `new` and refilled in
-//! place: a step allocates nothing here.
+//! The script acts on the environments' own typed [`Observation`](fairgrasp_env::Observation)s
+//! (f64, `base_link`), at every step and at episode ends, exactly as in evaluation; the policy
+//! input is built from the same observation by [`AgentConfig::write_input`]. Every buffer is sized
+//! in `new` and refilled in place: a step allocates nothing here.
 
 use fairgrasp_env::vec::{VecEnv, preset_of_env};
 use fairgrasp_env::{Action, EnvConfig, EnvError};

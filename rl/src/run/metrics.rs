@@ -11,7 +11,7 @@ use crate::ppo::vec_api::EpisodeStats;
 /// The columns before the outcome shares.
 const LEADING_COLUMNS: &str = "update,timesteps,wall_time_s,episodes,episode_return,success_rate,episode_length,policy_loss,value_loss,entropy,approx_kl,clip_fraction,explained_variance,learning_rate,stage,eval_success_rate";
 
-/// The header line: [`LEADING_COLUMNS`], then `outcome_<name>` for every [`Outcome`] (the share
+/// The header line: `LEADING_COLUMNS`, then `outcome_<name>` for every [`Outcome`] (the share
 /// of the update's finished episodes that ended so), then `steps_per_second` (environment steps
 /// per second of the update's rollout and learning) and `kickstart_loss` (the teachers' term,
 /// [`crate::ppo::teacher`]; 0 without teachers). Files written before the later columns
@@ -26,7 +26,7 @@ pub fn metrics_header() -> String {
     header
 }
 
-/// The row of update `update` at `timesteps`, `wall` seconds of training [s], `speed`
+/// The row of update `update` at `timesteps`, `wall` seconds of training \[s\], `speed`
 /// environment steps per second, curriculum `stage` and evaluation success rate `eval`.
 pub fn metrics_row(
     update: u64,

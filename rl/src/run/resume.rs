@@ -104,7 +104,7 @@ fn flatten(value: &toml::Value, path: &str, out: &mut Vec<(String, String)>) {
 }
 
 /// The differences between the run's saved config and the new one, as `field: old → new`
-/// (fields in [`FREELY_CHANGED`] left out).
+/// (fields in `FREELY_CHANGED` left out).
 pub fn config_differences(
     saved: &TrainConfig,
     new: &TrainConfig,
