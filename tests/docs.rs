@@ -93,6 +93,7 @@ const OUTPUT_ROOTS: &[&str] = &[
     "runs",
     "report",
     "my_report",
+    "my_first_report",
     "final_report",
     "first_report",
     "hard_report",
