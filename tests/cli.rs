@@ -272,10 +272,12 @@ fn compare_refuses_a_thread_count_outside_1_to_256_before_writing() {
             "--out",
             out_dir.to_str().unwrap(),
         ]);
+        // Refused where the flag is parsed (clap's usage error, exit code 2), naming it and
+        // the range.
         let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
         assert!(
-            stderr.contains(&format!("threads = {threads}: 1–256")),
+            stderr.contains("--threads") && stderr.contains("1..=256"),
             "{stderr}"
         );
         assert!(!out_dir.exists());

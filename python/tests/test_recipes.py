@@ -21,6 +21,14 @@ FEATURES = [
     "correction_x", "correction_y", "correction_z", "correction_yaw", "close_signal",
     "wrist_valid", "wrist_offset_x", "wrist_offset_y", "wrist_offset_z", "wrist_turn",
 ]
+# The place task's residual corrects the force-guided search (planner/src/place_residual.rs).
+PLACE_FEATURES = [
+    "place_phase_grasp", "place_phase_carry", "place_phase_search_descend",
+    "place_phase_search_spiral", "place_phase_search_insert", "place_phase_release",
+    "wrist_force_x", "wrist_force_y", "wrist_force_z", "search_x", "search_y", "search_depth",
+    "correction_x", "correction_y", "correction_z", "correction_yaw",
+    "fixture_moved_x", "fixture_moved_y", "fixture_turned",
+]
 
 
 def recipe_file(name):
@@ -79,10 +87,13 @@ def test_a_recipe_id_builds_the_env_the_recipe_trains_on(name):
         # The task-space residual: observation ⊕ the script's 19 features in, the correction
         # out; with the squeeze, entry 4 commands the grip force.
         assert env.observation_space.shape == (fairgrasp.OBS_DIM + 19,)
-        assert names[fairgrasp.OBS_DIM:] == FEATURES
+        place = config["task"].get("kind") == "place"
+        assert names[fairgrasp.OBS_DIM:] == (PLACE_FEATURES if place else FEATURES)
         assert config["arm"]["action_space"] == "joint"
         entry_4 = "squeeze" if agent.get("squeeze", False) else "unused_4"
-        assert env.unwrapped.action_names == ["offset_x", "offset_y", "offset_z", "offset_yaw", entry_4, "unused_5", "close_timing"]
+        lift_actions = ["offset_x", "offset_y", "offset_z", "offset_yaw", entry_4, "unused_5", "close_timing"]
+        place_actions = [f"search_offset_{a}" for a in ("x", "y", "z", "yaw")] + ["unused_4", "unused_5", "unused_6"]
+        assert env.unwrapped.action_names == (place_actions if place else lift_actions)
     _, info = env.reset(seed=3)
     if "curriculum" in recipe:
         assert info["curriculum_stage"] == 0 and info["curriculum_stage_name"] == "fixed"
