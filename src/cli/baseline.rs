@@ -103,6 +103,10 @@ pub struct BaselineArgs {
     /// With `--script force_search`: the press's admittance while spiralling [m/s per N].
     #[arg(long, value_name = "M_PER_S_PER_N", value_parser = crate::cli::args::finite_number)]
     search_admittance: Option<f64>,
+    /// With `--script force_search`: the largest spiral radius searched before the cube is let
+    /// go where it is [m].
+    #[arg(long, value_name = "M", value_parser = crate::cli::args::finite_number)]
+    search_max_radius: Option<f64>,
 }
 
 impl BaselineArgs {
@@ -136,6 +140,13 @@ impl BaselineArgs {
                 self.search_admittance,
                 &mut p.admittance,
                 0.0001,
+                0.05,
+            ),
+            (
+                "--search-max-radius",
+                self.search_max_radius,
+                &mut p.max_radius,
+                0.001,
                 0.05,
             ),
         ] {
