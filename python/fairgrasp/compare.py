@@ -47,10 +47,10 @@ def compare(policies=None, presets=None, episodes=100, seed=0, out="report", *, 
     presets = list(presets) if presets is not None else _native.default_compare_presets()
     policies = dict(policies or {})
     out = str(out)
+    parsed = {name: _method(value) for name, value in policies.items()}  # before any file is touched
     _native.check_compare(presets, int(episodes), int(seed), out, bool(force), arm, threads)
     methods = []
-    for name, value in policies.items():
-        policy, extra = _method(value)
+    for name, (policy, extra) in parsed.items():
         results = []
         for preset in presets:
             r = evaluate(policy, preset, episodes, seed, arm=arm, name=name, **extra)

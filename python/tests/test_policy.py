@@ -105,4 +105,4 @@ def test_an_sb3_model_sees_observations_through_its_vec_normalize_or_is_refused(
     with pytest.raises(ValueError, match="vec_normalize"):
         fairgrasp.compare(policies={"m": {"policy": plain, "vec_normalise": None}}, presets=["seed"],
                           episodes=1, out=out)
-    assert not out.exists() or not any(out.iterdir())
+    assert not out.exists()
