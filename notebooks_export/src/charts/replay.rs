@@ -233,39 +233,10 @@ fn draw_view(
         let b = chart.backend_coord(&(ur.1, vr.0));
         f64::from(b.0 - a.0).abs() / (ur.1 - ur.0)
     };
-    let scene = &t.scene;
-    if axes[1] == 1 {
-        let corners: Vec<(f64, f64)> = scene
-            .table_corners_xy
-            .iter()
-            .map(|c| (c[0], c[1]))
-            .collect();
-        chart
-            .draw_series([Polygon::new(corners, TABLE.filled())])
-            .map_err(de)?;
-    } else {
-        chart
-            .draw_series([Rectangle::new(
-                [(ur.0, vr.0), (ur.1, scene.table_top_z)],
-                TABLE.filled(),
-            )])
-            .map_err(de)?;
-    }
+    draw_table(&mut chart, &t.scene, axes, (ur, vr))?;
     // The fixture's walls lie on the table, below everything that moves: drawn first.
     for corners in fixture_boxes(t, row) {
-        let projected: Vec<(f64, f64)> = corners.iter().map(|p| (p[axes[0]], p[axes[1]])).collect();
-        if projected.len() != finite_points(projected.iter().copied()).len() {
-            continue;
-        }
-        let hull = convex_hull(projected);
-        let mut outline = hull.clone();
-        outline.extend(hull.first());
-        chart
-            .draw_series([Polygon::new(hull, FIXTURE.filled())])
-            .map_err(de)?;
-        chart
-            .draw_series([PathElement::new(outline, FIXTURE_EDGE.stroke_width(1))])
-            .map_err(de)?;
+        draw_solid(&mut chart, &corners, axes, FIXTURE, FIXTURE_EDGE)?;
     }
     // Depth order: lowest first in the top view, largest y first in the side view; the cube
     // takes part so that the gripper hides it from above and it hides what is behind it.
@@ -276,7 +247,7 @@ fn draw_view(
             -c[1].min(c[4])
         }
     };
-    let corners = row.cube_corners(scene.cube_size);
+    let corners = row.cube_corners(t.scene.cube_size);
     let cube_depth = if axes[1] == 1 {
         corners.iter().map(|p| p[2]).fold(f64::MIN, f64::max)
     } else {
@@ -291,54 +262,107 @@ fn draw_view(
         .collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0));
     for (_, item) in order {
-        let Some(i) = item else {
-            // The cube: the convex hull of its projected corners (left out if not finite).
-            let projected: Vec<(f64, f64)> =
-                corners.iter().map(|p| (p[axes[0]], p[axes[1]])).collect();
-            if projected.len() != finite_points(projected.iter().copied()).len() {
-                continue;
+        match item {
+            None => draw_solid(&mut chart, &corners, axes, CUBE, CUBE_EDGE)?,
+            Some(i) => {
+                let name = t.scene.capsule_names.get(i).map_or("", String::as_str);
+                let fill = if name == "palm" || name.starts_with("finger") {
+                    GRIPPER
+                } else {
+                    LINK_SHADES[i % LINK_SHADES.len()]
+                };
+                draw_capsule(&mut chart, &row.capsules[i], axes, fill, px_per_m)?;
             }
-            let hull = convex_hull(projected);
-            chart
-                .draw_series([Polygon::new(hull.clone(), CUBE.filled())])
-                .map_err(de)?;
-            let mut outline = hull.clone();
-            outline.extend(hull.first());
-            chart
-                .draw_series([PathElement::new(outline, CUBE_EDGE.stroke_width(1))])
-                .map_err(de)?;
-            continue;
-        };
-        let c = row.capsules[i];
-        let name = scene.capsule_names.get(i).map_or("", String::as_str);
-        let fill = if name == "palm" || name.starts_with("finger") {
-            GRIPPER
-        } else {
-            LINK_SHADES[i % LINK_SHADES.len()]
-        };
-        let a = (c[axes[0]], c[axes[1]]);
-        let b = (c[3 + axes[0]], c[3 + axes[1]]);
-        if ![a.0, a.1, b.0, b.1, c[6]].iter().all(|v| v.is_finite()) {
-            continue;
         }
-        // At most the frame's width: a wider capsule would cover the whole view anyway, and
-        // the rasteriser's work grows with the radius.
-        let r_px = (c[6] * px_per_m).clamp(1.0, f64::from(SIZE.0));
-        for (color, extra) in [(BLACK.mix(0.8), 2.0), (fill.mix(1.0), 0.0)] {
-            let width = (2.0 * r_px + extra).round() as u32;
-            let radius = (r_px + 0.5 * extra).round() as i32;
-            chart
-                .draw_series([PathElement::new(vec![a, b], color.stroke_width(width))])
-                .map_err(de)?;
-            chart
-                .draw_series([a, b].map(|p| Circle::new(p, radius, color.filled())))
-                .map_err(de)?;
-        }
-        // The capsule's axis: the kinematic skeleton shows through the housings.
+    }
+    Ok(())
+}
+
+/// The chart of one view: metres on both axes.
+type ViewChart<'a, 'b> =
+    ChartContext<'a, BitMapBackend<'b>, Cartesian2d<super::axis::Axis, super::axis::Axis>>;
+
+/// The table: its top's outline seen from above, its top's height seen from the side (filling
+/// the view's ranges `ur`, `vr` below it).
+fn draw_table(
+    chart: &mut ViewChart,
+    scene: &crate::trajectory::TrajectoryScene,
+    axes: [usize; 2],
+    (ur, vr): ((f64, f64), (f64, f64)),
+) -> Result<(), String> {
+    if axes[1] == 1 {
+        let corners: Vec<(f64, f64)> = scene
+            .table_corners_xy
+            .iter()
+            .map(|c| (c[0], c[1]))
+            .collect();
         chart
-            .draw_series([PathElement::new(vec![a, b], SKELETON.stroke_width(2))])
+            .draw_series([Polygon::new(corners, TABLE.filled())])
+            .map_err(de)?;
+    } else {
+        let top = [(ur.0, vr.0), (ur.1, scene.table_top_z)];
+        chart
+            .draw_series([Rectangle::new(top, TABLE.filled())])
             .map_err(de)?;
     }
+    Ok(())
+}
+
+/// A box given by its 8 corners [m, `base_link`] (the cube, a fixture wall): the convex hull of
+/// its projection, filled and outlined; left out if a corner is not finite.
+fn draw_solid(
+    chart: &mut ViewChart,
+    corners: &[[f64; 3]; 8],
+    axes: [usize; 2],
+    fill: RGBColor,
+    edge: RGBColor,
+) -> Result<(), String> {
+    let projected: Vec<(f64, f64)> = corners.iter().map(|p| (p[axes[0]], p[axes[1]])).collect();
+    if projected.len() != finite_points(projected.iter().copied()).len() {
+        return Ok(());
+    }
+    let hull = convex_hull(projected);
+    let mut outline = hull.clone();
+    outline.extend(hull.first());
+    chart
+        .draw_series([Polygon::new(hull, fill.filled())])
+        .map_err(de)?;
+    chart
+        .draw_series([PathElement::new(outline, edge.stroke_width(1))])
+        .map_err(de)?;
+    Ok(())
+}
+
+/// A capsule `[a, b, radius]` [m] as a housing of colour `fill` with a dark rim and its axis
+/// (the kinematic skeleton shows through); left out if not finite.
+fn draw_capsule(
+    chart: &mut ViewChart,
+    c: &[f64; 7],
+    axes: [usize; 2],
+    fill: RGBColor,
+    px_per_m: f64,
+) -> Result<(), String> {
+    let a = (c[axes[0]], c[axes[1]]);
+    let b = (c[3 + axes[0]], c[3 + axes[1]]);
+    if ![a.0, a.1, b.0, b.1, c[6]].iter().all(|v| v.is_finite()) {
+        return Ok(());
+    }
+    // At most the frame's width: a wider capsule would cover the whole view anyway, and the
+    // rasteriser's work grows with the radius.
+    let r_px = (c[6] * px_per_m).clamp(1.0, f64::from(SIZE.0));
+    for (color, extra) in [(BLACK.mix(0.8), 2.0), (fill.mix(1.0), 0.0)] {
+        let width = (2.0 * r_px + extra).round() as u32;
+        let radius = (r_px + 0.5 * extra).round() as i32;
+        chart
+            .draw_series([PathElement::new(vec![a, b], color.stroke_width(width))])
+            .map_err(de)?;
+        chart
+            .draw_series([a, b].map(|p| Circle::new(p, radius, color.filled())))
+            .map_err(de)?;
+    }
+    chart
+        .draw_series([PathElement::new(vec![a, b], SKELETON.stroke_width(2))])
+        .map_err(de)?;
     Ok(())
 }
 
