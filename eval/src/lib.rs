@@ -2,7 +2,8 @@
 //! burn, so evaluating, comparing and exporting need none of the training stack.
 //!
 //! - [`agent`]: the grasping agents (config, policy input and action, the residual's script).
-//! - [`recipe`]: the env a training recipe trains on.
+//! - [`recipe`]: the training recipe, one type for training, evaluation and Python, and the
+//!   envs it gives.
 //! - [`recipes`]: the training recipes shipped in `assets/experiments/`.
 //! - [`burnpack`]: the weights of a checkpoint's `model.bpk`.
 //! - [`actor`]: the policy network's actor as plain arrays (its mean action).

@@ -105,7 +105,7 @@ pub fn text(name_or_path: &str) -> Result<(String, String), ConfigError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::recipe::Recipe;
+    use crate::recipe::{EnvFor, Recipe};
 
     #[test]
     fn every_shipped_recipe_is_a_file_of_assets_experiments_and_parses() {
@@ -124,7 +124,7 @@ mod tests {
         );
         for (name, text) in SHIPPED {
             let r = Recipe::with_overrides(text, name, &toml::Table::new(), &[]).unwrap();
-            r.training_env_config().unwrap();
+            r.env_configs(EnvFor::Training).unwrap();
         }
     }
 
@@ -135,7 +135,7 @@ mod tests {
             toml::from_str("preset = \"seed\"\nenv = { task = { max_steps = 50 } }").unwrap();
         let r = Recipe::with_overrides(&body, &what, &overrides, &[]).unwrap();
         assert_eq!(r.preset, "seed");
-        let env = r.training_env_config().unwrap();
+        let env = r.env_configs(EnvFor::Training).unwrap().remove(0);
         assert_eq!(env.task.max_steps, 50);
         // The recipe's other [env.task] settings stay.
         assert!(!env.task.terminate_on_collision);

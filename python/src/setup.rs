@@ -10,7 +10,7 @@ use fairgrasp_env::env::spaces::{
 use fairgrasp_env::scenario::curriculum::{Curriculum, CurriculumConfig};
 use fairgrasp_eval::agent::AgentConfig;
 use fairgrasp_eval::agent::env_agent::{output_names, script_input_bounds};
-use fairgrasp_eval::recipe::{Recipe, check_agent_env};
+use fairgrasp_eval::recipe::{EnvFor, Recipe, check_agent_env};
 use fairgrasp_eval::recipes;
 use pyo3::prelude::*;
 
@@ -78,7 +78,10 @@ impl Setup {
         let (text, what) = recipes::text(name).map_err(value_error)?;
         let (overrides, remove) = split_overrides(overrides_json.unwrap_or("{}"))?;
         let r = Recipe::with_overrides(&text, &what, &overrides, &remove).map_err(value_error)?;
-        let training = r.training_env_config().map_err(value_error)?;
+        let training = r
+            .env_configs(EnvFor::Training)
+            .map_err(value_error)?
+            .swap_remove(0);
         check_agent_env(&training).map_err(|e| value_error(format!("{what}: {e}")))?;
         Ok(Self {
             config: r.agent.env_for(&training),
@@ -168,5 +171,5 @@ pub(crate) fn task_residual_recipe(preset: &str) -> PyResult<&'static str> {
 /// The keys a recipe override may have.
 #[pyfunction]
 pub(crate) fn recipe_keys() -> Vec<&'static str> {
-    Recipe::KEYS.to_vec()
+    Recipe::OVERRIDE_KEYS.to_vec()
 }

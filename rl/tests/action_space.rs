@@ -8,6 +8,7 @@ use fairgrasp_env::episode::run_episode;
 use fairgrasp_env::episode::trajectory::Trajectory;
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{Action, GraspEnv};
+use fairgrasp_eval::recipe::EnvFor;
 use fairgrasp_rl::agent::grasp_agent::Mode;
 use fairgrasp_rl::run::checkpoint::load_model;
 use fairgrasp_rl::run::evaluate::agent_policy;
@@ -105,8 +106,8 @@ fn env_settings_of_a_training_config_apply_to_training_only() {
          [env.task]\nreward = \"staged\"\nmax_steps = 100\n[env.task.staged]\nsuccess = 5.0\n",
     );
     c.validate().unwrap();
-    let train = c.training_env_config().unwrap();
-    let eval = c.env_config().unwrap();
+    let train = c.env_configs(EnvFor::Training).unwrap().remove(0);
+    let eval = c.env_configs(EnvFor::Evaluation).unwrap().remove(0);
     assert_eq!(train.task.reward, RewardKind::Staged);
     assert_eq!(train.task.max_steps, 100);
     assert_eq!(train.task.staged.success, 5.0);

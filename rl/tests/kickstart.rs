@@ -5,6 +5,7 @@
 
 use burn::tensor::Device;
 use fairgrasp_eval::checkpoint::load_actor;
+use fairgrasp_eval::recipe::EnvFor;
 use fairgrasp_eval::shipped::ShippedPolicy;
 use fairgrasp_rl::agent::grasp_agent::ACT_DIM;
 use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
@@ -141,7 +142,7 @@ fn generalist() -> TrainConfig {
 #[test]
 fn the_generalists_teachers_label_the_entries_their_agents_command_with_their_own_actions() {
     let config = generalist();
-    let envs = config.env_configs().unwrap();
+    let envs = config.env_configs(EnvFor::Evaluation).unwrap();
     let k = kickstart::load(config.kickstart.as_ref().unwrap(), &config.agent, &envs).unwrap();
     // Real inputs: one env of each preset (full, nudged, wrist_camera, heavy_slippery).
     let mut vec_env = GraspVecEnv::mixed(&envs, config.agent.clone(), 4, 1, 11).unwrap();

@@ -33,6 +33,17 @@ pub enum TrainError {
     },
 }
 
+impl From<fairgrasp_eval::recipe::RecipeError> for TrainError {
+    fn from(e: fairgrasp_eval::recipe::RecipeError) -> Self {
+        match e {
+            fairgrasp_eval::recipe::RecipeError::Io { path, source } => {
+                TrainError::Io { path, source }
+            }
+            fairgrasp_eval::recipe::RecipeError::Invalid(message) => TrainError::Config(message),
+        }
+    }
+}
+
 pub(crate) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> TrainError + '_ {
     move |source| TrainError::Io {
         path: path.display().to_string(),

@@ -3,6 +3,7 @@
 use burn::tensor::Device;
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::episode::{EvalReport, evaluate_seeded};
+use fairgrasp_eval::recipe::EnvFor;
 
 use crate::agent::grasp_agent::GraspAgent;
 use crate::ppo::model::ActorCritic;
@@ -22,7 +23,7 @@ pub fn evaluate_model(
     model: &ActorCritic,
     n: usize,
 ) -> Result<EvalReport, TrainError> {
-    let env_configs = config.env_configs().map_err(TrainError::Config)?;
+    let env_configs = config.env_configs(EnvFor::Evaluation).map_err(TrainError::Config)?;
     let k = env_configs.len();
     let mut results = Vec::with_capacity(n);
     for (j, env_config) in env_configs.iter().enumerate() {

@@ -16,45 +16,12 @@ use fairgrasp_eval::actor::Actor;
 use fairgrasp_eval::agent::env_agent::output_names;
 use fairgrasp_eval::checkpoint::{load_actor, normalizer::RunningNorm};
 use fairgrasp_eval::shipped::checkpoint_folder;
-use serde::{Deserialize, Serialize};
+
+pub use fairgrasp_eval::recipe::kickstart::KickstartConfig;
 
 use crate::agent::grasp_agent::AgentConfig;
 use crate::ppo::teacher::{Kickstart, Teacher};
 use crate::run::error::TrainError;
-
-/// `[kickstart]`: the teachers and the weight of their term.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct KickstartConfig {
-    /// One teacher per preset trained on, in the order `preset`, `mix[0]`, `mix[1]`, …: a
-    /// shipped policy's name, a checkpoint folder or a run folder (relative to the working
-    /// directory).
-    pub teachers: Vec<String>,
-    /// The term's weight at the start of training, in (0, 1000].
-    pub weight: f64,
-    /// Lower the weight linearly to 0 at the end of training (default: keep it).
-    #[serde(default)]
-    pub anneal: bool,
-}
-
-impl KickstartConfig {
-    /// Checks the numbers and that there is a teacher for each of `presets` presets.
-    pub fn check(&self, presets: usize) -> Result<(), String> {
-        if !(self.weight > 0.0 && self.weight <= 1000.0) {
-            return Err(format!(
-                "kickstart.weight = {}: must be in (0, 1000]",
-                self.weight
-            ));
-        }
-        if self.teachers.len() != presets {
-            return Err(format!(
-                "kickstart.teachers: {} given, the run trains on {presets} presets (preset, then mix): one teacher each",
-                self.teachers.len()
-            ));
-        }
-        Ok(())
-    }
-}
 
 /// One preset's teacher, ready to label.
 struct Specialist {

@@ -21,7 +21,7 @@ pub mod folder;
 pub mod kickstart;
 pub mod metrics;
 pub mod resume;
-pub mod snapshot;
+pub use fairgrasp_eval::recipe::snapshot;
 pub use fairgrasp_eval::shipped;
 pub mod tensorboard;
 pub mod train;

@@ -15,6 +15,7 @@ use burn::tensor::Device;
 use fairgrasp_env::episode::EvalReport;
 use fairgrasp_env::scenario::curriculum::Curriculum;
 use fairgrasp_env::scenario::scenario_set;
+use fairgrasp_eval::recipe::EnvFor;
 use fairgrasp_types::write_atomic;
 
 use crate::agent::grasp_agent::ACT_DIM;
@@ -257,7 +258,7 @@ pub fn train_with(
     // The teachers load before the run folder is touched: a wrong one changes nothing there.
     let kickstart = match &config.kickstart {
         Some(k) => {
-            let envs = config.env_configs().map_err(TrainError::Config)?;
+            let envs = config.env_configs(EnvFor::Evaluation).map_err(TrainError::Config)?;
             Some(kickstart::load(k, &config.agent, &envs)?)
         }
         None => None,
@@ -293,9 +294,10 @@ pub fn train_with(
     }
     std::fs::create_dir_all(run_dir.join("checkpoints")).map_err(io(run_dir))?;
     let device = Device::flex().autodiff();
-    let env_config = config
-        .training_env_config()
-        .map_err(|e| TrainError::Config(e.to_string()))?;
+    let mixture = config
+        .env_configs(EnvFor::Training)
+        .map_err(TrainError::Config)?;
+    let env_config = &mixture[0];
     let (meta, model, optimizer_from) = start_from(config, run_dir, resume, &device)?;
     let config_text = toml::to_string_pretty(config)
         .map_err(|e| TrainError::Config(format!("config.toml: {e}")))?;
@@ -304,7 +306,7 @@ pub fn train_with(
     env_config
         .validate()
         .map_err(fairgrasp_env::EnvError::from)?;
-    scenario_set(&env_config, config.seed, 1)
+    scenario_set(env_config, config.seed, 1)
         .map_err(|e| TrainError::Config(format!("preset {}: {e}", config.preset)))?;
     // Training scenarios live in the upper half of the seed space; evaluation scenario sets
     // (`scenario_set`, seeds `s · 1 000 003 + i`) stay in the lower half for any set seed below
@@ -314,7 +316,6 @@ pub fn train_with(
             .seed
             .wrapping_mul(7_919)
             .wrapping_add(meta.updates * 1_000);
-    let mixture = config.training_env_configs().map_err(TrainError::Config)?;
     let env = GraspVecEnv::mixed(
         &mixture,
         config.agent.clone(),

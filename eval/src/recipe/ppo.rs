@@ -1,4 +1,5 @@
-//! PPO's hyper-parameters, with SB3's defaults, and the checks a run needs before it starts.
+//! A recipe's `[ppo]` table: PPO's hyper-parameters, with SB3's defaults, and the checks a run
+//! needs before it starts (the algorithm is `fairgrasp-rl`'s `ppo`).
 
 use serde::{Deserialize, Serialize};
 
