@@ -8,7 +8,7 @@ use fairgrasp_env::{Action, GraspEnv};
 use numpy::{PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use crate::{env_config, value_error};
+use crate::args::{env_config, value_error};
 
 /// Steps one `GraspEnv` of `preset` through `actions` [steps, 7] in a Rust loop (GIL released),
 /// resetting to seeds `seed`, `seed + 1`, ... as episodes end: (wall seconds of the loop, share

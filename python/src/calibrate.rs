@@ -12,7 +12,7 @@ use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::value_error;
+use crate::args::value_error;
 
 /// The rows of an `[n, width]` array, checked for shape (finiteness is the library's check).
 fn rows(array: &PyReadonlyArray2<'_, f64>, width: usize, what: &str) -> PyResult<Vec<Vec<f64>>> {

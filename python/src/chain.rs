@@ -8,7 +8,7 @@ use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::value_error;
+use crate::args::value_error;
 
 /// One serial chain of a URDF.
 #[pyclass(module = "fairgrasp._native", frozen)]

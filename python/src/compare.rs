@@ -15,7 +15,7 @@ use fairgrasp_types::EpisodeRecord;
 use pyo3::prelude::*;
 use serde::Deserialize;
 
-use crate::{env_config, value_error};
+use crate::args::{env_config, value_error};
 
 /// The presets `fairgrasp compare` uses without `--preset`.
 #[pyfunction]

@@ -16,7 +16,7 @@ use pyo3::types::PyDict;
 use crate::agent_env::AgentEnv;
 use crate::info::info_dict;
 use crate::setup::Setup;
-use crate::{checked_action, env_config, value_error};
+use crate::args::{checked_action, env_config, value_error};
 
 /// One step's result: observation, reward, terminated, truncated, info.
 type StepTuple<'py> = (

@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use serde::Serialize;
 
-use crate::value_error;
+use crate::args::value_error;
 
 /// A serde value as the Python object `json.loads` would give for its JSON.
 pub(crate) fn json_to_py<'py>(

@@ -7,7 +7,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::value_error;
+use crate::args::value_error;
 
 fn model(name: &str) -> PyResult<ArmModel> {
     ArmKind::ALL

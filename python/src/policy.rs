@@ -9,7 +9,7 @@ use fairgrasp_eval::shipped::checkpoint_folder;
 use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use crate::{env_config, value_error};
+use crate::args::{env_config, value_error};
 
 /// A trained policy: its network and the agent it acts through.
 #[pyclass(module = "fairgrasp._native", frozen)]

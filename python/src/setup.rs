@@ -14,7 +14,7 @@ use fairgrasp_eval::recipe::{EnvFor, Recipe, check_agent_env};
 use fairgrasp_eval::recipes;
 use pyo3::prelude::*;
 
-use crate::{env_config, value_error};
+use crate::args::{env_config, value_error};
 
 /// The env config, and for a recipe its agent and curriculum.
 #[derive(Clone, Debug)]

@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::info::to_py;
-use crate::value_error;
+use crate::args::value_error;
 
 /// The training config of `config` (a shipped recipe's name or a training config's path) with
 /// `overrides` (JSON: any of the config's keys; tables merge key by key) laid over it, checked

@@ -14,7 +14,7 @@ use crate::agent_vec::AgentVecEnv;
 use crate::env::action7;
 use crate::info::info_dict;
 use crate::setup::Setup;
-use crate::value_error;
+use crate::args::value_error;
 
 /// What `step` returns: obs [n, dim], rewards [n], terminated [n], truncated [n], the infos as
 /// arrays, and the ended episodes as a list of (env index, last observation, last info).

@@ -4,7 +4,7 @@
 
 use std::fmt;
 
-use crate::stream::{PERIOD_RANGE_SEC, StreamLimits};
+use crate::stream::limits::{PERIOD_RANGE_SEC, StreamLimits};
 
 /// Which limit a sample crosses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -7,7 +7,8 @@ use fairgrasp_kinematics::ArmModel;
 use serde_json::{Value, json};
 
 use crate::stream::check::peaks;
-use crate::stream::{GripperEvent, PERIOD_RANGE_SEC, ServoStream};
+use crate::stream::limits::PERIOD_RANGE_SEC;
+use crate::stream::servo::{GripperEvent, ServoStream};
 
 /// The `format` field of a stream's JSON.
 pub const JSON_FORMAT: &str = "fairgrasp servo stream 1";

@@ -8,7 +8,7 @@ use fairgrasp_env::episode::Outcome;
 use fairgrasp_env::scenario::Scenario;
 use fairgrasp_env::{EnvError, GraspEnv, ServoSetpoint};
 
-use crate::stream::ServoStream;
+use crate::stream::servo::ServoStream;
 
 /// What a playback did.
 #[derive(Clone, Debug, PartialEq)]

@@ -10,7 +10,8 @@
 use rsruckig::prelude::*;
 
 use crate::motion::MotionError;
-use crate::stream::{GripperEvent, ServoStream, StreamLimits};
+use crate::stream::limits::StreamLimits;
+use crate::stream::servo::{GripperEvent, ServoStream};
 
 /// Jerk limit of the resampled trajectory \[rad/s³\]: fairgrasp's choice (FAIRINO publishes none);
 /// high enough that a segment keeps the env step's duration under the 10 rad/s² limit.
