@@ -1,8 +1,11 @@
-//! No import loop between the files of any crate: every `crate::…` and `super::…` path in a file
-//! (in `use` items and inline) is resolved to the file that defines what it names — through a
-//! module's `pub use child::…` re-exports to the child's file — and the graph of those imports
-//! must have no cycle. A `mod.rs`' or crate root's own `pub use` re-exports and `mod`
-//! declarations are the module's public face, not imports. A cycle fails naming its files.
+//! No import loop between the files of any crate: every path in a file (in `use` items and
+//! inline) that starts at `crate::`, `super::`, `self::` or a child module of the file's own
+//! (`schedule::evaluate_all` in `compare/mod.rs`) is resolved to the file that defines what it
+//! names — through a module's `pub use child::…` re-exports to the child's file — and the graph
+//! of those imports must have no cycle. A `mod.rs`' or crate root's own `pub use` (and
+//! `pub(crate) use`) re-exports and `mod` declarations are the module's public face, not
+//! imports. A cycle fails naming its files; a parent and its child that import each other (a
+//! `mod.rs` used as a toolbox by the children it calls) are named as such.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -20,6 +23,39 @@ const CRATES: [&str; 10] = [
     "python",
     ".",
 ];
+
+/// Children that still import their parent back (a parent used as a toolbox), as (crate, child,
+/// parent): issue 48's remaining debts. The loop search leaves these imports out; each must
+/// still be there, so one that is moved away must leave this list too.
+const KNOWN_BACK_IMPORTS: [(&str, &str, &str); 7] = [
+    ("env", "env::grasp_env::step_parts", "env::grasp_env"),
+    ("eval", "checkpoint::verify", "checkpoint"),
+    ("rl", "run::tensorboard::records", "run::tensorboard"),
+    ("notebooks_export", "charts::axis", "charts"),
+    ("notebooks_export", "replay3d::pack", "replay3d"),
+    (".", "cli::measurements", "cli"),
+    (".", "cli::train", "cli"),
+];
+
+/// Leaves out of `graph` the known back-imports of `krate`; names each one that is gone.
+fn without_known_back_imports(
+    krate: &str,
+    graph: &mut BTreeMap<Vec<String>, BTreeSet<Vec<String>>>,
+) -> Vec<String> {
+    let module = |m: &str| -> Vec<String> { m.split("::").map(String::from).collect() };
+    let mut gone = Vec::new();
+    for (_, child, parent) in KNOWN_BACK_IMPORTS.iter().filter(|(k, ..)| *k == krate) {
+        let removed = graph
+            .get_mut(&module(child))
+            .is_some_and(|to| to.remove(&module(parent)));
+        if !removed {
+            gone.push(format!(
+                "{krate}: {child} no longer imports {parent}: remove it from KNOWN_BACK_IMPORTS"
+            ));
+        }
+    }
+    gone
+}
 
 fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -101,13 +137,30 @@ fn code_of(text: &str) -> String {
     out
 }
 
-/// The module paths a piece of code names: `crate::a::b`, `super::a`, and groups
-/// (`crate::a::{b, c::d}`), each as the path from the crate root (`super` resolved against
-/// `here`, the module of the file).
-fn named_paths(code: &str, here: &[String], is_module_root: bool) -> Vec<Vec<String>> {
+/// Whether a statement (its text up to a path) is a re-export: a module root's public face.
+fn is_reexport(statement: &str) -> bool {
+    ["pub use", "pub(crate) use", "pub(super) use"]
+        .iter()
+        .any(|p| statement.starts_with(p))
+}
+
+/// The module paths a piece of code names: `crate::a::b`, `super::a`, `self::a`, `child::a`
+/// (`child` one of `children`, the file's own child modules) and groups
+/// (`crate::a::{b, c::d}`), each as the path from the crate root (`super`, `self` and a child
+/// resolved against `here`, the module of the file).
+fn named_paths(
+    code: &str,
+    here: &[String],
+    children: &[String],
+    is_module_root: bool,
+) -> Vec<Vec<String>> {
     let mut out = Vec::new();
     let text = code;
-    for start in ["crate::", "super::"] {
+    let relative: Vec<String> = children.iter().map(|c| format!("{c}::")).collect();
+    let starts = ["crate::", "super::", "self::"]
+        .into_iter()
+        .chain(relative.iter().map(String::as_str));
+    for start in starts {
         let mut from = 0;
         while let Some(pos) = text[from..].find(start) {
             let at = from + pos;
@@ -119,13 +172,19 @@ fn named_paths(code: &str, here: &[String], is_module_root: bool) -> Vec<Vec<Str
             // The statement this path is in: a module root's own `pub use` re-exports are skipped.
             let line_start = text[..at].rfind(['\n', ';', '{', '}']).map_or(0, |i| i + 1);
             let statement = text[line_start..at].trim();
-            if is_module_root && statement.starts_with("pub use") {
+            if is_module_root && is_reexport(statement) {
                 continue;
             }
             let mut base: Vec<String> = Vec::new();
             let mut rest = &text[at..];
             if start == "crate::" {
                 rest = &rest["crate::".len()..];
+            } else if start == "self::" {
+                base = here.to_vec();
+                rest = &rest["self::".len()..];
+            } else if start != "super::" {
+                // A child module of the file's own, named relatively.
+                base = here.to_vec();
             } else {
                 // `super` is the parent of the file's module (a/b.rs is a::b, a/mod.rs is a).
                 base = here.to_vec();
@@ -222,7 +281,10 @@ fn reexporting_child(
 ) -> Option<Vec<String>> {
     for statement in text.split(';') {
         let s = statement.trim();
-        let Some(rest) = s.strip_prefix("pub use ") else {
+        let Some(rest) = ["pub use ", "pub(crate) use ", "pub(super) use "]
+            .iter()
+            .find_map(|p| s.strip_prefix(p))
+        else {
             continue;
         };
         let rest = rest.trim_start_matches("self::");
@@ -248,21 +310,31 @@ fn reexporting_child(
     None
 }
 
-/// Whether `code` defines `item` at some level (fn, struct, enum, trait, type, const, static,
-/// macro or a re-export of it).
-fn defines(code: &str, item: &str) -> bool {
+/// Whether `code` declares `item` after the keyword `kw` (`fn `, `struct `, …).
+fn declares(code: &str, kw: &str, item: &str) -> bool {
+    code.match_indices(&format!("{kw}{item}")).any(|(i, _)| {
+        code[i + kw.len() + item.len()..]
+            .chars()
+            .next()
+            .is_none_or(|c| !(c.is_alphanumeric() || c == '_'))
+    })
+}
+
+/// Whether `code` defines `item` itself (a fn, type, trait, const or static; not a module or
+/// a re-export).
+fn defines_item(code: &str, item: &str) -> bool {
     [
-        "fn ", "struct ", "enum ", "trait ", "type ", "const ", "static ", "mod ",
+        "fn ", "struct ", "enum ", "trait ", "type ", "const ", "static ",
     ]
     .iter()
-    .any(|kw| {
-        code.match_indices(&format!("{kw}{item}")).any(|(i, _)| {
-            code[i + kw.len() + item.len()..]
-                .chars()
-                .next()
-                .is_none_or(|c| !(c.is_alphanumeric() || c == '_'))
-        })
-    }) || code.contains(&format!("pub use {item}"))
+    .any(|kw| declares(code, kw, item))
+}
+
+/// Whether `code` defines `item` at some level (an item, a module or a re-export of it).
+fn defines(code: &str, item: &str) -> bool {
+    defines_item(code, item)
+        || declares(code, "mod ", item)
+        || code.contains(&format!("pub use {item}"))
 }
 
 /// The first cycle in `edges` (as module paths), if any.
@@ -325,12 +397,20 @@ fn import_graph(src: &Path) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
         let name = path.file_name().unwrap().to_string_lossy();
         let is_module_root = name == "mod.rs" || name == "lib.rs" || name == "main.rs";
         let code = &texts[module];
-        for named in named_paths(code, module, is_module_root) {
+        let children: Vec<String> = modules
+            .keys()
+            .filter(|m| m.len() == module.len() + 1 && m.starts_with(module))
+            .map(|m| m[module.len()].clone())
+            .collect();
+        for named in named_paths(code, module, &children, is_module_root) {
             if let Some(target) = resolve(&named, &modules, &texts)
                 && &target != module
                 // A module's own ancestors are where it is declared; naming them is not a loop
-                // unless they import it back, which their own edges show.
-                && !(target.is_empty() && named.len() <= 1)
+                // unless they import it back, which their own edges show. An item the crate
+                // root defines itself (a helper in lib.rs) is an import of the root.
+                && !(target.is_empty()
+                    && named.len() <= 1
+                    && !named.first().is_some_and(|item| defines_item(&texts[&target], item)))
             {
                 edges.entry(module.clone()).or_default().insert(target);
             }
@@ -340,6 +420,33 @@ fn import_graph(src: &Path) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
     edges
 }
 
+/// A module path as the report names it.
+fn module_name(m: &[String]) -> String {
+    if m.is_empty() {
+        "(crate root)".to_string()
+    } else {
+        m.join("::")
+    }
+}
+
+/// A cycle as the report says it: its files in order, and for a parent and its child that
+/// import each other, that the parent is used as a toolbox.
+fn describe(cycle: &[Vec<String>]) -> String {
+    let names: Vec<String> = cycle.iter().map(|m| module_name(m)).collect();
+    let path = names.join(" → ");
+    if let [a, b, _] = cycle {
+        let (parent, child) = if a.len() < b.len() { (a, b) } else { (b, a) };
+        if child.len() == parent.len() + 1 && child.starts_with(parent) {
+            return format!(
+                "{path} (parent ↔ child: {} uses its child {}, which imports from it back; move what the child needs into a named module)",
+                module_name(parent),
+                module_name(child)
+            );
+        }
+    }
+    path
+}
+
 #[test]
 fn no_two_files_of_a_crate_import_each_other_directly_or_through_a_loop() {
     let mut report = Vec::new();
@@ -347,21 +454,12 @@ fn no_two_files_of_a_crate_import_each_other_directly_or_through_a_loop() {
     let mut imports = 0;
     for krate in CRATES {
         let src = repo().join(krate).join("src");
-        let graph = import_graph(&src);
+        let mut graph = import_graph(&src);
+        report.extend(without_known_back_imports(krate, &mut graph));
         files += graph.len();
         imports += graph.values().map(BTreeSet::len).sum::<usize>();
         if let Some(cycle) = find_cycle(&graph) {
-            let names: Vec<String> = cycle
-                .iter()
-                .map(|m| {
-                    if m.is_empty() {
-                        "(crate root)".to_string()
-                    } else {
-                        m.join("::")
-                    }
-                })
-                .collect();
-            report.push(format!("{krate}: {}", names.join(" → ")));
+            report.push(format!("{krate}: {}", describe(&cycle)));
         }
     }
     eprintln!("{files} files, {imports} imports between files");
@@ -396,5 +494,44 @@ fn the_loop_finder_finds_a_loop_between_two_files() {
     assert!(
         names.contains("b") && names.contains("a::inner"),
         "{names:?}"
+    );
+}
+
+#[test]
+fn a_parent_and_its_child_importing_each_other_through_relative_paths_is_a_loop() {
+    let dir = std::env::temp_dir().join(format!("fairgrasp-arch-rel-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("a")).unwrap();
+    std::fs::write(dir.join("lib.rs"), "pub mod a;\n").unwrap();
+    // The parent calls its child by a relative path, the child imports the parent's helper.
+    std::fs::write(
+        dir.join("a/mod.rs"),
+        "mod child;\npub fn helper() {}\npub fn run() { child::work() }\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("a/child.rs"),
+        "use super::helper;\npub fn work() { helper() }\n",
+    )
+    .unwrap();
+    let graph = import_graph(&dir);
+    let cycle = find_cycle(&graph);
+    // The same through `self::` and `crate::` from the mod.rs.
+    for call in ["self::child::work()", "crate::a::child::work()"] {
+        std::fs::write(
+            dir.join("a/mod.rs"),
+            format!("mod child;\npub fn helper() {{}}\npub fn run() {{ {call} }}\n"),
+        )
+        .unwrap();
+        assert!(
+            find_cycle(&import_graph(&dir)).is_some(),
+            "{call} then super::helper back is a loop"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    let cycle = cycle.expect("a → a::child → a is a loop");
+    let said = describe(&cycle);
+    assert!(
+        said.contains("parent ↔ child: a uses its child a::child"),
+        "{said}"
     );
 }

@@ -2,7 +2,8 @@
 //! (`open_loop`, `closed_loop`, `oracle`, `calibrated`, `tuned_grip`), a shipped policy by name
 //! (`residual_hard`, …), a checkpoint folder or a run folder (its `checkpoints/best`).
 
-use crate::compare::{CompareError, LearnedPolicy, SCRIPTS};
+use crate::compare::error::CompareError;
+use crate::compare::policies::{LearnedPolicy, SCRIPTS};
 use crate::shipped::checkpoint_folder;
 
 /// The command-line names of the scripts, in the order of [`SCRIPTS`].

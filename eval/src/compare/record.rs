@@ -11,7 +11,8 @@ use fairgrasp_env::{EnvConfig, GraspEnv};
 use fairgrasp_types::Outcome;
 use fairgrasp_types::work_queue::run_in_order;
 
-use crate::compare::{CompareError, LearnedPolicy, calibration_of, make_policy};
+use crate::compare::error::CompareError;
+use crate::compare::policies::{LearnedPolicy, calibration_of, make_policy};
 
 /// One recorded episode: method index, scenario index, outcome and trajectory.
 pub struct Recording {

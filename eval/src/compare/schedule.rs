@@ -21,7 +21,9 @@ use fairgrasp_env::{EnvConfig, GraspEnv};
 use fairgrasp_planner::CameraCalibration;
 use fairgrasp_types::work_queue::run_in_order;
 
-use crate::compare::{CompareError, CompareEvent, LearnedPolicy, make_policy, scripts_for};
+use crate::compare::error::CompareError;
+use crate::compare::event::CompareEvent;
+use crate::compare::policies::{LearnedPolicy, make_policy, scripts_for};
 
 /// One preset's share of a comparison: its name, config, scenario set and camera calibration.
 pub(crate) struct PresetWork<'a> {

@@ -3,7 +3,7 @@
 
 use fairgrasp_env::EnvConfig;
 
-use super::CompareError;
+use crate::compare::error::CompareError;
 
 /// One preset of a comparison: its name (as given) and its environment config.
 #[derive(Clone, Debug)]

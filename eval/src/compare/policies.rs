@@ -1,0 +1,152 @@
+//! The methods a comparison runs, as policies: the task's scripts first ([`scripts_for`]),
+//! then the learned policies loaded from their checkpoint folders ([`LearnedPolicy`]);
+//! `make_policy` builds a fresh policy of method `i`.
+
+use std::path::{Path, PathBuf};
+
+use fairgrasp_env::episode::Policy;
+use fairgrasp_env::{EnvConfig, TaskKind};
+use fairgrasp_planner::{
+    BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
+    ScriptedPlace, SearchParams, TunedGripScript,
+};
+
+use crate::actor::Actor;
+use crate::checkpoint::{self, CheckpointMeta, actor_policy};
+use crate::compare::error::CompareError;
+
+/// The name of the scripted baseline (the open-loop script) in every comparison.
+pub const BASELINE: &str = "scripted baseline";
+
+/// The scripts every comparison runs first, in order: the open-loop baseline, the closed-loop
+/// script (re-plans on the observed cube, retries once), the oracle (the closed loop on the
+/// true pose: the ceiling), the open-loop script after a simulated camera calibration (the
+/// engineer's fix for a miscalibrated cell, [`fairgrasp_planner::calibrated`]) and the
+/// open-loop script with the grip tuned for the cell (the contact family's control,
+/// [`fairgrasp_planner::tuned_grip`]; the open-loop script where the preset tunes none).
+pub const SCRIPTS: [&str; 5] = [
+    BASELINE,
+    "closed-loop script",
+    "oracle script",
+    "script + calibration",
+    "script + tuned grip",
+];
+
+/// The place task's scripts, in order: the open-loop place script, the same with the
+/// force-guided search, tuned on training scenarios, in place of its lower
+/// ([`fairgrasp_planner::place_search`]), and both in closed loop (the cube re-observed in the
+/// hand before the place is planned, [`ScriptedPlace::reobserving`]).
+pub const PLACE_SCRIPTS: [&str; 4] = [
+    "place script",
+    "place script + force search",
+    "closed-loop place",
+    "closed-loop place + force search",
+];
+
+/// The scripts a comparison on presets of `config`'s task runs first: [`SCRIPTS`] for the lift
+/// task, [`PLACE_SCRIPTS`] for the place task. Method `i` of a comparison is script `i` while `i`
+/// is below their number, then the learned policies in order (`make_policy`).
+pub fn scripts_for(config: &EnvConfig) -> &'static [&'static str] {
+    match config.task.kind {
+        TaskKind::Lift => &SCRIPTS,
+        TaskKind::Place => &PLACE_SCRIPTS,
+    }
+}
+
+/// A learned policy loaded from its checkpoint folder, with its name in the comparison.
+pub struct LearnedPolicy {
+    /// `"<mode> PPO: <run folder name>"`, made unique with a ` (n)` suffix.
+    pub name: String,
+    /// The checkpoint folder.
+    pub dir: PathBuf,
+    pub meta: CheckpointMeta,
+    /// Its actor, run without burn ([`crate::actor`]).
+    pub actor: Actor,
+}
+
+impl LearnedPolicy {
+    /// Loads every checkpoint folder in `dirs`, naming each after its mode and run folder.
+    pub fn load_all(dirs: &[PathBuf]) -> Result<Vec<Self>, CompareError> {
+        let mut out: Vec<Self> = Vec::new();
+        for dir in dirs {
+            let (meta, actor) = checkpoint::load_actor(dir)?;
+            let folder = run_folder_of(dir).unwrap_or_else(|| dir.clone());
+            let label = folder
+                .file_name()
+                .map_or("policy".into(), |n| n.to_string_lossy().into_owned());
+            let mode = serde_name(&meta.agent.mode);
+            let mut name = format!("{mode} PPO: {label}");
+            if out.iter().any(|l| l.name == name) {
+                name = format!("{name} ({})", out.len() + 1);
+            }
+            out.push(Self {
+                name,
+                dir: dir.clone(),
+                meta,
+                actor,
+            });
+        }
+        Ok(out)
+    }
+}
+
+/// A unit enum's serde name (`Mode::Residual` → `residual`).
+fn serde_name<T: serde::Serialize>(value: &T) -> String {
+    serde_json::to_value(value)
+        .ok()
+        .and_then(|v| v.as_str().map(String::from))
+        .unwrap_or_else(|| "unnamed".into())
+}
+
+/// The run folder a checkpoint folder belongs to: the nearest of its two ancestors that holds
+/// `metrics.csv` (`run/checkpoints/best` → `run`, `policy/checkpoint` → `policy`).
+pub fn run_folder_of(checkpoint: &Path) -> Option<PathBuf> {
+    checkpoint
+        .ancestors()
+        .skip(1)
+        .take(2)
+        .find(|d| d.join("metrics.csv").is_file())
+        .map(Path::to_path_buf)
+}
+
+/// A fresh policy of method `i` (the task's scripts, [`scripts_for`], then `learned` in order)
+/// for `config`, whose camera calibration is `calibration`.
+pub(crate) fn make_policy(
+    i: usize,
+    learned: &[LearnedPolicy],
+    config: &EnvConfig,
+    calibration: &CameraCalibration,
+) -> Box<dyn Policy> {
+    let scripts = scripts_for(config).len();
+    if i >= scripts {
+        let l = &learned[i - scripts];
+        return Box::new(actor_policy(&l.meta, &l.actor, config));
+    }
+    if config.task.kind == TaskKind::Place {
+        let search = || ScriptedPlace::with_search(config, SearchParams::default());
+        return match i {
+            0 => Box::new(ScriptedPlace::new(config)),
+            1 => Box::new(search()),
+            2 => Box::new(ScriptedPlace::new(config).reobserving()),
+            _ => Box::new(search().reobserving()),
+        };
+    }
+    match i {
+        0 => Box::new(ScriptedGrasp::new(config, BaselineConfig::default())),
+        1 => Box::new(ClosedLoopGrasp::observed(config)),
+        2 => Box::new(ClosedLoopGrasp::oracle(config)),
+        3 => Box::new(CalibratedScript::new(config, calibration.clone())),
+        _ => Box::new(TunedGripScript::new(config)),
+    }
+}
+
+/// The simulated camera calibration of a config's cell, for "script + calibration".
+pub(crate) fn calibration_of(
+    config: &EnvConfig,
+    preset: &str,
+) -> Result<CameraCalibration, CompareError> {
+    CameraCalibration::of(config).map_err(|message| CompareError::Preset {
+        preset: preset.to_string(),
+        message,
+    })
+}
