@@ -33,6 +33,13 @@ pub struct EvalArgs {
     scenarios: ScenarioArgs,
 }
 
+impl EvalArgs {
+    /// Whether the evaluation writes files (`--record DIR`, `--squeeze-chart FILE.png`).
+    pub(super) fn writes_files(&self) -> bool {
+        self.scenarios.record.is_some() || self.squeeze_chart.is_some()
+    }
+}
+
 pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
     // The shipped residual policy is built into the binary: found from any folder.
     let policy = match &a.policy {

@@ -152,6 +152,32 @@ fn is_list_value(word: &str) -> bool {
 }
 
 /// Runs one subcommand; `Ok` carries the exit code (non-zero when the answer is "no solution").
+impl Cli {
+    /// Whether the command writes files (`main` then lets it finish them when nobody reads its
+    /// stdout).
+    pub fn writes_files(&self) -> bool {
+        match &self.command {
+            Command::Joints(_)
+            | Command::Fk(_)
+            | Command::Ik(_)
+            | Command::Frames(_)
+            | Command::Scene(_)
+            | Command::Playback(_)
+            | Command::Bench(_) => false,
+            Command::Eval(a) => a.writes_files(),
+            // `--record DIR` (a field private to the baseline module) may write files.
+            Command::Baseline(_)
+            | Command::Calibrate(_)
+            | Command::Train(_)
+            | Command::Compare(_)
+            | Command::Plot(_)
+            | Command::Report(_)
+            | Command::Export(_)
+            | Command::Replay(_) => true,
+        }
+    }
+}
+
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Command::Joints(a) => joints::run(&a),

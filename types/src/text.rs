@@ -72,6 +72,38 @@ pub fn excerpt(text: &str, max_chars: usize) -> String {
     }
 }
 
+/// The longest word a message quotes whole \[characters\]: a longer one (a pasted value of
+/// megabytes, a TOML line quoted by a parser) is cut to its start and its length.
+pub const MAX_QUOTED_WORD: usize = 120;
+
+/// `message` with every word longer than [`MAX_QUOTED_WORD`] cut to its first 60 characters
+/// and a note of its length, so a bad value never floods the terminal (the CLI's errors and
+/// the Python package's exceptions alike).
+pub fn cut_long_words(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(1 << 16));
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        let n = word.chars().count();
+        if n > MAX_QUOTED_WORD {
+            out.extend(word.chars().take(60));
+            out.push_str(&format!("… ({n} characters)"));
+        } else {
+            out.push_str(word);
+        }
+        word.clear();
+    };
+    for c in message.chars() {
+        if c.is_whitespace() {
+            flush(&mut word, &mut out);
+            out.push(c);
+        } else {
+            word.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
+}
+
 /// The first `n` of `names` joined by commas, and how many more there are (`a, b, c and 12
 /// more`): a list in a message stays short however long it is.
 pub fn first_few<S: AsRef<str>>(names: &[S], n: usize) -> String {
