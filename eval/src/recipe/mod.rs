@@ -9,7 +9,9 @@
 //! - [`ppo`]: the `[ppo]` table, PPO's hyper-parameters; [`kickstart`]: the `[kickstart]` table,
 //!   a run's teachers.
 //! - [`snapshot`]: the run folder's copy of a preset file, which a resumed run trains on.
+//! - [`contradictions`]: settings that make each other mean nothing, refused naming both.
 
+pub mod contradictions;
 pub mod env;
 pub mod kickstart;
 pub mod overrides;

@@ -218,7 +218,7 @@ impl Recipe {
         for env in self.env_configs(EnvFor::Training)? {
             check_agent_env(&env)?;
         }
-        Ok(())
+        crate::recipe::contradictions::check(self)
     }
 
     /// The env configuration of every preset the recipe trains on, `preset`'s (or, resuming,
