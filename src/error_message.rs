@@ -1,6 +1,7 @@
 //! The one way a command's error becomes its message: its causes once each (a cause already
 //! quoted by the message before it is not repeated), a full disk named with where it is mounted
-//! and how much room it has, and long words cut ([`fairgrasp_types::text::cut_long_words`]).
+//! and how much room it has, a path through a dangling symbolic link named as such with its
+//! target, and long words cut ([`fairgrasp_types::text::cut_long_words`]).
 
 use std::path::{Path, PathBuf};
 
@@ -19,11 +20,47 @@ pub fn render(err: &anyhow::Error) -> String {
         }
         message.push_str(&cause);
     }
-    if let Some(note) = full_disk_note(&message) {
+    for note in [full_disk_note(&message), dangling_link_note(&message)]
+        .into_iter()
+        .flatten()
+    {
         message.push_str("; ");
         message.push_str(&note);
     }
     cut_long_words(&message)
+}
+
+/// The paths a message names: its words that hold a `/` or end in `:` (a file named first),
+/// without the punctuation around them; at most the first 32.
+fn named_paths(message: &str) -> impl Iterator<Item = &Path> {
+    message
+        .split_whitespace()
+        .filter(|w| w.contains('/') || w.ends_with(':'))
+        .map(|w| w.trim_matches(|c: char| "`'\",;:()".contains(c)))
+        .filter(|w| !w.is_empty())
+        .take(32)
+        .map(Path::new)
+}
+
+/// For a message that names a path which is, or lies under, a symbolic link to nothing: the
+/// link and where it points (the OS says only "No such file or directory" or "File exists").
+pub fn dangling_link_note(message: &str) -> Option<String> {
+    named_paths(message)
+        .flat_map(Path::ancestors)
+        .filter(|p| !p.as_os_str().is_empty())
+        .find_map(|p| {
+            let target = std::fs::read_link(p).ok()?;
+            let missing =
+                std::fs::metadata(p).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound);
+            missing.then(|| {
+                format!(
+                    "{} is a dangling symbolic link: it points to {}, which does not exist \
+                     (remove the link or give another path)",
+                    p.display(),
+                    target.display()
+                )
+            })
+        })
 }
 
 /// What the OS says of a full disk (ENOSPC) and of a full quota (EDQUOT).
@@ -189,6 +226,33 @@ mod tests {
             format!("writing the report: a.csv: {shown}: {shown}")
         );
         assert_eq!(render(&err), format!("writing the report: a.csv: {shown}"));
+    }
+
+    #[test]
+    fn a_path_under_a_dangling_link_names_the_link_and_its_target() {
+        let dir = std::env::temp_dir().join(format!("fairgrasp-dangling-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let link = dir.join("out");
+        std::fs::remove_file(&link).ok();
+        std::os::unix::fs::symlink("/nonexistent/target", &link).unwrap();
+        let message = format!(
+            "{}/episode_0000.png: File exists (os error 17)",
+            link.display()
+        );
+        let note = dangling_link_note(&message).expect("a dangling link");
+        assert_eq!(
+            note,
+            format!(
+                "{} is a dangling symbolic link: it points to /nonexistent/target, which does not \
+                 exist (remove the link or give another path)",
+                link.display()
+            )
+        );
+        // A link to something that exists is no matter.
+        std::fs::remove_file(&link).unwrap();
+        std::os::unix::fs::symlink(&dir, &link).unwrap();
+        assert_eq!(dangling_link_note(&message), None);
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]

@@ -4,7 +4,10 @@
 //! folder. Every refusal leaves the file as it was.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+
+mod common;
+use common::{command, stderr};
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-outputs-{name}-{}", std::process::id()));
@@ -14,16 +17,12 @@ fn temp_dir(name: &str) -> PathBuf {
 }
 
 fn fairgrasp(args: &[&str], paths: &[&Path]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+    command()
         .args(args)
         .args(paths)
         .env_remove("FAIRGRASP_CRASH_AT")
         .output()
         .unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// A finished two-update run (2 envs × 16 steps on `fixed`).
@@ -141,5 +140,62 @@ fn episodes_are_recorded_only_into_a_new_or_empty_folder() {
         std::fs::read(record.join("episode_0001.json")).unwrap(),
         before
     );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_dangling_out_link_is_named_as_one_with_its_target() {
+    let dir = temp_dir("dangling");
+    let link = dir.join("report");
+    let target = dir.join("gone/report");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    let recorded = dir.join("recorded");
+    let o = fairgrasp(
+        &[
+            "baseline",
+            "--preset",
+            "fixed",
+            "--episodes",
+            "1",
+            "--record",
+        ],
+        &[&recorded],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let episode = recorded.join("episode_0000.json");
+    let said = format!(
+        "{} is a dangling symbolic link: it points to {}, which does not exist",
+        link.display(),
+        target.display()
+    );
+    // The OS says "No such file or directory" (compare, record) or "File exists" (plot's
+    // --out-dir): neither says that the path is a link, nor where it points.
+    for (args, paths) in [
+        (
+            &["compare", "--preset", "fixed", "--episodes", "1", "--out"][..],
+            vec![link.as_path()],
+        ),
+        (
+            &["plot", "--out-dir"][..],
+            vec![link.as_path(), episode.as_path()],
+        ),
+        (
+            &[
+                "baseline",
+                "--preset",
+                "fixed",
+                "--episodes",
+                "1",
+                "--record",
+            ][..],
+            vec![link.as_path()],
+        ),
+    ] {
+        let o = fairgrasp(args, &paths);
+        let message = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {message}");
+        assert!(message.contains(&said), "{args:?}: {message}");
+        assert!(!target.exists(), "{args:?} created the link's target");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
