@@ -150,3 +150,19 @@ fn the_shipped_recipes_and_saved_configs_load() {
         }
     }
 }
+
+#[test]
+fn keyword_overrides_that_contradict_the_recipe_are_refused_too() {
+    // Python's envs lay keyword overrides over a recipe: the same rule applies.
+    let overrides: toml::Table = toml::from_str("agent = {mode = \"pure\"}").unwrap();
+    let e = Recipe::with_overrides("[agent]\nresidual_scale = 0.5\n", "r.toml", &overrides, &[])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("r.toml: ")
+            && e.contains("agent.residual_scale = 0.5 contradicts agent.mode = \"pure\""),
+        "{e}"
+    );
+    let fine: toml::Table = toml::from_str("agent = {residual_scale = 0.5}").unwrap();
+    assert!(Recipe::with_overrides("", "r.toml", &fine, &[]).is_ok());
+}

@@ -53,6 +53,7 @@ impl Recipe {
         if let Some(c) = &recipe.curriculum {
             c.validate().map_err(file)?;
         }
+        crate::recipe::contradictions::check(&recipe).map_err(file)?;
         Ok(recipe)
     }
 }
