@@ -471,22 +471,28 @@ fn no_two_files_of_a_crate_import_each_other_directly_or_through_a_loop() {
     assert!(report.is_empty(), "import loops:\n{}", report.join("\n"));
 }
 
+/// A crate's `src/` of `files` (path, text) in a fresh temporary folder named after `name`.
+fn scratch_crate(name: &str, files: &[(&str, &str)]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fairgrasp-arch-{name}-{}", std::process::id()));
+    for (path, text) in files {
+        let file = dir.join(path);
+        std::fs::create_dir_all(file.parent().unwrap()).unwrap();
+        std::fs::write(file, text).unwrap();
+    }
+    dir
+}
+
 #[test]
 fn the_loop_finder_finds_a_loop_between_two_files() {
-    let dir = std::env::temp_dir().join(format!("fairgrasp-arch-{}", std::process::id()));
-    std::fs::create_dir_all(dir.join("a")).unwrap();
-    std::fs::write(dir.join("lib.rs"), "pub mod a;\npub mod b;\n").unwrap();
-    std::fs::write(dir.join("a/mod.rs"), "mod inner;\npub use inner::*;\n").unwrap();
-    std::fs::write(
-        dir.join("a/inner.rs"),
-        "use crate::b::Thing;\npub struct Other;\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("b.rs"),
-        "use crate::a::Other;\npub struct Thing;\n",
-    )
-    .unwrap();
+    let dir = scratch_crate(
+        "two",
+        &[
+            ("lib.rs", "pub mod a;\npub mod b;\n"),
+            ("a/mod.rs", "mod inner;\npub use inner::*;\n"),
+            ("a/inner.rs", "use crate::b::Thing;\npub struct Other;\n"),
+            ("b.rs", "use crate::a::Other;\npub struct Thing;\n"),
+        ],
+    );
     let cycle = find_cycle(&import_graph(&dir));
     std::fs::remove_dir_all(&dir).ok();
     let cycle = cycle.expect("b → a::inner → b is a loop (through a's re-export)");
@@ -499,20 +505,21 @@ fn the_loop_finder_finds_a_loop_between_two_files() {
 
 #[test]
 fn a_parent_and_its_child_importing_each_other_through_relative_paths_is_a_loop() {
-    let dir = std::env::temp_dir().join(format!("fairgrasp-arch-rel-{}", std::process::id()));
-    std::fs::create_dir_all(dir.join("a")).unwrap();
-    std::fs::write(dir.join("lib.rs"), "pub mod a;\n").unwrap();
     // The parent calls its child by a relative path, the child imports the parent's helper.
-    std::fs::write(
-        dir.join("a/mod.rs"),
-        "mod child;\npub fn helper() {}\npub fn run() { child::work() }\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("a/child.rs"),
-        "use super::helper;\npub fn work() { helper() }\n",
-    )
-    .unwrap();
+    let dir = scratch_crate(
+        "relative",
+        &[
+            ("lib.rs", "pub mod a;\n"),
+            (
+                "a/mod.rs",
+                "mod child;\npub fn helper() {}\npub fn run() { child::work() }\n",
+            ),
+            (
+                "a/child.rs",
+                "use super::helper;\npub fn work() { helper() }\n",
+            ),
+        ],
+    );
     let graph = import_graph(&dir);
     let cycle = find_cycle(&graph);
     // The same through `self::` and `crate::` from the mod.rs.

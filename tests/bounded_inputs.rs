@@ -7,6 +7,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
+mod common;
+use common::command;
+
 fn scratch(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("bounded-{name}-{}", std::process::id()));
@@ -18,7 +21,7 @@ fn scratch(name: &str) -> PathBuf {
 /// Runs fairgrasp with `args`; a command still running after 60 s is killed and fails the test
 /// (the refusals here come at once; a FIFO used to block forever).
 fn fairgrasp(args: &[&str]) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+    let mut child = command()
         .args(args)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -109,7 +112,7 @@ fn an_empty_tmpdir_never_puts_files_in_the_working_directory() {
     // `eval` unpacks the shipped policy into the temporary folder; with TMPDIR="" it used to
     // unpack into the folder it ran in.
     let dir = scratch("tmpdir");
-    let out = Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+    let out = command()
         .args([
             "eval",
             "--preset",

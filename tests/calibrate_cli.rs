@@ -4,19 +4,13 @@
 //! over, and bad tables refused naming the file, the line or the problem.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use fairgrasp_env::EnvConfig;
 use fairgrasp_kinematics::Pose;
 use serde_json::Value;
 
-fn fairgrasp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
+mod common;
+use common::fairgrasp;
 
 fn json(args: &[&str]) -> Value {
     let out = fairgrasp(args);

@@ -4,17 +4,12 @@
 //! and `--current` take as many values as the chain has joints, flags after them included, and
 //! `--qp` is accepted (the chain IK is a QP solver).
 
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
 
-fn fairgrasp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::fairgrasp;
 
 fn json(o: &Output) -> Value {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -1,16 +1,10 @@
 //! The `fairgrasp` binary end to end: JSON shapes, exit codes, and error messages.
 
-use std::process::{Command, Output};
-
 use fairgrasp_kinematics::fairino::FR3_ZERO_FLANGE_XYZ;
 use serde_json::Value;
 
-fn fairgrasp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
+use common::fairgrasp;
 
 fn json(args: &[&str]) -> (Value, i32) {
     let out = fairgrasp(args);

@@ -2,14 +2,10 @@
 //! are refused naming the flag (they used to give `null` in JSON), and the reported wrist
 //! singularity round-trips through `fk` and `ik`.
 
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn fairgrasp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::fairgrasp;
 
 fn json(out: &Output) -> serde_json::Value {
     assert!(

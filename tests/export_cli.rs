@@ -6,31 +6,17 @@
 //! written by default.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
+
+mod common;
+use common::{fairgrasp_in, stderr, stdout};
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-export-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-fn fairgrasp(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 /// The rows of an N×6 float64 `.npy` file written by `export`.
@@ -66,7 +52,7 @@ fn the_three_formats_agree_and_a_played_export_still_grasps() {
         "--gripper",
     ];
     for out in ["s.json", "s.csv", "s.npy"] {
-        let o = fairgrasp(&dir, &[&base[..], &["--out", out]].concat());
+        let o = fairgrasp_in(&dir, &[&base[..], &["--out", out]].concat());
         assert!(o.status.success(), "{out}: {}", stderr(&o));
     }
     let doc: Value = serde_json::from_slice(&std::fs::read(dir.join("s.json")).unwrap()).unwrap();
@@ -137,7 +123,7 @@ fn the_three_formats_agree_and_a_played_export_still_grasps() {
         if file.ends_with(".csv") {
             args.extend(["--preset", "full", "--episode", "2"]);
         }
-        let o = fairgrasp(&dir, &args);
+        let o = fairgrasp_in(&dir, &args);
         assert!(o.status.success(), "{file}: {}{}", stdout(&o), stderr(&o));
         let report: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
         assert_eq!(report["outcome"], "success", "{file}: {report}");
@@ -153,7 +139,7 @@ fn the_real_cells_mount_and_a_placed_cube_travel_with_the_file_to_playback() {
     let dir = temp_dir("cell");
     // A base tilted 10° and turned 90° (degrees on the command line, radians in the file).
     let mount = ["--base", "0.2", "-0.1", "0.75", "0", "10", "90", "--deg"];
-    let o = fairgrasp(
+    let o = fairgrasp_in(
         &dir,
         &[&["export", "--gripper", "--out", "b.json"][..], &mount].concat(),
     );
@@ -166,35 +152,35 @@ fn the_real_cells_mount_and_a_placed_cube_travel_with_the_file_to_playback() {
     );
     // Played without flags: the mount comes from the file, in radians, so it grasps again.
     for deg in [&[][..], &["--deg"][..]] {
-        let o = fairgrasp(&dir, &[&["playback", "b.json", "--json"][..], deg].concat());
+        let o = fairgrasp_in(&dir, &[&["playback", "b.json", "--json"][..], deg].concat());
         let report: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
         assert_eq!(report["outcome"], "success", "{report}");
         assert_eq!(report["steps"], doc["source"]["steps"]);
     }
     // The same episode on the preset's own level mount is another motion (other steps): the
     // mount is what makes the joints right for the real cell.
-    let o = fairgrasp(&dir, &["export", "--gripper", "--out", "level.json"]);
+    let o = fairgrasp_in(&dir, &["export", "--gripper", "--out", "level.json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let level: Value =
         serde_json::from_slice(&std::fs::read(dir.join("level.json")).unwrap()).unwrap();
     assert_ne!(level["source"]["steps"], doc["source"]["steps"]);
     // A cube placed by hand (table frame, yaw 30°).
     let cube = ["--cube", "0.35", "0.05", "30", "--deg"];
-    let o = fairgrasp(
+    let o = fairgrasp_in(
         &dir,
         &[&["export", "--gripper", "--out", "c.json"][..], &cube].concat(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let c: Value = serde_json::from_slice(&std::fs::read(dir.join("c.json")).unwrap()).unwrap();
     assert_eq!(c["source"]["cube"]["xy_m"], serde_json::json!([0.35, 0.05]));
-    let o = fairgrasp(&dir, &["playback", "c.json", "--json"]);
+    let o = fairgrasp_in(&dir, &["playback", "c.json", "--json"]);
     let report: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
     assert_eq!(report["outcome"], "success", "{report}");
     // A mount the env refuses is named.
     let bad = [
         "export", "--out", "x.json", "--base", "0.2", "-0.1", "0.75", "3.14", "0", "0",
     ];
-    let o = fairgrasp(&dir, &bad);
+    let o = fairgrasp_in(&dir, &bad);
     assert!(
         !o.status.success() && stderr(&o).contains("arm.base_rpy"),
         "{}",
@@ -206,7 +192,7 @@ fn the_real_cells_mount_and_a_placed_cube_travel_with_the_file_to_playback() {
 #[test]
 fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
     let dir = temp_dir("refusals");
-    let o = fairgrasp(&dir, &["export", "--gripper", "--out", "ok.json"]);
+    let o = fairgrasp_in(&dir, &["export", "--gripper", "--out", "ok.json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let original = std::fs::read(dir.join("ok.json")).unwrap();
     // A 2° jump of j3 at sample 100: refused by playback, naming sample and joint.
@@ -214,7 +200,7 @@ fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
     let v = doc["joints_deg"][100 * 6 + 2].as_f64().unwrap();
     doc["joints_deg"][100 * 6 + 2] = (v + 2.0).into();
     std::fs::write(dir.join("jump.json"), serde_json::to_vec(&doc).unwrap()).unwrap();
-    let o = fairgrasp(&dir, &["playback", "jump.json"]);
+    let o = fairgrasp_in(&dir, &["playback", "jump.json"]);
     let e = stderr(&o);
     assert!(
         !o.status.success() && e.contains("sample 100") && e.contains("j3"),
@@ -225,7 +211,7 @@ fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
         "{e}"
     );
     // An existing --out is never replaced.
-    let o = fairgrasp(
+    let o = fairgrasp_in(
         &dir,
         &["export", "--gripper", "--episode", "1", "--out", "ok.json"],
     );
@@ -244,7 +230,7 @@ fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
         ),
         (&["--out", "a.txt"][..], ".json, .csv or .npy"),
     ] {
-        let o = fairgrasp(&dir, &[&["export"][..], args].concat());
+        let o = fairgrasp_in(&dir, &[&["export"][..], args].concat());
         assert!(
             !o.status.success() && stderr(&o).contains(says),
             "{args:?}: {}",
@@ -262,26 +248,26 @@ fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
         "--out",
         "f.json",
     ];
-    let o = fairgrasp(&dir, &failed);
+    let o = fairgrasp_in(&dir, &failed);
     assert!(
         !o.status.success() && stderr(&o).contains("--allow-failure"),
         "{}",
         stderr(&o)
     );
-    let o = fairgrasp(&dir, &[&failed[..], &["--allow-failure"]].concat());
+    let o = fairgrasp_in(&dir, &[&failed[..], &["--allow-failure"]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
     // Without gripper commands playback cannot grasp; a CSV must say where it plays.
-    let o = fairgrasp(&dir, &["export", "--no-gripper", "--out", "arm_only.json"]);
+    let o = fairgrasp_in(&dir, &["export", "--no-gripper", "--out", "arm_only.json"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = fairgrasp(&dir, &["playback", "arm_only.json"]);
+    let o = fairgrasp_in(&dir, &["playback", "arm_only.json"]);
     assert!(
         !o.status.success() && stderr(&o).contains("--no-gripper"),
         "{}",
         stderr(&o)
     );
-    let o = fairgrasp(&dir, &["export", "--gripper", "--out", "s.csv"]);
+    let o = fairgrasp_in(&dir, &["export", "--gripper", "--out", "s.csv"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = fairgrasp(&dir, &["playback", "s.csv"]);
+    let o = fairgrasp_in(&dir, &["playback", "s.csv"]);
     assert!(
         !o.status.success() && stderr(&o).contains("--preset and --episode"),
         "{}",
@@ -301,42 +287,42 @@ fn what_must_not_reach_a_controller_is_refused_and_nothing_is_written() {
 #[test]
 fn export_writes_the_gripper_by_default_so_playback_grasps_and_no_gripper_leaves_it_out() {
     let dir = temp_dir("default-gripper");
-    let o = fairgrasp(&dir, &["export", "--out", "plain.json"]);
+    let o = fairgrasp_in(&dir, &["export", "--out", "plain.json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let doc: Value =
         serde_json::from_slice(&std::fs::read(dir.join("plain.json")).unwrap()).unwrap();
     // The grasp closes the gripper at least once (command +1 closed).
     let events = doc["gripper"].as_array().expect("a gripper list");
     assert!(events.iter().any(|e| e["command"] == 1.0), "{doc}");
-    let o = fairgrasp(&dir, &["playback", "plain.json", "--json"]);
+    let o = fairgrasp_in(&dir, &["playback", "plain.json", "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let played: Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(played["outcome"], "success", "{played}");
     // The old flag still runs and changes nothing.
-    let o = fairgrasp(&dir, &["export", "--gripper", "--out", "old.json"]);
+    let o = fairgrasp_in(&dir, &["export", "--gripper", "--out", "old.json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(
         std::fs::read(dir.join("old.json")).unwrap(),
         std::fs::read(dir.join("plain.json")).unwrap()
     );
     // .npy: the gripper's commands beside the joints, unless --no-gripper.
-    let o = fairgrasp(&dir, &["export", "--out", "plain.npy"]);
+    let o = fairgrasp_in(&dir, &["export", "--out", "plain.npy"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(dir.join("plain.gripper.npy").is_file());
-    let o = fairgrasp(&dir, &["export", "--no-gripper", "--out", "arm.npy"]);
+    let o = fairgrasp_in(&dir, &["export", "--no-gripper", "--out", "arm.npy"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!dir.join("arm.gripper.npy").exists());
-    let o = fairgrasp(&dir, &["export", "--no-gripper", "--out", "arm.json"]);
+    let o = fairgrasp_in(&dir, &["export", "--no-gripper", "--out", "arm.json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let doc: Value = serde_json::from_slice(&std::fs::read(dir.join("arm.json")).unwrap()).unwrap();
     assert!(doc["gripper"].as_array().is_none_or(Vec::is_empty), "{doc}");
-    let o = fairgrasp(&dir, &["playback", "arm.json"]);
+    let o = fairgrasp_in(&dir, &["playback", "arm.json"]);
     assert!(
         !o.status.success() && stderr(&o).contains("no gripper commands"),
         "{}",
         stderr(&o)
     );
-    let o = fairgrasp(
+    let o = fairgrasp_in(
         &dir,
         &["export", "--gripper", "--no-gripper", "--out", "both.json"],
     );

@@ -6,13 +6,11 @@
 //! the kill. The abort comes from `FAIRGRASP_CRASH_AT` (see `fairgrasp_rl::run::resume::crash_point`).
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+
+mod common;
+use common::command;
 
 const UPDATES: u64 = 4;
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-}
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-kill-{name}-{}", std::process::id()));
@@ -36,7 +34,7 @@ fn write_config(dir: &Path) -> PathBuf {
 }
 
 fn train(config: &Path, run: &Path, resume: bool, crash_at: Option<&str>) -> std::process::Output {
-    let mut cmd = bin();
+    let mut cmd = command();
     cmd.arg("train")
         .arg("--config")
         .arg(config)

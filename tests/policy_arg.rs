@@ -4,17 +4,12 @@
 //! used to take only the checkpoint folder ("no meta.json here").
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
 
-fn fairgrasp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::fairgrasp;
 
 fn ok(o: &Output, what: &str) {
     assert!(

@@ -2,16 +2,12 @@
 //! compare.json agree; the folder holds every chart; bad inputs are named.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
 
-fn fairgrasp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
+use common::fairgrasp;
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}"));

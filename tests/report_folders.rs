@@ -4,7 +4,10 @@
 //! unwritable place is reported before any work; a still past the episode's end is refused.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+
+mod common;
+use common::{command, fairgrasp_in};
 
 fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -25,15 +28,6 @@ fn scratch(name: &str) -> PathBuf {
     std::fs::remove_dir_all(&dir).ok();
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-/// Runs `fairgrasp args…` in `cwd`.
-fn fairgrasp(cwd: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
 }
 
 /// Asserts success and returns stdout.
@@ -94,7 +88,7 @@ fn report_refuses_a_folder_holding_a_users_file_even_with_force_and_keeps_the_fi
         if force {
             args.push("--force");
         }
-        let stderr = refused(&fairgrasp(&dir, &args));
+        let stderr = refused(&fairgrasp_in(&dir, &args));
         assert!(
             stderr.contains("thesis: is not empty and fairgrasp did not write it")
                 && stderr.contains("--out"),
@@ -113,12 +107,12 @@ fn report_refuses_a_folder_holding_a_users_file_even_with_force_and_keeps_the_fi
 fn a_second_report_into_the_same_folder_needs_force_which_replaces_it() {
     let dir = scratch("again");
     let (a, b) = (shipped_run("residual_hard"), shipped_run("pure_hard"));
-    ok(&fairgrasp(&dir, &["report", &a, &b, "--out", "rep"]));
+    ok(&fairgrasp_in(&dir, &["report", &a, &b, "--out", "rep"]));
     let first = snapshot(&dir.join("rep"));
     let md = std::fs::read_to_string(dir.join("rep/report.md")).unwrap();
     assert!(md.contains("pure_hard"), "{md}");
 
-    let stderr = refused(&fairgrasp(&dir, &["report", &a, "--out", "rep"]));
+    let stderr = refused(&fairgrasp_in(&dir, &["report", &a, "--out", "rep"]));
     assert!(
         stderr.contains("rep: already holds the output of an earlier `fairgrasp report`")
             && stderr.contains("--force"),
@@ -126,7 +120,10 @@ fn a_second_report_into_the_same_folder_needs_force_which_replaces_it() {
     );
     assert_eq!(snapshot(&dir.join("rep")), first, "refused, yet changed");
 
-    ok(&fairgrasp(&dir, &["report", &a, "--out", "rep", "--force"]));
+    ok(&fairgrasp_in(
+        &dir,
+        &["report", &a, "--out", "rep", "--force"],
+    ));
     let md = std::fs::read_to_string(dir.join("rep/report.md")).unwrap();
     assert!(!md.contains("pure_hard"), "the old report is still there");
     assert!(dir.join("rep/.fairgrasp-report").is_file());
@@ -141,9 +138,9 @@ fn a_second_report_into_the_same_folder_needs_force_which_replaces_it() {
 fn force_refuses_a_report_the_user_edited_and_names_the_file() {
     let dir = scratch("edited");
     let run = shipped_run("residual_hard");
-    ok(&fairgrasp(&dir, &["report", &run, "--out", "rep"]));
+    ok(&fairgrasp_in(&dir, &["report", &run, "--out", "rep"]));
     std::fs::write(dir.join("rep/report.md"), "# My analysis\n").unwrap();
-    let stderr = refused(&fairgrasp(
+    let stderr = refused(&fairgrasp_in(
         &dir,
         &["report", &run, "--out", "rep", "--force"],
     ));
@@ -159,7 +156,7 @@ fn force_refuses_a_report_the_user_edited_and_names_the_file() {
 fn an_unwritable_parent_is_reported_before_any_episode_runs() {
     let dir = scratch("parent");
     std::fs::write(dir.join("a_file"), "x").unwrap();
-    let out = fairgrasp(
+    let out = fairgrasp_in(
         &dir,
         &[
             "compare",
@@ -183,7 +180,10 @@ fn an_unwritable_parent_is_reported_before_any_episode_runs() {
         "episodes ran before the folder was checked"
     );
     let run = shipped_run("residual_hard");
-    let stderr = refused(&fairgrasp(&dir, &["report", &run, "--out", "/dev/null/x"]));
+    let stderr = refused(&fairgrasp_in(
+        &dir,
+        &["report", &run, "--out", "/dev/null/x"],
+    ));
     assert!(
         stderr.contains("/dev/null/x: its parent /dev/null is a file"),
         "{stderr}"
@@ -207,7 +207,7 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
             "cmp",
         ];
         args.extend(extra);
-        fairgrasp(&dir, &args)
+        fairgrasp_in(&dir, &args)
     };
     ok(&compare(&[]));
     let first = snapshot(&dir.join("cmp"));
@@ -218,7 +218,7 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
         stderr.contains("cmp: already holds") && stderr.contains("--force"),
         "{stderr}"
     );
-    let stderr = refused(&fairgrasp(
+    let stderr = refused(&fairgrasp_in(
         &dir,
         &["report", "cmp", "--out", "cmp", "--force"],
     ));
@@ -234,7 +234,7 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
         .find(|n| n.ends_with(".json.gz"))
         .unwrap();
     let episode = format!("cmp/episodes/{episode}");
-    let stderr = refused(&fairgrasp(&dir, &["plot", &episode, "--still", "5000"]));
+    let stderr = refused(&fairgrasp_in(&dir, &["plot", &episode, "--still", "5000"]));
     assert!(
         stderr.contains("--still 5000") && stderr.contains("recorded steps, numbered 0–"),
         "{stderr}"
@@ -247,7 +247,7 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
 
     // plot never draws into a report folder; a file put there by other means is one --force
     // would lose: named, kept.
-    let stderr = refused(&fairgrasp(&dir, &["plot", &episode, "--still", "3"]));
+    let stderr = refused(&fairgrasp_in(&dir, &["plot", &episode, "--still", "3"]));
     assert!(stderr.contains("inside the report folder"), "{stderr}");
     assert_eq!(
         snapshot(&dir.join("cmp")),
@@ -264,7 +264,7 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
     // named after the process, visible next to it).
     std::fs::remove_file(&added).unwrap();
     assert_eq!(snapshot(&dir.join("cmp")), first);
-    let mut child = Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+    let mut child = command()
         .args(["compare", "--preset", "fixed", "--episodes", "400"])
         .args(["--threads", "1", "--out", "cmp", "--force"])
         .current_dir(&dir)

@@ -9,6 +9,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
+mod common;
+use common::{command, stderr};
+
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-folders-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -31,7 +34,7 @@ fn write_config(dir: &Path, name: &str, preset: &str, updates: u64) -> PathBuf {
 }
 
 fn train(config: &Path, run: &Path, flags: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+    command()
         .arg("train")
         .arg("--config")
         .arg(config)
@@ -41,10 +44,6 @@ fn train(config: &Path, run: &Path, flags: &[&str]) -> Output {
         .env_remove("FAIRGRASP_CRASH_AT")
         .output()
         .unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 fn ok(o: &Output) {
@@ -197,7 +196,7 @@ fn one_process_per_run_folder_and_a_killed_one_leaves_no_lock_behind() {
     let run = dir.join("run");
     // At most two minutes, and killed when the test ends, whether it passes or not.
     let mut first = KillOnDrop(
-        Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+        command()
             .args(["train", "--max-wall-time", "120", "--config"])
             .arg(&config)
             .arg("--run-dir")

@@ -4,7 +4,10 @@
 //! runs.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+
+mod common;
+use common::command;
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-squeeze-{name}-{}", std::process::id()));
@@ -21,7 +24,7 @@ fn policy() -> String {
 }
 
 fn eval(dir: &Path, chart: &str) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+    command()
         .current_dir(dir)
         .args(["eval", "--policy", &policy(), "--preset", "heavy_slippery"])
         .args(["--episodes", "12", "--seed", "7", "--threads", "2"])
