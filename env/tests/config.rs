@@ -66,6 +66,50 @@ fn invalid_values_are_refused_naming_the_field() {
 }
 
 #[test]
+fn the_place_tasks_contact_conditions_and_search_tuning_are_refused_out_of_range() {
+    for (toml, field, rule) in [
+        ("grip_tilt = [0.1, 0.5]", "task.place.grip_tilt", "0.35"),
+        (
+            "grip_tilt = [0.2, 0.1]",
+            "task.place.grip_tilt",
+            "min must not exceed max",
+        ),
+        (
+            "fixture_friction = [0.5, 3.0]",
+            "task.place.fixture_friction",
+            "[0, 2]",
+        ),
+        (
+            "fixture_friction = [-0.1, 1.0]",
+            "task.place.fixture_friction",
+            "negative",
+        ),
+        (
+            "search = { contact_force = 0.0 }",
+            "task.place.search.contact_force",
+            "[0.1, 30] N",
+        ),
+        (
+            "search = { speed = 1.0 }",
+            "task.place.search.speed",
+            "[0.001, 0.1] m/s",
+        ),
+        ("search = { pich = 0.002 }", "pich", "unknown field"),
+    ] {
+        let m = refused(&format!("[task]\nkind = \"place\"\n[task.place]\n{toml}\n"));
+        assert!(m.contains(field) && m.contains(rule), "{toml}: {m}");
+    }
+    let ok = "[task]\nkind = \"place\"\n[task.place]\ngrip_tilt = [0.07, 0.17]\n\
+              fixture_friction = [0.3, 1.2]\nsearch = { pitch = 0.002 }\n";
+    let config = EnvConfig::from_toml_str(ok).unwrap();
+    assert_eq!(config.task.place.search.pitch, 0.002);
+    assert_eq!(
+        config.task.place.search.contact_force, 1.5,
+        "the rest default"
+    );
+}
+
+#[test]
 fn a_config_file_error_names_the_file() {
     let dir = std::env::temp_dir().join(format!("fairgrasp-env-config-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

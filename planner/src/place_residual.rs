@@ -87,9 +87,10 @@ pub struct PlaceResidual {
 }
 
 impl PlaceResidual {
-    /// The tuned search ([`SearchParams::default`]) of the env `env` and [`place_limits`].
+    /// The search tuned for the env `env`'s family ([`SearchParams::tuned_for`]) and
+    /// [`place_limits`].
     pub fn new(env: &EnvConfig) -> Self {
-        let params = SearchParams::default();
+        let params = SearchParams::tuned_for(env);
         Self {
             script: ScriptedPlace::with_search(env, params),
             params,

@@ -13,7 +13,8 @@
 //! scenarios by a grid search (`fairgrasp baseline --script force_search --search …`,
 //! docs/place.md).
 
-use fairgrasp_env::Observation;
+use fairgrasp_env::config::SearchTuning;
+use fairgrasp_env::{EnvConfig, Observation};
 use fairgrasp_kinematics::{ArmModel, Pose};
 use serde::Serialize;
 
@@ -39,14 +40,30 @@ pub struct SearchParams {
 }
 
 impl Default for SearchParams {
+    /// The settings tuned on `place_grasp_error` and `place_fixture_error`
+    /// ([`SearchTuning::default`]) and the untuned rest.
     fn default() -> Self {
+        let tuned = SearchTuning::default();
         Self {
             descend_speed: 0.01,
-            contact_force: 1.5,
+            contact_force: tuned.contact_force,
             admittance: 0.004,
-            pitch: 0.003,
-            speed: 0.01,
+            pitch: tuned.pitch,
+            speed: tuned.speed,
             max_radius: 0.009,
+        }
+    }
+}
+
+impl SearchParams {
+    /// The search as tuned for the env's family (`[task.place.search]`), the rest default.
+    pub fn tuned_for(env: &EnvConfig) -> Self {
+        let t = &env.task.place.search;
+        Self {
+            contact_force: t.contact_force,
+            pitch: t.pitch,
+            speed: t.speed,
+            ..Self::default()
         }
     }
 }

@@ -110,9 +110,9 @@ pub struct BaselineArgs {
 }
 
 impl BaselineArgs {
-    /// The force search's parameters: the defaults with the `--search-*` flags given.
-    fn search_params(&self) -> anyhow::Result<SearchParams> {
-        let mut p = SearchParams::default();
+    /// The force search's parameters: the preset's tuned ones with the `--search-*` flags given.
+    fn search_params(&self, config: &EnvConfig) -> anyhow::Result<SearchParams> {
+        let mut p = SearchParams::tuned_for(config);
         for (flag, given, slot, lo, hi) in [
             (
                 "--search-force",
@@ -288,7 +288,7 @@ pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
     }
     let config = preset_config(&a.scenarios.preset, a.scenarios.arm)?;
     if config.task.kind == TaskKind::Place {
-        let params = a.search_params()?;
+        let params = a.search_params(&config)?;
         return match a.script {
             ScriptArg::OpenLoop => {
                 let make = |config: &EnvConfig| ScriptedPlace::new(config);

@@ -26,5 +26,5 @@ mod validate_place;
 
 pub use env_config::*;
 pub use error::ConfigError;
-pub use place::{PlaceConfig, TaskKind};
+pub use place::{PlaceConfig, SearchTuning, TaskKind};
 pub use range::Range;

@@ -44,7 +44,8 @@ pub struct PlaceConfig {
     /// The fixture's centre is drawn at least this far from the cube's start \[m\].
     pub min_distance_from_cube: f64,
     /// Seated: the cube's bottom at most this far above the table top \[m\] and tilted at most
-    /// `max_tilt` \[rad\].
+    /// `max_tilt` \[rad\]: standing on a face. A cube wedged across a pocket with 2 mm of
+    /// clearance leans up to ~4.6°, so the default 2° tells it from a seated one.
     pub seated_height: f64,
     pub max_tilt: f64,
     /// Clear: the TCP at least this far above the cube's top \[m\], neither pad touching it.
@@ -58,7 +59,47 @@ pub struct PlaceConfig {
     /// camera errors (`[randomization]`) do not apply to the fixture.
     pub observed_position_noise: f64,
     pub observed_yaw_noise: f64,
+    /// The grasp's unobserved tilt: once per episode, when the cube is first carried
+    /// [`GRIP_TILT_LIFT`] above the table, it turns in the grip about the axis between the pads
+    /// (the TCP's x) by an angle drawn uniformly in this range, with a random sign \[rad\]
+    /// (`[0, 0]`: never). What a grasp above or beside the cube's centre of mass, or a knock
+    /// during the lift, does on a real cell; nothing observes it.
+    pub grip_tilt: Range,
+    /// The friction coefficient between the fixture's walls and what touches them, drawn per
+    /// episode uniformly in this range (`None`: the table's, `scene.table_friction`).
+    pub fixture_friction: Option<Range>,
+    /// The force-guided search's settings as the cell's integrator tuned them for this family
+    /// (`[task.place.search]`; `planner::SearchParams::tuned_for` reads them).
+    pub search: SearchTuning,
 }
+
+/// The tuned parameters of the force-guided search (`[task.place.search]`): what an integrator
+/// sets per cell after a tuning run (`scripts/tune-force-search.sh`, docs/place.md). The
+/// defaults were tuned on `place_grasp_error` and `place_fixture_error`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SearchTuning {
+    /// Upward wrist force that counts as a touch \[N\].
+    pub contact_force: f64,
+    /// The spiral's pitch: its radius grows this much per turn \[m\].
+    pub pitch: f64,
+    /// The spiral's speed along its path \[m/s\].
+    pub speed: f64,
+}
+
+impl Default for SearchTuning {
+    fn default() -> Self {
+        Self {
+            contact_force: 1.5,
+            pitch: 0.003,
+            speed: 0.01,
+        }
+    }
+}
+
+/// How far above the table \[m\] the cube's bottom must be carried before it turns in the grip
+/// (`task.place.grip_tilt`): clear of the table, so that the turn cannot push it into anything.
+pub const GRIP_TILT_LIFT: f64 = 0.02;
 
 impl Default for PlaceConfig {
     fn default() -> Self {
@@ -73,11 +114,14 @@ impl Default for PlaceConfig {
             random_yaw: false,
             min_distance_from_cube: 0.12,
             seated_height: 0.002,
-            max_tilt: 5f64.to_radians(),
+            max_tilt: 2f64.to_radians(),
             clear_height: 0.03,
             grasp_height: 0.012,
             observed_position_noise: 0.0,
             observed_yaw_noise: 0.0,
+            grip_tilt: [0.0, 0.0],
+            fixture_friction: None,
+            search: SearchTuning::default(),
         }
     }
 }

@@ -1,14 +1,14 @@
 //! Named configurations: `fixed`, `seed`, `wide`, `full`, `hard` and the scenario families
 //! `miscalibrated`, `miscalibrated_b`, `wrist_camera`, `nudged` ([`crate::scenario::families`])
-//! the contact family `heavy_slippery` and the place task's `place`, `place_grasp_error` and
-//! `place_fixture_error`, shipped as TOML files in
+//! the contact family `heavy_slippery` and the place task's `place`, `place_grasp_error`,
+//! `place_fixture_error` and `place_tilted`, shipped as TOML files in
 //! `assets/configs/` and built into the binary, so `--preset NAME` works from any folder.
 
 use crate::config::EnvConfig;
 use crate::config::validate::ConfigError;
 
 /// Every preset: name, TOML text, one-line description.
-pub const PRESETS: [(&str, &str, &str); 13] = [
+pub const PRESETS: [(&str, &str, &str); 14] = [
     (
         "fixed",
         include_str!("../../../assets/configs/fixed.toml"),
@@ -73,6 +73,11 @@ pub const PRESETS: [(&str, &str, &str); 13] = [
         "place_fixture_error",
         include_str!("../../../assets/configs/place_fixture_error.toml"),
         "place with the fixture known to N(0, 3 mm), N(0, 1.5°) (its layout's tolerance)",
+    ),
+    (
+        "place_tilted",
+        include_str!("../../../assets/configs/place_tilted.toml"),
+        "place with the cube turning 4–10° in the grip once lifted (about the pads' axis), unobserved: wider than the pocket as it hangs",
     ),
 ];
 

@@ -4,6 +4,9 @@ use crate::config::check::{check, check_range};
 use crate::config::error::ConfigError;
 use crate::config::place::PlaceConfig;
 
+/// The largest grip tilt a config may ask for \[rad\] (20°).
+const MAX_GRIP_TILT: f64 = 0.35;
+
 /// Refuses a fixture or criterion that cannot mean what it says, naming the field.
 pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
     for (value, field, lo, hi, rule) in [
@@ -84,6 +87,48 @@ pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigE
         "must be within 2 m of the base [m]",
     )?;
     check_range(&p.fixture_radius, "task.place.fixture_radius", 0.0)?;
+    check_range(&p.grip_tilt, "task.place.grip_tilt", 0.0)?;
+    check(
+        p.grip_tilt[1] <= MAX_GRIP_TILT,
+        "task.place.grip_tilt",
+        p.grip_tilt,
+        "must be within [0, 0.35] rad (20°: more and the turned cube reaches the palm)",
+    )?;
+    let s = &p.search;
+    for (value, field, lo, hi, rule) in [
+        (
+            s.contact_force,
+            "task.place.search.contact_force",
+            0.1,
+            30.0,
+            "must be in [0.1, 30] N",
+        ),
+        (
+            s.pitch,
+            "task.place.search.pitch",
+            0.0005,
+            0.02,
+            "must be in [0.0005, 0.02] m per turn",
+        ),
+        (
+            s.speed,
+            "task.place.search.speed",
+            0.001,
+            0.1,
+            "must be in [0.001, 0.1] m/s",
+        ),
+    ] {
+        check((lo..=hi).contains(&value), field, value, rule)?;
+    }
+    if let Some(friction) = &p.fixture_friction {
+        check_range(friction, "task.place.fixture_friction", 0.0)?;
+        check(
+            friction[1] <= 2.0,
+            "task.place.fixture_friction",
+            friction,
+            "must be within [0, 2] (a friction coefficient)",
+        )?;
+    }
     check_range(
         &p.fixture_angle,
         "task.place.fixture_angle",

@@ -15,6 +15,7 @@ pub use crate::env::step::{Action, EnvError, Info, ServoSetpoint, Step};
 use crate::robot::Robot;
 use crate::robot::tcp_action::TaskSpaceAction;
 use crate::scenario::Scenario;
+use crate::scenario::grip_tilt::{GripTiltEvent, GripTiltHook, HandState};
 use crate::scenario::nudge::{NudgeEvent, NudgeHook};
 use crate::sim::Sim;
 use crate::sim::contacts::{ContactReport, PairKind, TouchingPair};
@@ -57,6 +58,8 @@ pub struct GraspEnv {
     scenario: Option<Scenario>,
     /// This episode's push of the cube (the `nudged` family).
     nudge: NudgeHook,
+    /// This episode's turn of the cube in the grip (the place task's `grip_tilt`).
+    grip_tilt: GripTiltHook,
 }
 
 impl GraspEnv {
@@ -82,6 +85,7 @@ impl GraspEnv {
             first_collision: None,
             scenario: None,
             nudge: NudgeHook::default(),
+            grip_tilt: GripTiltHook::default(),
         })
     }
 
@@ -151,6 +155,12 @@ impl GraspEnv {
         self.nudge.event()
     }
 
+    /// This episode's turn of the cube in the grip, once it has happened (the place task's
+    /// `task.place.grip_tilt`).
+    pub fn grip_tilt_event(&self) -> Option<GripTiltEvent> {
+        self.grip_tilt.event()
+    }
+
     /// Soft reset to the scenario drawn from `seed`.
     pub fn reset(&mut self, seed: u64) -> Result<(Observation, Info), EnvError> {
         let scenario = Scenario::sample_in(&self.cell, &self.config, seed)?;
@@ -179,6 +189,8 @@ impl GraspEnv {
             let on_table = Pose::from_xyz_rpy([f.xy[0], f.xy[1], 0.0], [0.0, 0.0, f.yaw]);
             let in_world = self.cell.mount.table_in_world.iso * on_table.iso;
             self.sim.place_fixture(&in_world);
+            let table = self.config.scene.table_friction;
+            self.sim.set_fixture_friction(f.friction.unwrap_or(table));
         }
         self.robot.teleport(&mut self.sim, &scenario.start_joints);
         self.robot.set_grip_force(self.config.gripper.force);
@@ -194,6 +206,7 @@ impl GraspEnv {
         self.first_collision = None;
         self.scenario = Some(*scenario);
         self.nudge.reset();
+        self.grip_tilt.reset();
         let info = Info {
             scenario: Some(*scenario),
             simulated: true,
@@ -232,9 +245,16 @@ impl GraspEnv {
         if self.done {
             return Err(EnvError::EpisodeOver);
         }
-        self.push_if_due();
+        self.scenario_events_before_step();
         let command = self.apply_action(action)?;
         self.advance(Drive::Velocity(command))
+    }
+
+    /// What the scenario does to the cube before a step's action, whatever drives the arm: the
+    /// `nudged` family's push, the place task's turn in the grip.
+    pub(super) fn scenario_events_before_step(&mut self) {
+        self.push_if_due();
+        self.tilt_if_due();
     }
 
     /// The nudge of the `nudged` family, if this step is the one it pushes before.
@@ -242,6 +262,23 @@ impl GraspEnv {
         let tcp = self.robot.tcp_in_world().xyz();
         let (scenario, mount) = (self.scenario.as_ref(), &self.cell.mount);
         (self.nudge).before_step(self.steps, scenario, mount, &mut self.sim, tcp);
+    }
+
+    /// The turn of the cube in the grip (the place task's `grip_tilt`), if it is due.
+    fn tilt_if_due(&mut self) {
+        let Some(facts) = self.place_facts() else {
+            return;
+        };
+        let tcp = self.robot.tcp_in_world();
+        let x = tcp.iso.rotation * nalgebra::Vector3::x();
+        let hand = HandState {
+            tcp: tcp.xyz(),
+            tcp_x: [x.x, x.y, x.z],
+            held: self.contacts.pad_contact.iter().all(|&p| p),
+            cube_bottom_above_table: facts.bottom_above_table,
+        };
+        let scenario = self.scenario.as_ref();
+        (self.grip_tilt).before_step(self.steps, scenario, &hand, &mut self.sim);
     }
 
     /// Moves the robot for one env step (`physics.substeps` physics steps) as `drive` says, then

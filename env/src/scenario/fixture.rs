@@ -26,6 +26,26 @@ pub struct FixturePose {
     /// (`task.place.observed_position_noise`, `observed_yaw_noise`).
     pub observed_xy_error: [f64; 2],
     pub observed_yaw_error: f64,
+    /// How far the cube turns in the grip once carried, about the axis between the pads \[rad\]
+    /// (`task.place.grip_tilt`; 0 = not at all).
+    pub grip_tilt: f64,
+    /// The fixture's friction coefficient (`task.place.fixture_friction`; `None`: the table's).
+    pub friction: Option<f64>,
+}
+
+impl FixturePose {
+    /// The fixture of a config that draws nothing: at `task.place.fixture_xy`, yaw 0, known
+    /// exactly, no grip tilt, the table's friction.
+    pub fn fixed(config: &EnvConfig) -> FixturePose {
+        FixturePose {
+            xy: config.task.place.fixture_xy,
+            yaw: 0.0,
+            observed_xy_error: [0.0; 2],
+            observed_yaw_error: 0.0,
+            grip_tilt: 0.0,
+            friction: None,
+        }
+    }
 }
 
 /// Fixture poses tried before a scenario is given up.
@@ -69,13 +89,33 @@ pub fn draw_fixture(
         let apart = (xy[0] - cube_xy[0]).hypot(xy[1] - cube_xy[1]) >= p.min_distance_from_cube;
         let seated = mount.resting_object_in_base(xy, yaw, config.scene.cube_size);
         if apart && top_down_grasp(model, mount, &seated, start_joints).is_some() {
+            let (grip_tilt, friction) = draw_contact_conditions(config, seed);
             return Some(FixturePose {
                 xy,
                 yaw,
                 observed_xy_error,
                 observed_yaw_error,
+                grip_tilt,
+                friction,
             });
         }
     }
     None
+}
+
+/// The grip tilt and the fixture's friction of scenario `seed` (`task.place.grip_tilt`,
+/// `fixture_friction`), from a generator of their own: the cube's and the fixture's poses are
+/// those of the same scenario without them.
+fn draw_contact_conditions(config: &EnvConfig, seed: u64) -> (f64, Option<f64>) {
+    let p = &config.task.place;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x6772_6970_5f74_696c);
+    let [lo, hi] = p.grip_tilt;
+    let magnitude = if hi > 0.0 {
+        rng.random_range(lo..=hi)
+    } else {
+        0.0
+    };
+    let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+    let friction = p.fixture_friction.map(|[lo, hi]| rng.random_range(lo..=hi));
+    (sign * magnitude, friction)
 }

@@ -5,6 +5,7 @@ pub mod curriculum;
 pub mod families;
 pub mod fixture;
 pub mod graspable;
+pub mod grip_tilt;
 pub mod noise;
 pub mod nudge;
 pub mod perception;

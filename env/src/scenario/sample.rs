@@ -122,12 +122,7 @@ impl Scenario {
             observed_yaw_error: 0.0,
             nudge: None,
             camera_offset: None,
-            fixture: (config.task.kind == TaskKind::Place).then_some(FixturePose {
-                xy: config.task.place.fixture_xy,
-                yaw: 0.0,
-                observed_xy_error: [0.0; 2],
-                observed_yaw_error: 0.0,
-            }),
+            fixture: (config.task.kind == TaskKind::Place).then(|| FixturePose::fixed(config)),
         }
     }
 

@@ -86,6 +86,33 @@ impl Sim {
         }
     }
 
+    /// Sets the friction coefficient of the fixture's walls; does nothing without a fixture.
+    pub fn set_fixture_friction(&mut self, friction: f64) {
+        let Some(body) = self.handles.fixture else {
+            return;
+        };
+        let walls: Vec<ColliderHandle> = self.world.bodies[body].colliders().to_vec();
+        for h in walls {
+            if let Some(c) = self.world.colliders.get_mut(h) {
+                c.set_friction(friction as f32);
+            }
+        }
+    }
+
+    /// Turns the object by `angle` \[rad\] about the line through `pivot` along the unit `axis`
+    /// (both `world`), keeping its velocities: a turn in the grip, not a new start.
+    pub fn turn_object_about(&mut self, pivot: [f64; 3], axis: [f64; 3], angle: f64) {
+        let Some(body) = self.world.bodies.get_mut(self.handles.cube) else {
+            return;
+        };
+        let axis = nalgebra::Unit::new_normalize(nalgebra::Vector3::from(axis));
+        let pivot = nalgebra::Translation3::from(nalgebra::Vector3::from(pivot));
+        let turn =
+            pivot * nalgebra::UnitQuaternion::from_axis_angle(&axis, angle) * pivot.inverse();
+        let pose = turn * from_rapier(body.position());
+        body.set_position(to_rapier(&pose), true);
+    }
+
     /// The fixture's pose in `world`, if the scene has one.
     pub fn fixture_pose(&self) -> Option<Isometry3<f64>> {
         let body = self.world.bodies.get(self.handles.fixture?)?;

@@ -77,6 +77,13 @@ mod tests {
         assert!(!is_seated(&facts(0.0, 0.010, 0.0), 0.05, &p));
         // Leaning on a wall.
         assert!(!is_seated(&facts(0.0, 0.001, 0.2), 0.05, &p));
+        // Wedged across the pocket: one bottom edge on the floor, leaning 4.5° on the far wall
+        // (the most a 50 mm cube leans in 54 mm), corner inside, bottom on the floor.
+        assert!(!is_seated(
+            &facts(0.002, 0.0005, 4.5f64.to_radians()),
+            0.05,
+            &p
+        ));
     }
 
     #[test]

@@ -123,7 +123,7 @@ pub(crate) fn make_policy(
         return Box::new(actor_policy(&l.meta, &l.actor, config));
     }
     if config.task.kind == TaskKind::Place {
-        let search = || ScriptedPlace::with_search(config, SearchParams::default());
+        let search = || ScriptedPlace::with_search(config, SearchParams::tuned_for(config));
         return match i {
             0 => Box::new(ScriptedPlace::new(config)),
             1 => Box::new(search()),

@@ -77,7 +77,7 @@ impl GraspEnv {
             };
             return Err(EnvError::NonFiniteSetpoint { substep, what });
         }
-        self.push_if_due();
+        self.scenario_events_before_step();
         self.advance(Drive::Servo(setpoints))
     }
 
@@ -198,7 +198,7 @@ impl GraspEnv {
     }
 
     /// The place task's facts about the cube and the fixture (`None` for the lift task), world.
-    fn place_facts(&self) -> Option<crate::task::place::PlaceFacts> {
+    pub(super) fn place_facts(&self) -> Option<crate::task::place::PlaceFacts> {
         let fixture = self.sim.fixture_pose()?;
         let cube = self.sim.object_pose();
         let offset =
