@@ -1,11 +1,11 @@
 //! The one way a command's error becomes its message: its causes once each (a cause already
 //! quoted by the message before it is not repeated), a full disk named with where it is mounted
 //! and how much room it has, a path through a dangling symbolic link named as such with its
-//! target, and long words cut ([`fairgrasp_types::text::cut_long_words`]).
+//! target, and the whole bounded ([`fairgrasp_types::text::bounded_message`]).
 
 use std::path::{Path, PathBuf};
 
-use fairgrasp_types::text::cut_long_words;
+use fairgrasp_types::text::bounded_message;
 
 /// The message `error: …` prints for `err`.
 pub fn render(err: &anyhow::Error) -> String {
@@ -27,7 +27,7 @@ pub fn render(err: &anyhow::Error) -> String {
         message.push_str("; ");
         message.push_str(&note);
     }
-    cut_long_words(&message)
+    bounded_message(&message)
 }
 
 /// The paths a message names: its words that hold a `/` or end in `:` (a file named first),

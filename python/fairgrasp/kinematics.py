@@ -10,8 +10,19 @@ import numpy as np
 from . import _native
 
 
+def _floats(values, what):
+    """``values`` as a float64 array; anything else is a ValueError that quotes at most 60
+    characters of it (numpy's own message quotes a string argument whole)."""
+    try:
+        return np.ascontiguousarray(values, dtype=np.float64)
+    except (TypeError, ValueError, OverflowError):
+        shown = repr(values)
+        shown = shown if len(shown) <= 60 else f"{shown[:60]}… ({len(shown)} characters)"
+        raise ValueError(f"{what} must be numbers, got {type(values).__name__} {shown}") from None
+
+
 def _vec(values, n, what):
-    a = np.ascontiguousarray(values, dtype=np.float64).reshape(-1)
+    a = _floats(values, what).reshape(-1)
     if a.shape != (n,):
         raise ValueError(f"{what} has {a.size} values, expected {n}")
     return a
@@ -76,7 +87,7 @@ def world_to_base(base_pose, point):
 
 
 def _rows(values, width, what):
-    a = np.ascontiguousarray(values, dtype=np.float64)
+    a = _floats(values, what)
     if a.ndim != 2 or a.shape[1] != width:
         raise ValueError(f"{what} has shape {a.shape}, expected (n, {width})")
     return a

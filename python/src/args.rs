@@ -4,9 +4,10 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-/// A Rust error as Python's `ValueError` (bad input: config, action, pose).
+/// A Rust error as Python's `ValueError` (bad input: config, action, pose), its message
+/// bounded as the CLI's are ([`fairgrasp_types::text::bounded_message`]).
 pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    PyValueError::new_err(fairgrasp_types::text::bounded_message(&e.to_string()))
 }
 
 /// Loads a preset by name (or a .toml path), with the arm simulation set.

@@ -8,7 +8,6 @@
 //!   non-numeric cell (naming the line and the column).
 //! - Only a regular file of at most [`MAX_BYTES`] with at most [`MAX_ROWS`] rows is read.
 
-use std::io::Read;
 use std::path::Path;
 
 use anyhow::{Context, bail};
@@ -45,20 +44,9 @@ impl Table {
     /// Reads `path`, accepting only the columns in `allowed` (names without unit suffix).
     pub fn read(path: &Path, allowed: &[&str]) -> anyhow::Result<Table> {
         let shown = path.display().to_string();
-        let meta = std::fs::metadata(path).with_context(|| format!("{shown}: cannot read it"))?;
-        if !meta.is_file() {
-            bail!("{shown}: not a regular file (a measurement table is a CSV file)");
-        }
-        if meta.len() > MAX_BYTES {
-            bail!(
-                "{shown}: {} bytes, more than the {MAX_BYTES} a measurement table may have",
-                meta.len()
-            );
-        }
-        let mut text = String::new();
-        std::fs::File::open(path)
-            .and_then(|f| f.take(MAX_BYTES + 1).read_to_string(&mut text))
-            .with_context(|| format!("{shown}: cannot read it as UTF-8 text"))?;
+        // The rule every input file is read by: a regular file within the cap.
+        let text = fairgrasp_types::fs::read_text_bounded(path, MAX_BYTES)
+            .with_context(|| format!("{shown}: cannot read it as a measurement table (CSV)"))?;
         Self::parse(&text, &shown, allowed)
     }
 

@@ -104,6 +104,17 @@ pub fn cut_long_words(message: &str) -> String {
     out
 }
 
+/// The longest message an error carries \[characters\]: what is past it is cut with a note of
+/// the length (a message that lists or quotes input is already short; this bounds the rest).
+pub const MAX_MESSAGE_CHARS: usize = 2000;
+
+/// `message` as an error shows it: long words cut ([`cut_long_words`]), then at most
+/// [`MAX_MESSAGE_CHARS`] characters ([`excerpt`]). The CLI's `error:` lines and the Python
+/// package's exceptions both pass through it.
+pub fn bounded_message(message: &str) -> String {
+    excerpt(&cut_long_words(message), MAX_MESSAGE_CHARS)
+}
+
 /// The first `n` of `names` joined by commas, and how many more there are (`a, b, c and 12
 /// more`): a list in a message stays short however long it is.
 pub fn first_few<S: AsRef<str>>(names: &[S], n: usize) -> String {
@@ -117,6 +128,25 @@ pub fn first_few<S: AsRef<str>>(names: &[S], n: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_message_is_bounded_word_by_word_and_whole() {
+        let word = "x".repeat(1 << 20);
+        let cut = bounded_message(&format!("bad value {word} here"));
+        assert_eq!(
+            cut,
+            format!("bad value {}… (1048576 characters) here", "x".repeat(60))
+        );
+        let many = "ab ".repeat(100_000);
+        let cut = bounded_message(&many);
+        assert!(
+            cut.ends_with("… (300000 characters)"),
+            "{}",
+            &cut[cut.len() - 40..]
+        );
+        assert!(cut.chars().count() < MAX_MESSAGE_CHARS + 40);
+        assert_eq!(bounded_message("short: fine"), "short: fine");
+    }
 
     #[test]
     fn lines_end_at_lf_crlf_and_cr_alike() {

@@ -137,7 +137,8 @@ pub fn load_optimizer(
         return Ok(optimizer);
     }
     if let Some(expected) = &meta.optimizer_checksum {
-        let bytes = std::fs::read(&path).map_err(|e| err(&path, e))?;
+        let bytes = fairgrasp_types::fs::read_bounded(&path, fairgrasp_types::fs::MAX_DATA_BYTES)
+            .map_err(|e| err(&path, e))?;
         let found = checksum(&[&bytes]);
         if &found != expected {
             return Err(err(

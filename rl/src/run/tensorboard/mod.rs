@@ -62,7 +62,8 @@ pub fn event_files(run_dir: &Path) -> Vec<PathBuf> {
 
 /// Every event of a file, up to a torn tail.
 pub fn read_events(path: &Path) -> Result<Vec<Event>, TrainError> {
-    let bytes = std::fs::read(path).map_err(io(path))?;
+    let bytes = fairgrasp_types::fs::read_bounded(path, fairgrasp_types::fs::MAX_DATA_BYTES)
+        .map_err(io(path))?;
     records::read_records(&bytes)
         .into_iter()
         .map(|r| {
