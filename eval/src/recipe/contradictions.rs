@@ -8,7 +8,7 @@
 use fairgrasp_env::config::{ActionSpace, ArmConfig};
 
 use crate::agent::{AgentConfig, GripperMode, Mode};
-use crate::recipe::Recipe;
+use crate::recipe::settings::Recipe;
 
 /// The first contradiction of `recipe`, naming both keys and how to resolve it.
 pub fn check(recipe: &Recipe) -> Result<(), String> {

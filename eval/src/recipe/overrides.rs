@@ -3,6 +3,7 @@
 
 use fairgrasp_env::ConfigError;
 
+use crate::recipe::contradictions;
 use crate::recipe::env::overlay;
 use crate::recipe::settings::Recipe;
 
@@ -53,7 +54,7 @@ impl Recipe {
         if let Some(c) = &recipe.curriculum {
             c.validate().map_err(file)?;
         }
-        crate::recipe::contradictions::check(&recipe).map_err(file)?;
+        contradictions::check(&recipe).map_err(file)?;
         Ok(recipe)
     }
 }

@@ -1,0 +1,136 @@
+//! A recipe file read and checked: [`Recipe::from_toml_file`], [`Recipe::validate`] (every
+//! number in its range, the tables' own rules, the env each preset gives, and no two settings
+//! that contradict each other, [`crate::recipe::contradictions`]), and why a file is refused.
+
+use std::path::Path;
+
+use fairgrasp_env::config::toml_lines;
+
+pub use crate::checkpoint::verify::MAX_TIMESTEPS;
+use crate::recipe::contradictions;
+use crate::recipe::env::{ENV_OVERRIDES, EnvFor, check_agent_env};
+use crate::recipe::settings::Recipe;
+use crate::recipe::snapshot::env_snapshot_of;
+
+/// The most parallel environments a run may step (each holds a physics world, ~1 MB).
+pub const MAX_ENVS: usize = 4096;
+/// The most threads a run may step them on.
+pub const MAX_THREADS: usize = 256;
+/// The most scenarios per evaluation.
+pub const MAX_EVAL_EPISODES: usize = 100_000;
+
+/// Why a recipe file could not be read or is refused; the message names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum RecipeError {
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
+    #[error("{0}")]
+    Invalid(String),
+}
+
+impl Recipe {
+    /// Reads and checks a TOML file.
+    pub fn from_toml_file(path: &Path) -> Result<Self, RecipeError> {
+        Self::from_toml_file_in(path, None)
+    }
+
+    /// [`Recipe::from_toml_file`] for a resume of the run in `run_dir`: a preset file is
+    /// taken from the run's copy of it (`env.toml`), wherever the command runs.
+    pub fn from_toml_file_in(path: &Path, run_dir: Option<&Path>) -> Result<Self, RecipeError> {
+        let text =
+            fairgrasp_types::fs::read_text_bounded(path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
+                .map_err(|source| RecipeError::Io {
+                    path: path.display().to_string(),
+                    source,
+                })?;
+        let mut config: Recipe = toml::from_str(&text).map_err(|e| {
+            let message = fairgrasp_env::config::validate::toml_error_message(&text, &e);
+            RecipeError::Invalid(format!("{}: {message}", path.display()))
+        })?;
+        if let Some(dir) = run_dir {
+            config.env_snapshot = env_snapshot_of(&config.preset, dir);
+        }
+        config.validate().map_err(|e| {
+            // An error in the `[env]` overrides names its field as `env.<path>`: cite its line.
+            let line = e
+                .strip_prefix(ENV_OVERRIDES)
+                .and_then(|rest| rest.strip_prefix(": "))
+                .and_then(|rest| rest.split([' ', ':']).next())
+                .and_then(|field| toml_lines::line_of_path(&text, field));
+            match line {
+                Some(l) => RecipeError::Invalid(format!("{}: line {l}: {e}", path.display())),
+                None => RecipeError::Invalid(format!("{}: {e}", path.display())),
+            }
+        })?;
+        Ok(config)
+    }
+
+    /// Checks every part; the message names the field, the value and the allowed range.
+    pub fn validate(&self) -> Result<(), String> {
+        if let Some((field, value, rule)) = fairgrasp_env::config::validate::first_bad_number(self)
+        {
+            return Err(format!("{field} = {value}: {rule}"));
+        }
+        if !(1..=MAX_ENVS).contains(&self.n_envs) {
+            return Err(format!(
+                "n_envs = {}: must be in 1..={MAX_ENVS}",
+                self.n_envs
+            ));
+        }
+        if !(1..=MAX_THREADS).contains(&self.threads) {
+            return Err(format!(
+                "threads = {}: must be in 1..={MAX_THREADS}",
+                self.threads
+            ));
+        }
+        if !(1..=MAX_TIMESTEPS).contains(&self.total_timesteps) {
+            return Err(format!(
+                "total_timesteps = {}: must be in 1..={MAX_TIMESTEPS}",
+                self.total_timesteps
+            ));
+        }
+        if let Some(t) = self.max_wall_time_s
+            && (t.is_nan() || t <= 0.0 || t > 1e6)
+        {
+            return Err(format!(
+                "max_wall_time_s = {t}: must be in (0, 1e6] seconds, or left out"
+            ));
+        }
+        if !(1..=MAX_EVAL_EPISODES).contains(&self.eval_episodes) {
+            return Err(format!(
+                "eval_episodes = {}: must be in 1..={MAX_EVAL_EPISODES} (the run's evaluations and its final one)",
+                self.eval_episodes
+            ));
+        }
+        self.model.check()?;
+        self.agent.check()?;
+        self.ppo
+            .validate(self.n_envs)
+            .map_err(|e| format!("ppo: {e}"))?;
+        if let Some(c) = &self.curriculum {
+            c.validate()?;
+        }
+        if !self.mix.is_empty() {
+            let presets = self.mix.len() + 1;
+            if self.curriculum.is_some() {
+                return Err("mix: a run on several presets cannot also have a [curriculum] (it stages one preset's randomisation)".into());
+            }
+            if self.n_envs < presets {
+                return Err(format!(
+                    "mix: {presets} presets need n_envs ≥ {presets} (one env each at least), got {}",
+                    self.n_envs
+                ));
+            }
+        }
+        if let Some(k) = &self.kickstart {
+            k.check(self.mix.len() + 1)?;
+        }
+        for env in self.env_configs(EnvFor::Training)? {
+            check_agent_env(&env)?;
+        }
+        contradictions::check(self)
+    }
+}
