@@ -14,9 +14,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::agent_env::AgentEnv;
+use crate::args::{checked_action, env_config, value_error};
 use crate::info::info_dict;
 use crate::setup::Setup;
-use crate::args::{checked_action, env_config, value_error};
 
 /// One step's result: observation, reward, terminated, truncated, info.
 type StepTuple<'py> = (

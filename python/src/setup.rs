@@ -162,8 +162,7 @@ pub(crate) fn recipe_names() -> Vec<&'static str> {
 /// (`fairgrasp_eval::recipes::task_residual_recipe`); an unknown preset is a ValueError.
 #[pyfunction]
 pub(crate) fn task_residual_recipe(preset: &str) -> PyResult<&'static str> {
-    let config = fairgrasp_env::config::presets::load(preset)
-        .map_err(crate::args::value_error)?;
+    let config = fairgrasp_env::config::presets::load(preset).map_err(crate::args::value_error)?;
     let place = config.task.kind == fairgrasp_env::config::TaskKind::Place;
     Ok(recipes::task_residual_recipe(preset, place))
 }

@@ -12,8 +12,8 @@ use fairgrasp_rl::run::train::{Progress, TrainConfig, train_with};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::info::to_py;
 use crate::args::value_error;
+use crate::info::to_py;
 
 /// The training config of `config` (a shipped recipe's name or a training config's path) with
 /// `overrides` (JSON: any of the config's keys; tables merge key by key) laid over it, checked

@@ -11,10 +11,10 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::agent_vec::AgentVecEnv;
+use crate::args::value_error;
 use crate::env::action7;
 use crate::info::info_dict;
 use crate::setup::Setup;
-use crate::args::value_error;
 
 /// What `step` returns: obs [n, dim], rewards [n], terminated [n], truncated [n], the infos as
 /// arrays, and the ended episodes as a list of (env index, last observation, last info).

@@ -4,7 +4,7 @@
 //! - [`settings`]: the [`Recipe`] itself and its env configurations ([`Recipe::env_configs`],
 //!   the one way from a recipe to its envs); [`read`]: a recipe file read and checked
 //!   ([`Recipe::from_toml_file`], [`Recipe::validate`]).
-//! - [`env`]: a preset's env as evaluations see it, and with the recipe's `[env]` table laid
+//! - [`env`](mod@env): a preset's env as evaluations see it, and with the recipe's `[env]` table laid
 //!   over it for training.
 //! - [`overrides`]: a recipe with keyword overrides on its env-facing keys (Python's envs).
 //! - [`ppo`]: the `[ppo]` table, PPO's hyper-parameters; [`kickstart`]: the `[kickstart]` table,

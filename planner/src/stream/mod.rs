@@ -18,10 +18,9 @@ pub mod resample;
 pub mod servo;
 
 pub use check::{Quantity, StreamViolation, check_stream};
-pub use playback::{PlaybackError, PlaybackReport, play};
 pub use limits::{
     DEFAULT_PERIOD_SEC, MAX_ACCELERATION, MAX_STEP_DEG, PERIOD_RANGE_SEC, StreamLimits,
 };
+pub use playback::{PlaybackError, PlaybackReport, play};
 pub use resample::{EpisodeJoints, Resampled, resample};
 pub use servo::{GripperEvent, ServoStream};
-

@@ -3,6 +3,4 @@
 //! names it, and its limits.
 
 pub use fairgrasp_eval::recipe::Recipe as TrainConfig;
-pub use fairgrasp_eval::recipe::read::{
-    MAX_ENVS, MAX_EVAL_EPISODES, MAX_THREADS, MAX_TIMESTEPS,
-};
+pub use fairgrasp_eval::recipe::read::{MAX_ENVS, MAX_EVAL_EPISODES, MAX_THREADS, MAX_TIMESTEPS};

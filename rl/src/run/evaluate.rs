@@ -23,7 +23,9 @@ pub fn evaluate_model(
     model: &ActorCritic,
     n: usize,
 ) -> Result<EvalReport, TrainError> {
-    let env_configs = config.env_configs(EnvFor::Evaluation).map_err(TrainError::Config)?;
+    let env_configs = config
+        .env_configs(EnvFor::Evaluation)
+        .map_err(TrainError::Config)?;
     let k = env_configs.len();
     let mut results = Vec::with_capacity(n);
     for (j, env_config) in env_configs.iter().enumerate() {

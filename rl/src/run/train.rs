@@ -258,7 +258,9 @@ pub fn train_with(
     // The teachers load before the run folder is touched: a wrong one changes nothing there.
     let kickstart = match &config.kickstart {
         Some(k) => {
-            let envs = config.env_configs(EnvFor::Evaluation).map_err(TrainError::Config)?;
+            let envs = config
+                .env_configs(EnvFor::Evaluation)
+                .map_err(TrainError::Config)?;
             Some(kickstart::load(k, &config.agent, &envs)?)
         }
         None => None,
