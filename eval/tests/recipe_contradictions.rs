@@ -119,17 +119,13 @@ fn arm_settings_a_pure_tcp_agent_overrides_are_refused() {
 }
 
 #[test]
-fn a_warm_up_as_long_as_the_run_is_refused() {
-    // 4 envs × 512 steps: 2048 steps per update, so 4096 steps are 2 updates.
-    names_both(
-        "total_timesteps = 4096\ncritic_warmup_updates = 2\nn_envs = 4\n[ppo]\nn_steps = 512\n",
-        "critic_warmup_updates = 2",
-        "total_timesteps = 4096",
-    );
+fn a_warm_up_as_long_as_a_shortened_run_is_no_contradiction() {
+    // `train --timesteps 2048` shortens a recipe for a smoke run (the guides, the Python tests):
+    // its critic-only updates may then cover the run; that is asked for, not contradictory.
     let text =
-        "total_timesteps = 4097\ncritic_warmup_updates = 2\nn_envs = 4\n[ppo]\nn_steps = 512\n";
+        "total_timesteps = 2048\ncritic_warmup_updates = 5\nn_envs = 4\n[ppo]\nn_steps = 512\n";
     let recipe: Recipe = toml::from_str(text).unwrap();
-    assert_eq!(recipe.validate(), Ok(()), "3 updates, 2 of them warm-up");
+    assert_eq!(recipe.validate(), Ok(()));
 }
 
 #[test]

@@ -13,8 +13,7 @@ use crate::recipe::settings::Recipe;
 /// The first contradiction of `recipe`, naming both keys and how to resolve it.
 pub fn check(recipe: &Recipe) -> Result<(), String> {
     agent_keys(&recipe.agent)?;
-    arm_keys(recipe)?;
-    warmup(recipe)
+    arm_keys(recipe)
 }
 
 /// Keys of `[agent]` that its `mode` or `action_space` leaves unused.
@@ -121,19 +120,4 @@ fn action_space_name(space: ActionSpace) -> &'static str {
         ActionSpace::Joint => "joint",
         ActionSpace::Tcp => "tcp",
     }
-}
-
-/// A warm-up that covers the whole run leaves the actor untrained.
-fn warmup(recipe: &Recipe) -> Result<(), String> {
-    let per_update = (recipe.ppo.n_steps * recipe.n_envs).max(1) as u64;
-    let updates = recipe.total_timesteps.div_ceil(per_update);
-    if recipe.critic_warmup_updates >= updates && recipe.critic_warmup_updates > 0 {
-        return Err(format!(
-            "critic_warmup_updates = {} contradicts total_timesteps = {}: the run has {updates} \
-             update(s) of {per_update} steps (n_envs × ppo.n_steps), all of them with the actor \
-             frozen, so the policy would never train (fewer warm-up updates or more timesteps)",
-            recipe.critic_warmup_updates, recipe.total_timesteps
-        ));
-    }
-    Ok(())
 }
