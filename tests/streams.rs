@@ -4,14 +4,13 @@
 use std::os::unix::process::ExitStatusExt;
 use std::process::{Command, Stdio};
 
-fn fairgrasp() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-}
+mod common;
+use common::command;
 
 #[test]
 fn a_closed_pipe_ends_the_command_quietly() {
     // The read end is closed before the command prints anything: its baseline runs first.
-    let mut child = fairgrasp()
+    let mut child = command()
         .args([
             "baseline",
             "--preset",
@@ -40,7 +39,7 @@ fn a_full_stdout_is_a_one_line_error() {
         .write(true)
         .open("/dev/full")
         .unwrap();
-    let out = fairgrasp()
+    let out = command()
         .args(["fk", "--joints", "0", "0", "0", "0", "0", "0", "--json"])
         .stdout(full)
         .output()
@@ -65,7 +64,7 @@ fn scratch(name: &str) -> std::path::PathBuf {
 
 /// Runs fairgrasp with `args` and its stdout a pipe whose read end is closed at once.
 fn with_stdout_closed(args: &[&str]) -> std::process::Output {
-    let mut child = fairgrasp()
+    let mut child = command()
         .args(args)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -174,7 +173,7 @@ fn a_full_disk_is_named_in_the_message() {
         );
         return;
     };
-    let out = fairgrasp()
+    let out = command()
         .args([
             "compare",
             "--preset",
