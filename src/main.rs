@@ -24,7 +24,18 @@ fn main() -> ExitCode {
     };
     // A command that writes files finishes them even when nobody reads its stdout.
     let relay = args.writes_files().then(streams::Relay::start).flatten();
-    let (code, succeeded) = match cli::run(args) {
+    // A panic still delivers what the command printed before it.
+    let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| cli::run(args)));
+    let run = match (run, relay) {
+        (Ok(run), relay) => (run, relay),
+        (Err(panic), Some(relay)) => {
+            relay.finish(ExitCode::FAILURE, false);
+            std::panic::resume_unwind(panic)
+        }
+        (Err(panic), None) => std::panic::resume_unwind(panic),
+    };
+    let (run, relay) = run;
+    let (code, succeeded) = match run {
         Ok(code) => (code, true),
         Err(err) => {
             eprintln!("error: {}", error_message::render(&err));
