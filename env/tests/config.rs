@@ -94,6 +94,11 @@ fn the_place_tasks_contact_conditions_and_search_tuning_are_refused_out_of_range
             "task.place.search.speed",
             "[0.001, 0.1] m/s",
         ),
+        (
+            "search = { floor_band = 0.02 }",
+            "task.place.search.floor_band",
+            "wall_height",
+        ),
         ("search = { pich = 0.002 }", "pich", "unknown field"),
     ] {
         let m = refused(&format!("[task]\nkind = \"place\"\n[task.place]\n{toml}\n"));

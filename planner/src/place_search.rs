@@ -37,6 +37,9 @@ pub struct SearchParams {
     /// The largest spiral radius searched before giving up (the cube is released where it is)
     /// \[m\].
     pub max_radius: f64,
+    /// A touch within this height above the floor's depth counts as the cube on the floor (it
+    /// is in); a higher one is the rim, and the spiral starts \[m\]. `None`: half the wall.
+    pub floor_band: Option<f64>,
 }
 
 impl Default for SearchParams {
@@ -51,6 +54,7 @@ impl Default for SearchParams {
             pitch: tuned.pitch,
             speed: tuned.speed,
             max_radius: 0.009,
+            floor_band: tuned.floor_band,
         }
     }
 }
@@ -63,6 +67,7 @@ impl SearchParams {
             contact_force: t.contact_force,
             pitch: t.pitch,
             speed: t.speed,
+            floor_band: t.floor_band,
             ..Self::default()
         }
     }
@@ -119,7 +124,7 @@ impl ForceSearch {
             params,
             carry,
             floor_depth,
-            rim_below: floor_depth - 0.5 * wall_height,
+            rim_below: floor_depth - params.floor_band.unwrap_or(0.5 * wall_height),
             wall_height,
             stage: Stage::Descend { depth: 0.0 },
             found_xy: [0.0; 2],

@@ -107,6 +107,11 @@ pub struct BaselineArgs {
     /// go where it is [m].
     #[arg(long, value_name = "M", value_parser = crate::cli::args::finite_number)]
     search_max_radius: Option<f64>,
+    /// With `--script force_search`: a touch within this height above the pocket's floor counts
+    /// as the cube on the floor, a higher one as the rim (the spiral starts) [m]; default: the
+    /// preset's, else half the wall.
+    #[arg(long, value_name = "M", value_parser = crate::cli::args::finite_number)]
+    search_floor_band: Option<f64>,
 }
 
 impl BaselineArgs {
@@ -156,6 +161,15 @@ impl BaselineArgs {
                 }
                 *slot = v;
             }
+        }
+        if let Some(band) = self.search_floor_band {
+            let wall = config.task.place.wall_height;
+            if !(band > 0.0 && band <= wall) {
+                anyhow::bail!(
+                    "--search-floor-band {band}: must be in (0, {wall}] (the wall's height)"
+                );
+            }
+            p.floor_band = Some(band);
         }
         Ok(p)
     }

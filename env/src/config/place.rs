@@ -85,6 +85,9 @@ pub struct SearchTuning {
     pub pitch: f64,
     /// The spiral's speed along its path \[m/s\].
     pub speed: f64,
+    /// A touch within this height above the pocket's floor counts as the cube on the floor;
+    /// a higher one is the rim \[m\] (`None`: half the wall).
+    pub floor_band: Option<f64>,
 }
 
 impl Default for SearchTuning {
@@ -93,6 +96,7 @@ impl Default for SearchTuning {
             contact_force: 1.5,
             pitch: 0.003,
             speed: 0.01,
+            floor_band: None,
         }
     }
 }

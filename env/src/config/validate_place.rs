@@ -120,6 +120,14 @@ pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigE
     ] {
         check((lo..=hi).contains(&value), field, value, rule)?;
     }
+    if let Some(band) = s.floor_band {
+        check(
+            band > 0.0 && band <= p.wall_height,
+            "task.place.search.floor_band",
+            band,
+            "must be in (0, task.place.wall_height] m",
+        )?;
+    }
     if let Some(friction) = &p.fixture_friction {
         check_range(friction, "task.place.fixture_friction", 0.0)?;
         check(
