@@ -266,6 +266,13 @@ impl GraspEnv {
 
     /// The turn of the cube in the grip (the place task's `grip_tilt`), if it is due.
     fn tilt_if_due(&mut self) {
+        let drawn = self
+            .scenario
+            .and_then(|s| s.fixture)
+            .map_or(0.0, |f| f.grip_tilt);
+        if drawn == 0.0 || self.grip_tilt.event().is_some() {
+            return; // nothing to turn: skip the per-step facts
+        }
         let Some(facts) = self.place_facts() else {
             return;
         };
