@@ -9,6 +9,14 @@ const MAX_GRIP_TILT: f64 = 0.35;
 
 /// Refuses a fixture or criterion that cannot mean what it says, naming the field.
 pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
+    check_fixture(p, cube_size)?;
+    check_observation_noise(p)?;
+    check_contact_conditions(p)?;
+    check_search(p)
+}
+
+/// The pocket's sizes, the seated and clear criteria, the grasp, where the fixture stands.
+fn check_fixture(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
     for (value, field, lo, hi, rule) in [
         (
             p.clearance,
@@ -63,18 +71,6 @@ pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigE
         check(value > lo && value <= hi, field, value, rule)?;
     }
     check(
-        (0.0..=0.05).contains(&p.observed_position_noise),
-        "task.place.observed_position_noise",
-        p.observed_position_noise,
-        "must be in [0, 0.05] m",
-    )?;
-    check(
-        (0.0..=0.5).contains(&p.observed_yaw_noise),
-        "task.place.observed_yaw_noise",
-        p.observed_yaw_noise,
-        "must be in [0, 0.5] rad",
-    )?;
-    check(
         p.grasp_height.abs() < 0.5 * cube_size,
         "task.place.grasp_height",
         p.grasp_height,
@@ -87,6 +83,31 @@ pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigE
         "must be within 2 m of the base [m]",
     )?;
     check_range(&p.fixture_radius, "task.place.fixture_radius", 0.0)?;
+    check_range(
+        &p.fixture_angle,
+        "task.place.fixture_angle",
+        -std::f64::consts::PI,
+    )
+}
+
+/// How well the cell knows the fixture's pose.
+fn check_observation_noise(p: &PlaceConfig) -> Result<(), ConfigError> {
+    check(
+        (0.0..=0.05).contains(&p.observed_position_noise),
+        "task.place.observed_position_noise",
+        p.observed_position_noise,
+        "must be in [0, 0.05] m",
+    )?;
+    check(
+        (0.0..=0.5).contains(&p.observed_yaw_noise),
+        "task.place.observed_yaw_noise",
+        p.observed_yaw_noise,
+        "must be in [0, 0.5] rad",
+    )
+}
+
+/// The grip's tilt and the fixture's friction, drawn per episode.
+fn check_contact_conditions(p: &PlaceConfig) -> Result<(), ConfigError> {
     check_range(&p.grip_tilt, "task.place.grip_tilt", 0.0)?;
     check(
         p.grip_tilt[1] <= MAX_GRIP_TILT,
@@ -94,6 +115,20 @@ pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigE
         p.grip_tilt,
         "must be within [0, 0.35] rad (20°: more and the turned cube reaches the palm)",
     )?;
+    if let Some(friction) = &p.fixture_friction {
+        check_range(friction, "task.place.fixture_friction", 0.0)?;
+        check(
+            friction[1] <= 2.0,
+            "task.place.fixture_friction",
+            friction,
+            "must be within [0, 2] (a friction coefficient)",
+        )?;
+    }
+    Ok(())
+}
+
+/// The force search's tuned settings (`[task.place.search]`).
+fn check_search(p: &PlaceConfig) -> Result<(), ConfigError> {
     let s = &p.search;
     for (value, field, lo, hi, rule) in [
         (
@@ -128,18 +163,5 @@ pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigE
             "must be in (0, task.place.wall_height] m",
         )?;
     }
-    if let Some(friction) = &p.fixture_friction {
-        check_range(friction, "task.place.fixture_friction", 0.0)?;
-        check(
-            friction[1] <= 2.0,
-            "task.place.fixture_friction",
-            friction,
-            "must be within [0, 2] (a friction coefficient)",
-        )?;
-    }
-    check_range(
-        &p.fixture_angle,
-        "task.place.fixture_angle",
-        -std::f64::consts::PI,
-    )
+    Ok(())
 }
