@@ -98,3 +98,45 @@ fn negative_numbers_and_endless_counts_are_refused_by_range_naming_the_flag() {
         );
     }
 }
+
+#[test]
+fn a_search_flag_out_of_range_is_refused_by_the_presets_rule_naming_the_setting() {
+    for (flag, value, setting, rule) in [
+        (
+            "--search-force",
+            "50",
+            "task.place.search.contact_force",
+            "[0.1, 30] N",
+        ),
+        (
+            "--search-floor-band",
+            "0.02",
+            "task.place.search.floor_band",
+            "wall_height",
+        ),
+        (
+            "--search-max-radius",
+            "0.2",
+            "--search-max-radius",
+            "[0.001, 0.05]",
+        ),
+    ] {
+        let out = fairgrasp(&[
+            "baseline",
+            "--preset",
+            "place",
+            "--script",
+            "force_search",
+            "--episodes",
+            "1",
+            flag,
+            value,
+        ]);
+        let err = common::stderr(&out);
+        assert!(!out.status.success(), "{flag} {value} accepted");
+        assert!(
+            err.contains(&format!("{flag} {value}")) && err.contains(setting) && err.contains(rule),
+            "{flag}: {err}"
+        );
+    }
+}

@@ -116,30 +116,31 @@ pub struct BaselineArgs {
 
 impl BaselineArgs {
     /// The force search's parameters: the preset's tuned ones with the `--search-*` flags given.
+    /// The flags a family's tuning holds (force, pitch, speed, floor band) are checked by the
+    /// preset's own rule (`[task.place.search]`); admittance and largest radius here.
     fn search_params(&self, config: &EnvConfig) -> anyhow::Result<SearchParams> {
-        let mut p = SearchParams::tuned_for(config);
+        let mut tuned = config.clone();
+        let t = &mut tuned.task.place.search;
+        let mut given_flags = Vec::new();
+        for (flag, given, slot) in [
+            ("--search-force", self.search_force, &mut t.contact_force),
+            ("--search-pitch", self.search_pitch, &mut t.pitch),
+            ("--search-speed", self.search_speed, &mut t.speed),
+        ] {
+            if let Some(v) = given {
+                *slot = v;
+                given_flags.push(format!("{flag} {v}"));
+            }
+        }
+        if let Some(band) = self.search_floor_band {
+            t.floor_band = Some(band);
+            given_flags.push(format!("--search-floor-band {band}"));
+        }
+        tuned
+            .validate()
+            .map_err(|e| anyhow::anyhow!("{}: {e}", given_flags.join(", ")))?;
+        let mut p = SearchParams::tuned_for(&tuned);
         for (flag, given, slot, lo, hi) in [
-            (
-                "--search-force",
-                self.search_force,
-                &mut p.contact_force,
-                0.1,
-                30.0,
-            ),
-            (
-                "--search-pitch",
-                self.search_pitch,
-                &mut p.pitch,
-                0.0005,
-                0.02,
-            ),
-            (
-                "--search-speed",
-                self.search_speed,
-                &mut p.speed,
-                0.001,
-                0.1,
-            ),
             (
                 "--search-admittance",
                 self.search_admittance,
@@ -161,15 +162,6 @@ impl BaselineArgs {
                 }
                 *slot = v;
             }
-        }
-        if let Some(band) = self.search_floor_band {
-            let wall = config.task.place.wall_height;
-            if !(band > 0.0 && band <= wall) {
-                anyhow::bail!(
-                    "--search-floor-band {band}: must be in (0, {wall}] (the wall's height)"
-                );
-            }
-            p.floor_band = Some(band);
         }
         Ok(p)
     }
