@@ -3,6 +3,9 @@
 # Usage: scripts/python-package-test.sh [PYTEST_ARGS...]
 #   venv: $FAIRGRASP_PY_VENV (default target/python-package-venv), created on first use from
 #   scripts/requirements-python-package.txt (needs python3 with venv and PyPI the first time).
+#   A suite with packages of its own sets FAIRGRASP_PY_REQUIREMENTS (a requirements file; give it
+#   its own FAIRGRASP_PY_VENV too) and FAIRGRASP_PY_TESTS (the folder pytest runs; default
+#   python/tests).
 #   The extension: with FAIRGRASP_NATIVE_LIB=path/to/lib_native.so (what `cargo test
 #   --workspace` builds; tests/python_package.rs passes it) the package is staged from python/
 #   with that library, so nothing is compiled again; without it, `maturin develop --profile dev`
@@ -10,7 +13,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 venv="${FAIRGRASP_PY_VENV:-$root/target/python-package-venv}"
-requirements="$root/scripts/requirements-python-package.txt"
+requirements="${FAIRGRASP_PY_REQUIREMENTS:-$root/scripts/requirements-python-package.txt}"
 python="$venv/bin/python"
 stamp="$venv/.fairgrasp-requirements"
 if ! [[ -x "$python" && -f "$stamp" ]] || ! cmp -s "$stamp" "$requirements"; then
@@ -31,4 +34,4 @@ else
     VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" "$venv/bin/maturin" develop --quiet --profile dev \
         --manifest-path python/Cargo.toml >&2
 fi
-exec "$python" -m pytest -q -p no:cacheprovider python/tests "$@"
+exec "$python" -m pytest -q -p no:cacheprovider "${FAIRGRASP_PY_TESTS:-python/tests}" "$@"
