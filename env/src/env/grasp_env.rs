@@ -9,18 +9,23 @@
 use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
 use crate::config::{ActionSpace, ArmSimulation, EnvConfig};
-use crate::env::free_space::FreeSpace;
+use crate::env::drive::{Drive, check_setpoints};
+use crate::env::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
 use crate::env::obs::Observation;
 pub use crate::env::step::{Action, EnvError, Info, ServoSetpoint, Step};
+use crate::env::task_facts::{collision_failure, place_facts};
 use crate::robot::Robot;
 use crate::robot::tcp_action::TaskSpaceAction;
 use crate::scenario::Scenario;
 use crate::scenario::grip_tilt::{GripTiltEvent, GripTiltHook, HandState};
 use crate::scenario::nudge::{NudgeEvent, NudgeHook};
+use crate::scenario::perception::{observe_fixture, observe_object, wrist_view};
 use crate::sim::Sim;
 use crate::sim::contacts::{ContactReport, PairKind, TouchingPair};
-use crate::task::Failure;
-use crate::task::episode::EpisodeTracker;
+use crate::sim::part::Part;
+use crate::task::episode::{Ending, EpisodeTracker, StepFacts};
+use crate::task::state::TaskState;
+use crate::task::{Failure, Judgement, judge, judge_protective_stop, void_success_after_collision};
 use fairgrasp_kinematics::{ArmModel, Pose};
 use nalgebra::Isometry3;
 use rapier3d::prelude::PhysicsWorld;
@@ -29,9 +34,6 @@ use crate::sim::scene::SceneHandles;
 
 /// Physics substeps run at reset so the object settles on the table.
 const SETTLE_SUBSTEPS: usize = 24;
-
-mod step_parts;
-use step_parts::{Drive, collision_failure};
 
 /// The FR3 grasping environment: the robot, the task and the episode's scenario, composed over
 /// the simulator facade.
@@ -216,30 +218,6 @@ impl GraspEnv {
         (self.observe([0.0; 6], &self.contacts), info)
     }
 
-    /// One physics step; returns why the robot stopped if a robot contact with the cube or the
-    /// table pushed harder than `task.protective_stop_force` \[N\] in it: a protective stop, or,
-    /// on the table, the collision that any robot–table touch is.
-    fn physics_substep(&mut self, joint_command: &[f64; 6]) -> Option<Failure> {
-        self.robot
-            .substep(&mut self.sim, joint_command, self.config.physics.dt);
-        self.sim.step();
-        self.robot.sync(&self.sim);
-        let contact = self.sim.strongest_robot_contact()?;
-        (contact.force > self.config.task.protective_stop_force).then(|| {
-            let model = &self.robot.model;
-            let (robot, other) = (contact.robot.name(model), contact.other.name(model));
-            if contact.other == crate::sim::scene::Part::Table {
-                collision_failure(model, contact.robot, contact.other)
-            } else {
-                Failure::ProtectiveStop {
-                    robot_part: robot.to_string(),
-                    other_part: other.to_string(),
-                    force_n: contact.force,
-                }
-            }
-        })
-    }
-
     /// Applies one action for `physics.substeps` physics steps.
     pub fn step(&mut self, action: &Action) -> Result<Step, EnvError> {
         if self.done {
@@ -250,9 +228,23 @@ impl GraspEnv {
         self.advance(Drive::Velocity(command))
     }
 
+    /// One env step that tracks a joint stream, as a controller's servo mode does: one
+    /// [`ServoSetpoint`] per physics substep (`physics.substeps` of them). The arm's rate limiter
+    /// (FR3 velocity limits, `arm.max_acceleration`) still applies, so a setpoint it cannot
+    /// follow is reached late, never jumped to. Every such step runs physics (no free-space
+    /// shortcut). Judged, observed and recorded like [`GraspEnv::step`].
+    pub fn step_servo(&mut self, setpoints: &[ServoSetpoint]) -> Result<Step, EnvError> {
+        if self.done {
+            return Err(EnvError::EpisodeOver);
+        }
+        check_setpoints(setpoints, self.config.physics.substeps)?;
+        self.scenario_events_before_step();
+        self.advance(Drive::Servo(setpoints))
+    }
+
     /// What the scenario does to the cube before a step's action, whatever drives the arm: the
     /// `nudged` family's push, the place task's turn in the grip.
-    pub(super) fn scenario_events_before_step(&mut self) {
+    fn scenario_events_before_step(&mut self) {
         self.push_if_due();
         self.tilt_if_due();
     }
@@ -273,7 +265,7 @@ impl GraspEnv {
         if drawn == 0.0 || self.grip_tilt.event().is_some() {
             return; // nothing to turn: skip the per-step facts
         }
-        let Some(facts) = self.place_facts() else {
+        let Some(facts) = place_facts(&self.sim, &self.config.scene) else {
             return;
         };
         let tcp = self.robot.tcp_in_world();
@@ -288,51 +280,39 @@ impl GraspEnv {
         (self.grip_tilt).before_step(self.steps, scenario, &hand, &mut self.sim);
     }
 
+    /// Checks an action and hands it to the robot: returns the joint-velocity command \[rad/s\]
+    /// (from joint velocities, or from the TCP command through the Jacobian in `tcp` mode).
+    fn apply_action(&mut self, action: &Action) -> Result<[f64; 6], EnvError> {
+        if let Some((index, &value)) = action.0.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(EnvError::NonFiniteAction { index, value });
+        }
+        let clipped = action.0.map(|v| v.clamp(-1.0, 1.0));
+        let arm = &self.config.arm;
+        let (qd, gripper) = match &self.task_space {
+            None => (
+                std::array::from_fn(|i| clipped[i] * arm.action_scale),
+                clipped[6],
+            ),
+            Some(task_space) => task_space.joint_command(&self.robot.q, &clipped),
+        };
+        self.robot.gripper_command = gripper;
+        Ok(qd)
+    }
+
     /// Moves the robot for one env step (`physics.substeps` physics steps) as `drive` says, then
     /// judges, observes and records the step.
     fn advance(&mut self, drive: Drive<'_>) -> Result<Step, EnvError> {
         let q_before = self.robot.q;
-        let free = match drive {
-            Drive::Velocity(command) => self.free_step(&command),
-            Drive::Servo(_) => None,
-        };
-        let simulated = free.is_none();
-        let mut stop = None;
-        if simulated {
-            if !self.sim_in_sync {
-                self.robot.hand_over(&mut self.sim, self.config.physics.dt);
-                self.sim_in_sync = true;
-            }
-            // The protective stop is watched every substep and halts the arm at once.
-            stop = (0..self.config.physics.substeps).find_map(|j| {
-                let command = drive.command(j, &self.robot.q_ref);
-                if let Some(gripper) = drive.gripper(j) {
-                    self.robot.gripper_command = gripper.clamp(-1.0, 1.0);
-                }
-                self.physics_substep(&command)
-            });
-        }
+        let (free, stop) = self.move_robot(drive);
         self.steps += 1;
-        let env_dt = self.config.physics.dt * self.config.physics.substeps as f64;
-        let velocities = std::array::from_fn(|i| (self.robot.q[i] - q_before[i]) / env_dt);
-        let mut info = Info {
+        let info = Info {
             step: self.steps,
             scenario: self.scenario,
-            simulated,
+            simulated: free.is_none(),
             ..Info::default()
         };
         if let Some(fault) = self.sim.fault().or_else(|| self.robot.fault()) {
-            self.done = true;
-            info.physics_fault = Some(fault);
-            let obs = self.observe([0.0; 6], &ContactReport::default());
-            self.track(&obs, 0.0, &mut info);
-            return Ok(Step {
-                obs,
-                reward: 0.0,
-                terminated: false,
-                truncated: true,
-                info,
-            });
+            return Ok(self.end_on_fault(fault, info));
         }
         // One contact report serves the observation and the collision check.
         let contacts = match free {
@@ -340,25 +320,240 @@ impl GraspEnv {
             None => self.simulated_contacts(),
         };
         self.contacts = contacts.clone();
+        let env_dt = self.config.physics.dt * self.config.physics.substeps as f64;
+        let velocities = std::array::from_fn(|i| (self.robot.q[i] - q_before[i]) / env_dt);
         let obs = self.observe(velocities, &contacts);
+        Ok(self.judged_step(obs, &contacts, stop, info))
+    }
+
+    /// Moves the arm for one env step: a free-space step when one is allowed (its contact
+    /// report returned), else `physics.substeps` physics steps with the protective stop watched
+    /// after each; a stop halts the arm at once and is returned.
+    fn move_robot(&mut self, drive: Drive<'_>) -> (Option<ContactReport>, Option<Failure>) {
+        if let Drive::Velocity(command) = drive
+            && let Some(free) = self.free_step(&command)
+        {
+            return (Some(free), None);
+        }
+        if !self.sim_in_sync {
+            self.robot.hand_over(&mut self.sim, self.config.physics.dt);
+            self.sim_in_sync = true;
+        }
+        let stop = (0..self.config.physics.substeps).find_map(|j| {
+            let command = drive.command(j, &self.robot.q_ref);
+            if let Some(gripper) = drive.gripper(j) {
+                self.robot.gripper_command = gripper.clamp(-1.0, 1.0);
+            }
+            self.physics_substep(&command)
+        });
+        (None, stop)
+    }
+
+    /// A free-space step ([`FreeSpace`]) if the config allows it, the arm is the servo arm, the
+    /// object rests and the previous step found no collision; `None` when the step must run
+    /// physics (the robot is then unchanged).
+    fn free_step(&mut self, command: &[f64; 6]) -> Option<ContactReport> {
+        let allowed = self.config.physics.free_space
+            && self.robot.kind == ArmSimulation::Servo
+            && self.contacts.collision.is_none()
+            && self.sim.object_at_rest(REST_SPEED, REST_TURN_RATE);
+        if !allowed {
+            return None;
+        }
+        let report = self.free_space.try_step(
+            &mut self.robot,
+            &self.sim.object_pose(),
+            command,
+            self.config.physics.dt,
+            self.config.physics.substeps,
+        )?;
+        self.sim_in_sync = false;
+        Some(report)
+    }
+
+    /// One physics step; returns why the robot stopped if a robot contact with the cube or the
+    /// table pushed harder than `task.protective_stop_force` \[N\] in it: a protective stop, or,
+    /// on the table, the collision that any robot–table touch is.
+    fn physics_substep(&mut self, joint_command: &[f64; 6]) -> Option<Failure> {
+        self.robot
+            .substep(&mut self.sim, joint_command, self.config.physics.dt);
+        self.sim.step();
+        self.robot.sync(&self.sim);
+        let contact = self.sim.strongest_robot_contact()?;
+        (contact.force > self.config.task.protective_stop_force).then(|| {
+            let model = &self.robot.model;
+            if contact.other == Part::Table {
+                collision_failure(model, contact.robot, contact.other)
+            } else {
+                Failure::ProtectiveStop {
+                    robot_part: contact.robot.name(model).to_string(),
+                    other_part: contact.other.name(model).to_string(),
+                    force_n: contact.force,
+                }
+            }
+        })
+    }
+
+    /// What the contacts say after a step that ran physics (or the reset): the narrow phase's
+    /// report and, for the servo arm, the pairs rapier leaves out (links and palm against each
+    /// other and the table) checked on the exact shapes; the deeper collision is the one
+    /// reported.
+    fn simulated_contacts(&mut self) -> ContactReport {
+        let mut report = self.sim.contacts();
+        if self.robot.kind == ArmSimulation::Servo
+            && let Some(found) = self.free_space.kinematic_collision(&self.robot)
+            && report.collision.is_none_or(|(_, _, depth)| found.2 > depth)
+        {
+            report.collision = Some(found);
+        }
+        report
+    }
+
+    /// The step a physics fault ended: truncated, unpaid, observed with no contacts, recorded.
+    fn end_on_fault(&mut self, fault: String, mut info: Info) -> Step {
+        self.done = true;
+        info.physics_fault = Some(fault);
+        let obs = self.observe([0.0; 6], &ContactReport::default());
+        self.track(&obs, 0.0, &mut info);
+        Step {
+            obs,
+            reward: 0.0,
+            terminated: false,
+            truncated: true,
+            info,
+        }
+    }
+
+    /// The step that reached `obs` with `contacts` (and the protective `stop`, if one tripped):
+    /// judged by the task, truncated at `task.max_steps`, recorded.
+    fn judged_step(
+        &mut self,
+        obs: Observation,
+        contacts: &ContactReport,
+        stop: Option<Failure>,
+        mut info: Info,
+    ) -> Step {
         let collision = contacts.collision.map(|(a, b, depth)| {
             info.collision_depth_m = Some(depth);
             collision_failure(&self.robot.model, a, b)
         });
-        let state = self.task_state(&contacts);
+        let state = self.task_state(contacts);
         let judgement = self.judge_step(&state, collision, stop);
         info.success = judgement.success;
         info.failure = judgement.failure;
         let truncated = !judgement.terminated && self.steps >= self.config.task.max_steps;
         self.done = judgement.terminated || truncated;
         self.track(&obs, judgement.reward, &mut info);
-        Ok(Step {
+        Step {
             obs,
             reward: judgement.reward,
             terminated: judgement.terminated,
             truncated,
             info,
-        })
+        }
+    }
+
+    /// The facts the task judges, in `world` \[m\].
+    fn task_state(&self, contacts: &ContactReport) -> TaskState {
+        let object = self.sim.object_pose().translation.vector;
+        let tcp = self.robot.tcp_in_world().xyz();
+        let base_xy = self.cell.mount.base_in_world.xyz();
+        let scene = &self.config.scene;
+        TaskState {
+            object: [object.x, object.y, object.z],
+            object_rest_z: self.object_rest_z,
+            tcp,
+            pad_contact: contacts.pad_contact,
+            gripper_opening: self.robot.gripper_opening(),
+            object_size: scene.cube_size,
+            table_height: scene.table_height,
+            object_xy_from_table_centre: [object.x - base_xy[0], object.y - base_xy[1]],
+            table_half_size: scene.table_size.map(|s| s / 2.0),
+            place: place_facts(&self.sim, scene),
+        }
+    }
+
+    /// The task's judgement of a step that ended in `state`, with the contact scan's
+    /// `collision` and the protective `stop` if one tripped (then always terminated); with
+    /// `task.collision_voids_success`, a success after an earlier collision is that failure.
+    fn judge_step(
+        &mut self,
+        state: &TaskState,
+        collision: Option<Failure>,
+        stop: Option<Failure>,
+    ) -> Judgement {
+        let task = &self.config.task;
+        let judgement = match stop {
+            Some(stop) => judge_protective_stop(state, collision, stop, task),
+            None => judge(state, collision, task),
+        };
+        void_success_after_collision(judgement, &mut self.first_collision, state, task)
+    }
+
+    /// Takes the step into the episode's tracker; on the terminal step (`self.done`), puts the
+    /// episode's record into `info`.
+    fn track(&mut self, obs: &Observation, reward: f64, info: &mut Info) {
+        self.tracker.observe(StepFacts {
+            pad_contact: obs.pad_contact,
+            object_z: self.object_in_base().xyz()[2],
+            gripper_opening: obs.gripper_opening,
+            reward,
+        });
+        if self.done {
+            let (seed, object_xy) = self
+                .scenario
+                .map_or((0, [0.0; 2]), |s| (s.seed, s.object_xy));
+            info.episode = Some(self.tracker.finish(Ending {
+                seed,
+                object_xy,
+                steps: self.steps,
+                success: info.success,
+                failure: info.failure.as_ref(),
+                physics_fault: info.physics_fault.is_some(),
+            }));
+        }
+    }
+
+    /// The observation: the robot's state and the object as the perception model reports it,
+    /// in `base_link`.
+    fn observe(&self, joint_velocities: [f64; 6], contacts: &ContactReport) -> Observation {
+        let tcp = self.robot.tcp_in_base().xyz();
+        let truth = self.object_in_base();
+        let mount = &self.cell.mount;
+        let seen = observe_object(mount, &truth, self.scenario.as_ref());
+        let wrist = self.config.randomization.wrist_camera.as_ref();
+        let wrist_camera = wrist_view(wrist, mount, &truth, tcp);
+        let drawn = self.scenario.as_ref().and_then(|s| s.fixture);
+        let fixture =
+            (self.fixture_in_base()).map(|truth| observe_fixture(mount, &truth, drawn.as_ref()));
+        let wrist_force = fixture.is_some().then(|| self.wrist_force(contacts));
+        Observation {
+            joints: self.robot.q,
+            joint_velocities,
+            object_rel_tcp: [0, 1, 2].map(|i| seen.position[i] - tcp[i]),
+            gripper_opening: self.robot.gripper_opening(),
+            object_yaw: seen.yaw,
+            tcp_position: tcp,
+            pad_contact: contacts.pad_contact,
+            wrist_camera,
+            fixture,
+            wrist_force,
+        }
+    }
+
+    /// The wrist force/torque sensor's reading in `base_link` \[N\] ([`Observation::wrist_force`]):
+    /// zero when the step ran no physics (the simulator's contacts are then stale).
+    fn wrist_force(&self, contacts: &ContactReport) -> [f64; 3] {
+        if !self.sim_in_sync {
+            return [0.0; 3];
+        }
+        let holding = contacts.pad_contact[0] && contacts.pad_contact[1];
+        let world = self.sim.wrist_load(holding);
+        self.cell
+            .mount
+            .base_in_world
+            .inverse()
+            .transform_vector(world)
     }
 
     /// The object pose in `base_link` (the truth, not what is observed).
@@ -427,6 +622,15 @@ impl GraspEnv {
             pairs.sort_by(|x, y| x.distance.total_cmp(&y.distance));
         }
         pairs
+    }
+
+    /// The fixture's true pose in `base_link` (its origin: the pocket's centre on the table
+    /// top), if the task has one.
+    pub fn fixture_in_base(&self) -> Option<Pose> {
+        let fixture = self.sim.fixture_pose()?;
+        Some(Pose {
+            iso: self.cell.mount.base_in_world.iso.inverse() * fixture,
+        })
     }
 
     /// Current joint angles \[rad\].

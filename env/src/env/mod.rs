@@ -7,10 +7,12 @@
 //! the time limit or a physics fault; never both.
 
 pub mod diagnostics;
+mod drive;
 pub mod free_space;
 pub mod grasp_env;
 pub mod obs;
 pub mod spaces;
 pub mod step;
+mod task_facts;
 
 pub use grasp_env::*;

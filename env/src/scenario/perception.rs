@@ -68,3 +68,23 @@ pub fn wrist_view(
         .sqrt();
     (distance <= range).then(|| true_object(mount, truth))
 }
+
+/// What is known of the place task's fixture whose true pose in `base_link` is `truth`: that
+/// pose moved by the scenario's error (`task.place.observed_*_noise`, drawn in the table
+/// frame); the truth when the scenario draws none (`fixture` is `None`).
+pub fn observe_fixture(
+    mount: &Mount,
+    truth: &Pose,
+    fixture: Option<&crate::scenario::fixture::FixturePose>,
+) -> ObservedObject {
+    let seen = true_object(mount, truth);
+    let Some(f) = fixture else {
+        return seen;
+    };
+    let e = &f.observed_xy_error;
+    let error = mount.table_in_base.transform_vector([e[0], e[1], 0.0]);
+    ObservedObject {
+        position: [0, 1, 2].map(|i| seen.position[i] + error[i]),
+        yaw: seen.yaw + f.observed_yaw_error,
+    }
+}
