@@ -1,9 +1,10 @@
-//! Which arm the env simulates: the FR3 (the only arm with the mass properties and collision
-//! capsules a simulation needs; see `docs/FR3.md`).
+//! Which arm the env simulates: the config's [`SIMULATED_ARM`], the FR3 (see `docs/FR3.md`).
 
-use fairgrasp_kinematics::{ArmKind, ArmModel};
+use fairgrasp_kinematics::ArmModel;
+
+use crate::config::env_config::SIMULATED_ARM;
 
 /// The simulated arm's model.
 pub fn arm_model() -> ArmModel {
-    ArmKind::Fr3.model()
+    SIMULATED_ARM.model()
 }

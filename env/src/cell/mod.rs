@@ -1,8 +1,9 @@
 //! The cell: which arm ([`arm`]), where it stands ([`mount`]: its base and the table frame in
 //! the world), and how it is simulated — derived once from a config ([`derived::Cell`]).
 //!
-//! `arm` and `mount` are frame arithmetic that needs no config (the config's checks use them);
-//! `derived` reads the config.
+//! `arm` and `mount` are frame arithmetic; `derived` reads the config. The config does not
+//! import the cell: it checks the base's tilt and the home joints itself
+//! ([`crate::config::validate::base_tilt`], [`crate::config::SIMULATED_ARM`]).
 
 pub mod arm;
 pub mod derived;

@@ -49,8 +49,7 @@ impl Mount {
 
     /// Angle between the base's z axis and the world's z axis \[rad\]: 0 for a level base.
     pub fn tilt(&self) -> f64 {
-        let z = self.base_in_world.transform_vector([0.0, 0.0, 1.0]);
-        z[2].clamp(-1.0, 1.0).acos()
+        crate::config::validate::base_tilt(&self.base_in_world)
     }
 
     /// Height of the base origin above the table top \[m\] (negative: below it).

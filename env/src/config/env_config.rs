@@ -10,6 +10,10 @@ pub use crate::config::range::Range;
 
 pub use fairgrasp_types::ArmSimulation;
 
+/// The arm the env simulates: the FR3, the only arm with the mass properties and collision
+/// capsules a simulation needs (see `docs/FR3.md`). Its joint limits bound `arm.home_joints`.
+pub const SIMULATED_ARM: fairgrasp_kinematics::ArmKind = fairgrasp_kinematics::ArmKind::Fr3;
+
 /// Home joints \[rad\]: the TCP 0.30 m in front of the base (+x), 0.25 m above it, pointing down.
 pub const HOME_JOINTS: [f64; 6] = [
     0.3469,

@@ -4,8 +4,7 @@
 //! `validate_families`, both written with `check`; [`numbers`], [`error`]),
 //! the named presets ([`presets`]), and where a key is written in a TOML text ([`toml_lines`]).
 //!
-//! A leaf: nothing here imports the env's behaviour (only the frame arithmetic of
-//! `crate::cell`, which needs no config), so every other room may import it.
+//! A leaf: nothing here imports another folder of the crate, so every other room may import it.
 //!
 //! Frames: `world` is z-up with the table top at `scene.table_height`; the arm's `base_link` sits
 //! at `arm.base_xyz` / `arm.base_rpy` in the world. Units: metres, radians, kilograms, seconds.

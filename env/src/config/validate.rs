@@ -2,13 +2,22 @@
 
 use std::path::Path;
 
+use fairgrasp_kinematics::Pose;
+
 use crate::config::check::{check, check_range};
-use crate::config::env_config::EnvConfig;
+use crate::config::env_config::{EnvConfig, SIMULATED_ARM};
 pub use crate::config::error::ConfigError;
 pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
 
 /// The largest tilt of the base from upright that the env accepts \[rad\] (15°).
 pub const MAX_BASE_TILT: f64 = 15.0 * std::f64::consts::PI / 180.0;
+
+/// The angle between the z axis of `base_in_world` and the world's z axis \[rad\]: 0 for a
+/// level base (what [`MAX_BASE_TILT`] bounds; `Mount::tilt` asks this too).
+pub fn base_tilt(base_in_world: &Pose) -> f64 {
+    let z = base_in_world.transform_vector([0.0, 0.0, 1.0]);
+    z[2].clamp(-1.0, 1.0).acos()
+}
 
 /// Refuses any non-finite number or out-of-range integer in a configuration, naming the field.
 pub fn check_all_finite(config: &impl serde::Serialize) -> Result<(), ConfigError> {
@@ -64,9 +73,21 @@ impl EnvConfig {
         toml::to_string_pretty(self).expect("EnvConfig always serialises")
     }
 
-    /// Refuses values outside their allowed ranges, naming the field.
+    /// Refuses values outside their allowed ranges, naming the field: every number finite, then
+    /// each table's rules in the order of the file.
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_all_finite(self)?;
+        self.validate_physics()?;
+        self.validate_arm()?;
+        self.validate_gripper()?;
+        self.validate_scene()?;
+        self.validate_task()?;
+        self.validate_randomization()?;
+        self.validate_families()
+    }
+
+    /// `[physics]`: the time step, substeps, solver iterations and contact stiffness.
+    fn validate_physics(&self) -> Result<(), ConfigError> {
         let p = &self.physics;
         check(
             p.dt > 0.0 && p.dt <= 0.05,
@@ -91,7 +112,11 @@ impl EnvConfig {
             "physics.contact_natural_frequency",
             p.contact_natural_frequency,
             "must be in (0, 10000] Hz (default 120)",
-        )?;
+        )
+    }
+
+    /// `[arm]`: the action's scales, then where the arm stands ([`Self::validate_mount`]).
+    fn validate_arm(&self) -> Result<(), ConfigError> {
         let a = &self.arm;
         check(
             a.action_scale > 0.0 && a.action_scale <= 3.15,
@@ -117,17 +142,20 @@ impl EnvConfig {
             a.tcp_yaw_rate,
             "must be in (0, 3.2] rad/s (the FR3's wrist velocity limit)",
         )?;
+        self.validate_mount()
+    }
+
+    /// Where the arm stands and starts: a finite base pose tilted at most [`MAX_BASE_TILT`], and
+    /// home joints within the [`SIMULATED_ARM`]'s limits.
+    fn validate_mount(&self) -> Result<(), ConfigError> {
+        let a = &self.arm;
         check(
             a.base_xyz.iter().chain(&a.base_rpy).all(|v| v.is_finite()),
             "arm.base_xyz/base_rpy",
             (a.base_xyz, a.base_rpy),
             "must be finite",
         )?;
-        let tilt = crate::cell::mount::Mount::new(
-            fairgrasp_kinematics::Pose::from_xyz_rpy(a.base_xyz, a.base_rpy),
-            self.scene.table_height,
-        )
-        .tilt();
+        let tilt = base_tilt(&Pose::from_xyz_rpy(a.base_xyz, a.base_rpy));
         check(
             tilt <= MAX_BASE_TILT + 1e-9,
             "arm.base_rpy",
@@ -135,13 +163,16 @@ impl EnvConfig {
             "tilts the base more than 15° from upright: a wedge mount may tilt at most 15° \
              (roll and pitch together), with any yaw",
         )?;
-        let model = crate::cell::arm::arm_model();
         check(
-            model.in_limits(&a.home_joints, 0.0),
+            SIMULATED_ARM.model().in_limits(&a.home_joints, 0.0),
             "arm.home_joints",
             a.home_joints,
             "must be within the FR3 joint limits",
-        )?;
+        )
+    }
+
+    /// `[gripper]` and the grip force of `[control]`.
+    fn validate_gripper(&self) -> Result<(), ConfigError> {
         let g = &self.gripper;
         check(
             g.force > 0.0 && g.force <= 100.0,
@@ -163,6 +194,11 @@ impl EnvConfig {
                 "must be in (0, 100] N (gripper.force's range)",
             )?;
         }
+        Ok(())
+    }
+
+    /// `[scene]`: the table and the cube.
+    fn validate_scene(&self) -> Result<(), ConfigError> {
         let s = &self.scene;
         check(
             (0.0..=2.0).contains(&s.table_height),
@@ -199,10 +235,7 @@ impl EnvConfig {
             "scene.cube_friction",
             s.cube_friction,
             "must be in [0, 10]",
-        )?;
-        self.validate_task()?;
-        self.validate_randomization()?;
-        self.validate_families()
+        )
     }
 
     /// The randomisation's ranges and noise levels (`[randomization]`; the families' fields are
