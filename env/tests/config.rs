@@ -17,9 +17,9 @@ fn defaults_are_the_seeds_numbers() {
     assert_eq!(c.arm.action_scale, 0.5);
     assert_eq!(
         (
-            c.task.success_reward,
-            c.task.collision_reward,
-            c.task.distance_reward
+            c.task.seed_reward.success,
+            c.task.seed_reward.collision,
+            c.task.seed_reward.distance
         ),
         (10.0, -1.0, -0.005)
     );
@@ -170,4 +170,18 @@ fn the_shipped_presets_equal_the_rust_presets() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("fixed, seed, wide, full, hard"), "{err}");
+}
+
+#[test]
+fn the_seed_rewards_weights_keep_their_task_keys_in_the_toml() {
+    let text = "[task]\nsuccess_reward = 5.0\ncollision_reward = -2.0\ndistance_reward = -0.01\n";
+    let c = EnvConfig::from_toml_str(text).unwrap();
+    let w = c.task.seed_reward;
+    assert_eq!((w.success, w.collision, w.distance), (5.0, -2.0, -0.01));
+    let written = c.to_toml();
+    assert!(written.contains("success_reward = 5.0"), "{written}");
+    assert!(!written.contains("seed_reward"), "{written}");
+    assert_eq!(EnvConfig::from_toml_str(&written).unwrap(), c);
+    let err = EnvConfig::from_toml_str("[task]\nseed_reward = 1.0\n").unwrap_err();
+    assert!(err.to_string().contains("seed_reward"), "{err}");
 }

@@ -2,7 +2,7 @@
 //! validate, bad values refused by name, the camera error applied exactly, the push carried out
 //! once, by the drawn amount, onto the table, at rest, never near the gripper; reproducible.
 
-use fairgrasp_env::scenario::families::CameraOffset;
+use fairgrasp_env::scenario::camera_offset::CameraOffset;
 use fairgrasp_env::scenario::nudge::NudgeEvent;
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, config::presets};

@@ -2,8 +2,8 @@
 //! and a `[min, max]` range. A leaf: the validation files import it, it imports nothing of
 //! theirs.
 
-use crate::config::env_config::Range;
 use crate::config::error::ConfigError;
+use crate::config::range::Range;
 
 /// `Ok` when `ok`, else the refusal naming `field`, its `value` and the `rule`.
 pub(crate) fn check(

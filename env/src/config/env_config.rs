@@ -7,6 +7,7 @@
 use serde::{Deserialize, Serialize};
 
 pub use crate::config::range::Range;
+pub use crate::config::task::{DEFAULT_PROTECTIVE_STOP_FORCE, RewardKind, TaskConfig};
 
 pub use fairgrasp_types::ArmSimulation;
 
@@ -228,100 +229,6 @@ impl Default for SceneConfig {
     }
 }
 
-/// The task, its success, reward and time limit.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct TaskConfig {
-    /// `lift` (the default) or `place` (seat the cube in the fixture, `[task.place]`).
-    #[serde(skip_serializing_if = "is_lift")]
-    pub kind: crate::config::place::TaskKind,
-    /// The place task's fixture and seated criterion (used when `kind = "place"`).
-    #[serde(skip_serializing_if = "is_default_place")]
-    pub place: crate::config::place::PlaceConfig,
-    /// Steps before the episode is truncated (the seed's 200).
-    pub max_steps: usize,
-    /// Lift above the resting height that counts as success \[m\].
-    pub lift_height: f64,
-    /// Reward on success.
-    pub success_reward: f64,
-    /// Reward on a collision (negative).
-    pub collision_reward: f64,
-    /// Dense reward per metre of TCP–object distance (negative).
-    pub distance_reward: f64,
-    /// Does a collision end the episode?
-    pub terminate_on_collision: bool,
-    /// With `terminate_on_collision = false` (training), is a success after a collision earlier
-    /// in the episode void? Then that step ends the episode as the collision's failure, paid
-    /// the collision's reward: what an evaluation, which ends the episode at the collision,
-    /// would have judged. Default false (the success counts).
-    pub collision_voids_success: bool,
-    /// With `terminate_on_collision = false` (training), does a self-collision (two robot parts:
-    /// the arm or the gripper against itself) still end the episode? A touch of the table then
-    /// goes on as before. Default false (no collision ends a training episode).
-    pub terminate_on_self_collision: bool,
-    /// Which reward the task pays (the evaluation's success criterion is the same for all).
-    pub reward: RewardKind,
-    /// Protective stop threshold \[N\]: a contact between the robot (links, palm, finger struts,
-    /// pads) and the cube or the table pushing harder than this ends the episode with
-    /// `protective_stop`, as a real cobot's collision detection stops the arm. Checked after
-    /// every physics substep; the force is the contact pair's solver impulse over `physics.dt`.
-    ///
-    /// Default 35 N, from measurement, well under the published limits (ISO/TS 15066 Annex A:
-    /// 140 N quasi-static for hands and fingers, 65 N for the face, the lowest region; UR's
-    /// default power-and-force limit 150 N; FAIRINO states its collision levels per joint, not
-    /// as a TCP force). The simulated contacts are soft: a pad pressing the cube sinks it 2 mm
-    /// into the table at 46–95 N (baseline on `hard`), so 140 N would stop nothing in time.
-    /// Normal baseline grasps peak at 26 N (`full`) and 27 N (`hard`): the fingers' closing
-    /// impact on the cube. See README, "Protective stop".
-    pub protective_stop_force: f64,
-    /// Weights of the staged reward (used when `reward = "staged"`).
-    pub staged: crate::config::reward::StagedReward,
-}
-
-/// The task's reward function; each is a pure function in [`crate::task`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum RewardKind {
-    /// The seed recipe's: `success_reward` on success, `collision_reward` on a collision, else
-    /// `distance_reward · |TCP − object|`.
-    #[default]
-    Seed,
-    /// Reach, grasp, lift shaping gated on the grasp, success; bounded per step
-    /// ([`mod@crate::task::reward`], weights in `[task.staged]`).
-    Staged,
-}
-
-/// Default protective stop threshold \[N\] (see [`TaskConfig::protective_stop_force`]).
-pub const DEFAULT_PROTECTIVE_STOP_FORCE: f64 = 35.0;
-
-fn is_lift(kind: &crate::config::place::TaskKind) -> bool {
-    *kind == crate::config::place::TaskKind::Lift
-}
-
-fn is_default_place(place: &crate::config::place::PlaceConfig) -> bool {
-    *place == crate::config::place::PlaceConfig::default()
-}
-
-impl Default for TaskConfig {
-    fn default() -> Self {
-        Self {
-            kind: crate::config::place::TaskKind::Lift,
-            place: crate::config::place::PlaceConfig::default(),
-            max_steps: 200,
-            lift_height: 0.03,
-            success_reward: 10.0,
-            collision_reward: -1.0,
-            distance_reward: -0.005,
-            terminate_on_collision: true,
-            collision_voids_success: false,
-            terminate_on_self_collision: false,
-            reward: RewardKind::Seed,
-            protective_stop_force: DEFAULT_PROTECTIVE_STOP_FORCE,
-            staged: crate::config::reward::StagedReward::default(),
-        }
-    }
-}
-
 /// What is randomised at reset; each part switchable.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -346,14 +253,14 @@ pub struct RandomizationConfig {
     pub observed_position_noise: f64,
     pub observed_yaw_noise: f64,
     /// A miscalibrated camera: a fixed error on every observed cube pose (None = calibrated).
-    /// See [`crate::config::families::CameraOffset`].
-    pub camera_offset: Option<crate::config::families::CameraOffset>,
+    /// See [`crate::scenario::camera_offset::CameraOffset`].
+    pub camera_offset: Option<crate::scenario::camera_offset::CameraOffset>,
     /// A push of the cube during the approach, drawn per scenario (None = never).
-    /// See [`crate::config::families::NudgeConfig`].
-    pub nudge: Option<crate::config::families::NudgeConfig>,
+    /// See [`crate::scenario::nudge::NudgeConfig`].
+    pub nudge: Option<crate::scenario::nudge::NudgeConfig>,
     /// A wrist camera that sees the cube exactly once the TCP is near it (None = no wrist
-    /// camera). See [`crate::config::families::WristCamera`].
-    pub wrist_camera: Option<crate::config::families::WristCamera>,
+    /// camera). See [`crate::scenario::wrist_camera::WristCamera`].
+    pub wrist_camera: Option<crate::scenario::wrist_camera::WristCamera>,
 }
 
 impl Default for RandomizationConfig {

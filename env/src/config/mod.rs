@@ -9,15 +9,15 @@
 //! Frames: `world` is z-up with the table top at `scene.table_height`; the arm's `base_link` sits
 //! at `arm.base_xyz` / `arm.base_rpy` in the world. Units: metres, radians, kilograms, seconds.
 
-mod check;
+pub(crate) mod check;
 pub mod env_config;
 pub mod error;
-pub mod families;
 pub mod numbers;
 pub mod place;
 pub mod presets;
 pub mod range;
 pub mod reward;
+pub mod task;
 pub mod toml_lines;
 pub mod validate;
 mod validate_families;

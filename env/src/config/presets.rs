@@ -1,5 +1,5 @@
 //! Named configurations: `fixed`, `seed`, `wide`, `full`, `hard` and the scenario families
-//! `miscalibrated`, `miscalibrated_b`, `wrist_camera`, `nudged` ([`crate::scenario::families`])
+//! `miscalibrated`, `miscalibrated_b`, `wrist_camera`, `nudged` (`env/src/scenario/<family>/`)
 //! the contact family `heavy_slippery` and the place task's `place`, `place_grasp_error`,
 //! `place_fixture_error` and `place_tilted`, shipped as TOML files in
 //! `assets/configs/` and built into the binary, so `--preset NAME` works from any folder.

@@ -1,7 +1,31 @@
-//! The staged reward's weights and scales (`[task.staged]`), plain data; the reward itself is
-//! computed in `env/src/task/reward.rs`.
+//! The rewards' weights, one table each, plain data: the seed reward's ([`SeedReward`], `[task]`'s
+//! `success_reward`, `collision_reward`, `distance_reward`) and the staged reward's
+//! ([`StagedReward`], `[task.staged]`). The rewards themselves are computed in
+//! `env/src/task/reward/`.
 
 use serde::{Deserialize, Serialize};
+
+/// Weights of the seed reward (`task.reward = "seed"`): paid `success` on success, `collision`
+/// on a collision or protective stop, else `distance` per metre still to go.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SeedReward {
+    /// Reward on success (`task.success_reward`).
+    pub success: f64,
+    /// Reward on a collision or protective stop (`task.collision_reward`, negative).
+    pub collision: f64,
+    /// Dense reward per metre still to go \[1/m\] (`task.distance_reward`, negative).
+    pub distance: f64,
+}
+
+impl Default for SeedReward {
+    fn default() -> Self {
+        Self {
+            success: 10.0,
+            collision: -1.0,
+            distance: -0.005,
+        }
+    }
+}
 
 /// Weights and scales of the staged reward (`[task.staged]`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

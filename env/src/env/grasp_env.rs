@@ -19,7 +19,8 @@ use crate::robot::tcp_action::TaskSpaceAction;
 use crate::scenario::Scenario;
 use crate::scenario::grip_tilt::{GripTiltEvent, GripTiltHook, HandState};
 use crate::scenario::nudge::{NudgeEvent, NudgeHook};
-use crate::scenario::perception::{observe_fixture, observe_object, wrist_view};
+use crate::scenario::perception::{observe_fixture, observe_object};
+use crate::scenario::wrist_camera::wrist_view;
 use crate::sim::Sim;
 use crate::sim::contacts::{ContactReport, PairKind, TouchingPair};
 use crate::sim::part::Part;
@@ -152,7 +153,7 @@ impl GraspEnv {
     }
 
     /// What became of this episode's push of the cube, if the scenario has one and its step has
-    /// come ([`crate::scenario::families::Nudge`]).
+    /// come ([`crate::scenario::nudge::Nudge`]).
     pub fn nudge_event(&self) -> Option<NudgeEvent> {
         self.nudge.event()
     }

@@ -1,8 +1,16 @@
 //! Per-episode scenarios: object position, yaw, friction, mass and joint noise, drawn from a seed,
-//! each one checked to admit a top-down grasp within the FR3's joint limits.
+//! each one checked to admit a top-down grasp within the FR3's joint limits ([`sample`],
+//! [`graspable`], the one Gaussian draw in [`noise`]), the curriculum that widens them
+//! ([`curriculum`]), and what a policy observes of them ([`perception`]).
+//!
+//! A scenario family (an imperfection of a real cell, set in `[randomization]`) is a folder with
+//! its settings and their rules, its draw and its effect on the step or the observation:
+//! [`nudge`] (a push of the cube), [`camera_offset`] (a miscalibrated camera), [`wrist_camera`]
+//! (a camera on the wrist). The place task's fixture and its contact conditions are drawn in
+//! [`fixture`] and turned in the grip by [`grip_tilt`].
 
+pub mod camera_offset;
 pub mod curriculum;
-pub mod families;
 pub mod fixture;
 pub mod graspable;
 pub mod grip_tilt;
@@ -10,6 +18,7 @@ pub mod noise;
 pub mod nudge;
 pub mod perception;
 pub mod sample;
+pub mod wrist_camera;
 
 pub use graspable::*;
 pub use sample::*;

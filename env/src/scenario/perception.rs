@@ -6,7 +6,7 @@
 //! in the env's step.
 //!
 //! Order: the camera's calibration error (a rigid transform of the table frame,
-//! [`crate::scenario::families::CameraOffset`]) moves the true pose first; the episode's perception noise
+//! [`crate::scenario::camera_offset::CameraOffset`]) moves the true pose first; the episode's perception noise
 //! is added to the result.
 
 use fairgrasp_kinematics::Pose;
@@ -49,24 +49,6 @@ pub fn observe_object(mount: &Mount, truth: &Pose, scenario: Option<&Scenario>) 
 /// The truth as an [`ObservedObject`]: what an oracle is given ([`crate::episode::Policy::observe_truth`]).
 pub fn true_object(mount: &Mount, truth: &Pose) -> ObservedObject {
     observe_object(mount, truth, None)
-}
-
-/// What the wrist camera `camera` (None: there is none) sees of an object whose true pose in
-/// `base_link` is `truth`, with the TCP at `tcp` [m, `base_link`]: the truth, once the TCP is
-/// within the camera's range of the object's centre; otherwise nothing.
-pub fn wrist_view(
-    camera: Option<&crate::scenario::families::WristCamera>,
-    mount: &Mount,
-    truth: &Pose,
-    tcp: [f64; 3],
-) -> Option<ObservedObject> {
-    let range = camera?.range;
-    let centre = truth.xyz();
-    let distance = (0..3)
-        .map(|i| (centre[i] - tcp[i]).powi(2))
-        .sum::<f64>()
-        .sqrt();
-    (distance <= range).then(|| true_object(mount, truth))
 }
 
 /// What is known of the place task's fixture whose true pose in `base_link` is `truth`: that

@@ -40,10 +40,10 @@ pub struct Scenario {
     /// Error added to the observed object yaw \[rad\] (perception noise).
     pub observed_yaw_error: f64,
     /// The push the cube gets during the approach (the `nudged` family), if any.
-    pub nudge: Option<crate::scenario::families::Nudge>,
+    pub nudge: Option<crate::scenario::nudge::Nudge>,
     /// The cell's camera calibration error (`randomization.camera_offset`, the same for every
     /// episode of a config), applied to what is observed.
-    pub camera_offset: Option<crate::scenario::families::CameraOffset>,
+    pub camera_offset: Option<crate::scenario::camera_offset::CameraOffset>,
     /// Where the place task's fixture stands (`None` for the lift task).
     pub fixture: Option<FixturePose>,
 }
@@ -176,7 +176,7 @@ impl Scenario {
             };
             if top_down_grasp(model, &mount, &pose, &start_joints).is_some() {
                 let nudge = r.nudge.as_ref().and_then(|n| {
-                    crate::scenario::families::draw_nudge(
+                    crate::scenario::nudge::draw_nudge(
                         n,
                         config,
                         model,

@@ -1,9 +1,12 @@
-//! Success, failure and reward: pure functions of the state, testable without physics.
+//! The judgement of a step, whatever the task: success (the task's own rule), failure,
+//! termination and the reward; pure functions of the state, testable without physics.
 
 use serde::Serialize;
 
-use crate::config::{RewardKind, TaskConfig};
-use crate::task::state::{TaskState, tcp_object_distance};
+use crate::config::TaskConfig;
+use crate::task::reward::reward;
+use crate::task::state::TaskState;
+use crate::task::{lift, place};
 
 /// Why an episode ended without success.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -30,48 +33,19 @@ impl Failure {
     }
 }
 
-/// The task's success: for the lift task lifted at least `lift_height` above rest, with both
-/// pads on it and the TCP within 3 cm; for the place task seated, released and clear
-/// ([`crate::task::place::is_placed`]).
+/// The task's success: for the lift task lifted and held ([`crate::task::lift::is_lifted`]),
+/// for the place task seated, released and clear ([`crate::task::place::is_placed`]).
 pub fn is_success(s: &TaskState, cfg: &TaskConfig) -> bool {
-    if let Some(f) = &s.place {
-        return crate::task::place::is_placed(s, f, &cfg.place);
+    match &s.place {
+        Some(f) => place::is_placed(s, f, &cfg.place),
+        None => lift::is_lifted(s, cfg),
     }
-    let lifted = s.object[2] - s.object_rest_z >= cfg.lift_height;
-    lifted && s.pad_contact[0] && s.pad_contact[1] && tcp_object_distance(s) < 0.03
 }
 
 /// Has the object left the table (fallen below its top, or past its edge)?
 pub fn is_off_table(s: &TaskState) -> bool {
     s.object[2] < s.table_height - 0.02
         || (0..2).any(|i| s.object_xy_from_table_centre[i].abs() > s.table_half_size[i])
-}
-
-/// The reward of the config's [`RewardKind`] for a step that ended in state `s`.
-pub fn reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
-    match cfg.reward {
-        RewardKind::Seed => seed_reward(s, success, collision, cfg),
-        RewardKind::Staged => {
-            crate::task::reward::staged_reward(s, success, collision, cfg.lift_height, &cfg.staged)
-        }
-    }
-}
-
-/// The seed's rescaled reward: `success_reward` on success, `collision_reward` on a collision,
-/// else `distance_reward ·` the distance still to go: `|TCP − object|` (lift), plus the cube's
-/// distance from its seat in the pocket (place, [`crate::task::place::distance_to_go`]).
-pub fn seed_reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
-    if success {
-        cfg.success_reward
-    } else if collision {
-        cfg.collision_reward
-    } else {
-        let to_go = match &s.place {
-            Some(f) => crate::task::place::distance_to_go(s, f),
-            None => tcp_object_distance(s),
-        };
-        cfg.distance_reward * to_go
-    }
 }
 
 /// What the task makes of one step.

@@ -1,13 +1,5 @@
-//! Scenario families: imperfections of a real cell that an open-loop script does not handle.
-//!
-//! - a **miscalibrated camera** ([`CameraOffset`]): the camera's extrinsic calibration to the
-//!   base is off by a fixed rigid error for the cell, so every observed cube pose is the true one
-//!   moved by that error (applied in [`crate::scenario::perception::observe_object`]);
-//! - a **nudged cube** ([`NudgeConfig`], drawn per scenario as a [`Nudge`]): the cube is pushed
-//!   across the table once, during the approach (carried out by [`crate::scenario::nudge::NudgeHook`]).
-//!
-//! Both are set in `[randomization]` and are off by default. Frames: the table frame
-//! ([`crate::Mount`]: on the table top under the base, z up, x along the base's heading).
+//! The scenario's push of the cube (the `nudged` family): drawn once per scenario from its seed,
+//! with a generator of its own.
 
 use std::f64::consts::TAU;
 
@@ -18,11 +10,8 @@ use serde::Serialize;
 
 use crate::cell::mount::Mount;
 use crate::config::EnvConfig;
-pub use crate::config::families::{
-    CameraOffset, MAX_CAMERA_SHIFT, MAX_CAMERA_YAW, MAX_NUDGE, MAX_WRIST_RANGE, MIN_TCP_DISTANCE,
-    NudgeConfig, WristCamera,
-};
 use crate::scenario::graspable::top_down_grasp;
+use crate::scenario::nudge::settings::NudgeConfig;
 
 /// One scenario's push: at env step `step`, the cube is moved by `offset_xy` (table frame) \[m\],
 /// keeping its height and yaw, at rest, unless the TCP is nearer than `min_tcp_distance` \[m\]

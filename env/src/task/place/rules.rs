@@ -2,8 +2,7 @@
 //! released, the arm clear. Its settings are `[task.place]` ([`crate::config::PlaceConfig`]).
 
 use crate::config::PlaceConfig;
-pub use crate::task::state::PlaceFacts;
-use crate::task::state::TaskState;
+use crate::task::state::{PlaceFacts, TaskState};
 
 /// Seated: the cube's centre inside the pocket, its bottom on the table (the pocket's floor)
 /// and standing on a face: then it is between the walls, which a cube on the floor can only be

@@ -1,4 +1,4 @@
-//! Carrying out a scenario's push of the cube ([`crate::scenario::families::Nudge`]): once, before the
+//! Carrying out a scenario's push of the cube ([`crate::scenario::nudge::Nudge`]): once, before the
 //! action of the drawn env step, and only if the TCP is far enough from the cube before and
 //! after the push. The cube is moved across the table (height and yaw kept) and left at rest;
 //! the env reads the cube's pose from the simulator every step, so nothing holds a stale pose.

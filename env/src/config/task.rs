@@ -1,0 +1,173 @@
+//! The task's settings (`[task]`): which task, its time limit and success height, how a
+//! collision ends an episode, the protective stop, and which reward it pays with that reward's
+//! weights (one table each, [`SeedReward`] and [`StagedReward`]).
+//!
+//! The TOML keeps the seed reward's weights as `[task]`'s own keys (`success_reward`,
+//! `collision_reward`, `distance_reward`), as every shipped file writes them; [`TaskToml`] is
+//! that shape, and [`TaskConfig`] is read and written through it.
+
+use serde::{Deserialize, Serialize};
+
+use crate::config::place::{PlaceConfig, TaskKind};
+use crate::config::reward::{SeedReward, StagedReward};
+
+/// The task, its success, reward and time limit.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(from = "TaskToml", into = "TaskToml")]
+pub struct TaskConfig {
+    /// `lift` (the default) or `place` (seat the cube in the fixture, `[task.place]`).
+    pub kind: TaskKind,
+    /// The place task's fixture and seated criterion (used when `kind = "place"`).
+    pub place: PlaceConfig,
+    /// Steps before the episode is truncated (the seed's 200).
+    pub max_steps: usize,
+    /// Lift above the resting height that counts as success \[m\].
+    pub lift_height: f64,
+    /// Does a collision end the episode?
+    pub terminate_on_collision: bool,
+    /// With `terminate_on_collision = false` (training), is a success after a collision earlier
+    /// in the episode void? Then that step ends the episode as the collision's failure, paid
+    /// the collision's reward: what an evaluation, which ends the episode at the collision,
+    /// would have judged. Default false (the success counts).
+    pub collision_voids_success: bool,
+    /// With `terminate_on_collision = false` (training), does a self-collision (two robot parts:
+    /// the arm or the gripper against itself) still end the episode? A touch of the table then
+    /// goes on as before. Default false (no collision ends a training episode).
+    pub terminate_on_self_collision: bool,
+    /// Which reward the task pays (the evaluation's success criterion is the same for all).
+    pub reward: RewardKind,
+    /// Protective stop threshold \[N\]: a contact between the robot (links, palm, finger struts,
+    /// pads) and the cube or the table pushing harder than this ends the episode with
+    /// `protective_stop`, as a real cobot's collision detection stops the arm. Checked after
+    /// every physics substep; the force is the contact pair's solver impulse over `physics.dt`.
+    ///
+    /// Default 35 N, from measurement, well under the published limits (ISO/TS 15066 Annex A:
+    /// 140 N quasi-static for hands and fingers, 65 N for the face, the lowest region; UR's
+    /// default power-and-force limit 150 N; FAIRINO states its collision levels per joint, not
+    /// as a TCP force). The simulated contacts are soft: a pad pressing the cube sinks it 2 mm
+    /// into the table at 46–95 N (baseline on `hard`), so 140 N would stop nothing in time.
+    /// Normal baseline grasps peak at 26 N (`full`) and 27 N (`hard`): the fingers' closing
+    /// impact on the cube. See README, "Protective stop".
+    pub protective_stop_force: f64,
+    /// Weights of the seed reward (used when `reward = "seed"`; in the TOML `[task]`'s
+    /// `success_reward`, `collision_reward` and `distance_reward`).
+    pub seed_reward: SeedReward,
+    /// Weights of the staged reward (used when `reward = "staged"`; `[task.staged]`).
+    pub staged: StagedReward,
+}
+
+/// The task's reward function; each is a pure function in [`mod@crate::task::reward`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum RewardKind {
+    /// The seed recipe's: `success_reward` on success, `collision_reward` on a collision, else
+    /// `distance_reward ·` the distance still to go ([`mod@crate::task::reward::seed`], weights
+    /// [`SeedReward`]).
+    #[default]
+    Seed,
+    /// Reach, grasp, lift shaping gated on the grasp, success; bounded per step
+    /// ([`mod@crate::task::reward::staged`], weights in `[task.staged]`).
+    Staged,
+}
+
+/// Default protective stop threshold \[N\] (see [`TaskConfig::protective_stop_force`]).
+pub const DEFAULT_PROTECTIVE_STOP_FORCE: f64 = 35.0;
+
+impl Default for TaskConfig {
+    fn default() -> Self {
+        Self {
+            kind: TaskKind::Lift,
+            place: PlaceConfig::default(),
+            max_steps: 200,
+            lift_height: 0.03,
+            terminate_on_collision: true,
+            collision_voids_success: false,
+            terminate_on_self_collision: false,
+            reward: RewardKind::Seed,
+            protective_stop_force: DEFAULT_PROTECTIVE_STOP_FORCE,
+            seed_reward: SeedReward::default(),
+            staged: StagedReward::default(),
+        }
+    }
+}
+
+/// `[task]` as the TOML writes it: [`TaskConfig`] with the seed reward's weights as keys of
+/// their own, in the order every shipped file and run folder has them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TaskToml {
+    #[serde(skip_serializing_if = "is_lift")]
+    pub kind: TaskKind,
+    #[serde(skip_serializing_if = "is_default_place")]
+    pub place: PlaceConfig,
+    pub max_steps: usize,
+    pub lift_height: f64,
+    /// [`SeedReward::success`].
+    pub success_reward: f64,
+    /// [`SeedReward::collision`].
+    pub collision_reward: f64,
+    /// [`SeedReward::distance`].
+    pub distance_reward: f64,
+    pub terminate_on_collision: bool,
+    pub collision_voids_success: bool,
+    pub terminate_on_self_collision: bool,
+    pub reward: RewardKind,
+    pub protective_stop_force: f64,
+    pub staged: StagedReward,
+}
+
+fn is_lift(kind: &TaskKind) -> bool {
+    *kind == TaskKind::Lift
+}
+
+fn is_default_place(place: &PlaceConfig) -> bool {
+    *place == PlaceConfig::default()
+}
+
+impl Default for TaskToml {
+    fn default() -> Self {
+        TaskConfig::default().into()
+    }
+}
+
+impl From<TaskToml> for TaskConfig {
+    fn from(t: TaskToml) -> Self {
+        TaskConfig {
+            kind: t.kind,
+            place: t.place,
+            max_steps: t.max_steps,
+            lift_height: t.lift_height,
+            terminate_on_collision: t.terminate_on_collision,
+            collision_voids_success: t.collision_voids_success,
+            terminate_on_self_collision: t.terminate_on_self_collision,
+            reward: t.reward,
+            protective_stop_force: t.protective_stop_force,
+            seed_reward: SeedReward {
+                success: t.success_reward,
+                collision: t.collision_reward,
+                distance: t.distance_reward,
+            },
+            staged: t.staged,
+        }
+    }
+}
+
+impl From<TaskConfig> for TaskToml {
+    fn from(t: TaskConfig) -> Self {
+        TaskToml {
+            kind: t.kind,
+            place: t.place,
+            max_steps: t.max_steps,
+            lift_height: t.lift_height,
+            success_reward: t.seed_reward.success,
+            collision_reward: t.seed_reward.collision,
+            distance_reward: t.seed_reward.distance,
+            terminate_on_collision: t.terminate_on_collision,
+            collision_voids_success: t.collision_voids_success,
+            terminate_on_self_collision: t.terminate_on_self_collision,
+            reward: t.reward,
+            protective_stop_force: t.protective_stop_force,
+            staged: t.staged,
+        }
+    }
+}
