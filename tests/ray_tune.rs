@@ -1,0 +1,50 @@
+//! The Ray Tune sweep (`python/fairgrasp/tune.py`, tested by `python/tests-ray`, pytest) on a
+//! local Ray with 2 CPUs: Rust trainings as Tune trials under ASHA. Run through
+//! `scripts/python-package-test.sh` in a venv of its own (`target/python-ray-venv`, created on
+//! the first run from `scripts/requirements-ray.txt`: Ray Tune 2.60.0 beside the package's
+//! pins), with the extension `cargo test --workspace` has just built and this build's
+//! `fairgrasp` binary (the trials run `fairgrasp train`; `cargo test --workspace --features
+//! fairgrasp/train` makes it a trainer). Without the `train` feature the binary cannot train,
+//! so the test is not compiled.
+#![cfg(feature = "train")]
+
+use std::process::Command;
+
+#[test]
+fn a_ray_tune_sweep_of_rust_trainings_passes_its_pytest_suite() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    // target/<profile>/deps/ray_tune-HASH → target/<profile>/deps/lib_native.so, the
+    // workspace build's cdylib (as tests/python_package.rs finds it).
+    let exe = std::env::current_exe().unwrap();
+    let native = exe.parent().map(|d| d.join("lib_native.so"));
+    let mut cmd = Command::new("bash");
+    cmd.arg(root.join("scripts/python-package-test.sh"));
+    if let Some(lib) = native.filter(|p| p.exists()) {
+        cmd.env("FAIRGRASP_NATIVE_LIB", lib);
+    }
+    let start = std::time::Instant::now();
+    let out = cmd
+        .arg("-s")
+        .env("FAIRGRASP_BIN", env!("CARGO_BIN_EXE_fairgrasp"))
+        .env("FAIRGRASP_PY_VENV", root.join("target/python-ray-venv"))
+        .env(
+            "FAIRGRASP_PY_REQUIREMENTS",
+            root.join("scripts/requirements-ray.txt"),
+        )
+        .env("FAIRGRASP_PY_TESTS", "python/tests-ray")
+        .current_dir(root)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "pytest failed:\n{stdout}\n{stderr}");
+    assert!(
+        stdout.contains("passed") && !stdout.contains("skipped"),
+        "every Ray test must run here:\n{stdout}"
+    );
+    // The sweep's table, for the log (cargo test -- --nocapture shows it).
+    println!(
+        "{stdout}\n(venv and pytest: {:.0} s)",
+        start.elapsed().as_secs_f64()
+    );
+}
