@@ -196,6 +196,8 @@ fn insert_table_and_cube(
 }
 
 /// Builds the world with the arm at `q`, the fingers open and the cube at `cube_pose` (world).
+/// The bodies are inserted in one fixed order (table, cube, fixture, links, palm, joints,
+/// fingers): rapier's handles, and with them the simulation, depend on it.
 pub fn build(
     config: &EnvConfig,
     model: &ArmModel,
@@ -208,17 +210,58 @@ pub fn build(
     let base_xy = base_in_world.xyz();
     let (table_collider, cube, cube_collider) =
         insert_table_and_cube(&mut world, &mut parts, config, base_xy, cube_pose);
-    // The place task's fixture, beside the arm until a scenario moves it.
-    let fixture = (config.task.kind == crate::config::TaskKind::Place).then(|| {
-        let p = config.task.place.fixture_xy;
-        let s = &config.scene;
-        let at = Isometry3::translation(p[0] + base_xy[0], p[1] + base_xy[1], s.table_height);
-        crate::sim::fixture::insert_fixture(&mut world, &mut parts, config, to_rapier(&at))
-    });
-
-    // Arm links at their FK poses, one capsule each.
-    let link_poses = model.link_poses(q);
+    let fixture = (config.task.kind == crate::config::TaskKind::Place)
+        .then(|| insert_place_fixture(&mut world, &mut parts, config, base_xy));
     let dynamic = config.arm.model == ArmSimulation::Multibody;
+    let links = insert_arm_links(&mut world, &mut parts, model, base_in_world, q, dynamic);
+    let tool0 = base_in_world.iso * model.fk_flange(q).iso;
+    let palm = insert_palm(&mut world, &mut parts, model, &tool0, dynamic);
+    // Multibody arm: revolute joints j1..j6 with velocity motors, palm fixed on wrist3.
+    let arm_joints = dynamic.then(|| insert_multibody_arm(&mut world, model, &links, palm));
+    let (fingers, finger_joints) =
+        insert_fingers(&mut world, &mut parts, config, model, &tool0, palm);
+    set_collision_groups(&mut world, &parts, model);
+    let handles = SceneHandles {
+        links,
+        palm,
+        fingers,
+        finger_joints,
+        cube,
+        cube_collider,
+        table_collider,
+        arm_joints,
+        fixture,
+        parts,
+    };
+    (world, handles)
+}
+
+/// The place task's fixture, at `task.place.fixture_xy` from the base at `base_xy` (world) until
+/// a scenario moves it.
+fn insert_place_fixture(
+    world: &mut PhysicsWorld,
+    parts: &mut ColliderParts,
+    config: &EnvConfig,
+    base_xy: [f64; 3],
+) -> RigidBodyHandle {
+    let p = config.task.place.fixture_xy;
+    let s = &config.scene;
+    let at = Isometry3::translation(p[0] + base_xy[0], p[1] + base_xy[1], s.table_height);
+    crate::sim::fixture::insert_fixture(world, parts, config, to_rapier(&at))
+}
+
+/// The arm's links at their FK poses for `q` (world), one capsule each: kinematic bodies for the
+/// servo arm; for the multibody arm (`dynamic`) the base fixed and the others dynamic with the
+/// links' mass properties.
+fn insert_arm_links(
+    world: &mut PhysicsWorld,
+    parts: &mut ColliderParts,
+    model: &ArmModel,
+    base_in_world: &Pose,
+    q: &[f64; 6],
+    dynamic: bool,
+) -> [RigidBodyHandle; 7] {
+    let link_poses = model.link_poses(q);
     let mut links = Vec::with_capacity(7);
     for (i, link_pose) in link_poses.iter().enumerate() {
         let pose = to_rapier(&(base_in_world.iso * link_pose));
@@ -236,20 +279,27 @@ pub fn build(
         let collider =
             ColliderBuilder::capsule_from_endpoints(vec3(c.from), vec3(c.to), c.radius as f32)
                 .density(0.0);
-        insert_robot_collider(&mut world, &mut parts, collider, body, Part::Link(i));
+        insert_robot_collider(world, parts, collider, body, Part::Link(i));
         links.push(body);
     }
-    let links: [RigidBodyHandle; 7] = links.try_into().expect("seven links");
+    links.try_into().expect("seven links")
+}
 
-    // Palm on tool0.
-    let g = &model.gripper;
-    let tool0 = base_in_world.iso * model.fk_flange(q).iso;
+/// The palm, a box on `tool0` (world): dynamic for the multibody arm, kinematic for the servo
+/// arm.
+fn insert_palm(
+    world: &mut PhysicsWorld,
+    parts: &mut ColliderParts,
+    model: &ArmModel,
+    tool0: &Isometry3<f64>,
+    dynamic: bool,
+) -> RigidBodyHandle {
     let palm_builder = if dynamic {
         RigidBodyBuilder::dynamic()
     } else {
         RigidBodyBuilder::kinematic_position_based()
     };
-    let palm = world.bodies.insert(palm_builder.pose(to_rapier(&tool0)));
+    let palm = world.bodies.insert(palm_builder.pose(to_rapier(tool0)));
     let (palm_half, palm_centre) = palm_box(model);
     let palm_collider = ColliderBuilder::cuboid(
         palm_half[0] as f32,
@@ -257,13 +307,22 @@ pub fn build(
         palm_half[2] as f32,
     )
     .translation(vec3(palm_centre))
-    .mass(g.palm_mass as f32);
-    insert_robot_collider(&mut world, &mut parts, palm_collider, palm, Part::Palm);
+    .mass(model.gripper.palm_mass as f32);
+    insert_robot_collider(world, parts, palm_collider, palm, Part::Palm);
+    palm
+}
 
-    // Multibody arm: revolute joints j1..j6 with velocity motors, palm fixed on wrist3.
-    let arm_joints = dynamic.then(|| insert_multibody_arm(&mut world, model, &links, palm));
-
-    // Fingers: dynamic bodies on prismatic impulse joints to the palm, created at their pose.
+/// The two fingers, open: dynamic bodies (a strut and a pad each) on prismatic impulse joints to
+/// the `palm` on `tool0` (world), driven by a force-limited position motor (`gripper.force`).
+fn insert_fingers(
+    world: &mut PhysicsWorld,
+    parts: &mut ColliderParts,
+    config: &EnvConfig,
+    model: &ArmModel,
+    tool0: &Isometry3<f64>,
+    palm: RigidBodyHandle,
+) -> ([RigidBodyHandle; 2], [ImpulseJointHandle; 2]) {
+    let g = &model.gripper;
     let mut fingers = Vec::new();
     let mut finger_joints = Vec::new();
     for f in 0..2 {
@@ -280,14 +339,14 @@ pub fn build(
         )
         .translation(vec3(strut_centre))
         .mass((g.finger_mass * 0.4) as f32);
-        insert_robot_collider(&mut world, &mut parts, strut, body, Part::Finger(f));
+        insert_robot_collider(world, parts, strut, body, Part::Finger(f));
         let (pad_half, pad_centre) = pad_box(model);
         let pad =
             ColliderBuilder::cuboid(pad_half[0] as f32, pad_half[1] as f32, pad_half[2] as f32)
                 .translation(vec3(pad_centre))
                 .mass((g.finger_mass * 0.6) as f32)
                 .friction(config.gripper.pad_friction as f32);
-        insert_robot_collider(&mut world, &mut parts, pad, body, Part::Pad(f));
+        insert_robot_collider(world, parts, pad, body, Part::Pad(f));
         let joint = PrismaticJointBuilder::new(vec3(axis))
             .local_anchor1(vec3(anchor))
             .local_anchor2(Vector::ZERO)
@@ -299,21 +358,11 @@ pub fn build(
         finger_joints.push(world.impulse_joints.insert(palm, body, joint, true));
         fingers.push(body);
     }
-
-    set_collision_groups(&mut world, &parts, model);
-    let handles = SceneHandles {
-        links,
-        palm,
-        fingers: fingers.try_into().expect("two fingers"),
-        finger_joints: finger_joints.try_into().expect("two finger joints"),
-        cube,
-        cube_collider,
-        table_collider,
-        arm_joints,
-        fixture,
-        parts,
-    };
-    (world, handles)
+    let fingers = fingers.try_into().expect("two fingers");
+    (
+        fingers,
+        finger_joints.try_into().expect("two finger joints"),
+    )
 }
 
 /// Rotation taking the x axis to the z axis (rapier's revolute joints turn about their frame's x).
