@@ -1,5 +1,5 @@
 //! The place task's settings (`[task.place]`): the fixture, where it stands, and what counts as
-//! seated. Plain data; the task's rules are in `env/src/task/place.rs`, the fixture's bodies in
+//! seated. Plain data; the task's rules are in `env/src/task/place/`, the fixture's bodies in
 //! `env/src/sim/fixture.rs`.
 //!
 //! Frames: the table frame ([`crate::Mount`]: on the table top under the base, z up, x along
@@ -60,9 +60,10 @@ pub struct PlaceConfig {
     pub observed_position_noise: f64,
     pub observed_yaw_noise: f64,
     /// The grasp's unobserved tilt: once per episode, when the cube is first carried
-    /// [`GRIP_TILT_LIFT`] above the table, it turns in the grip about the axis between the pads
-    /// (the TCP's x) by an angle drawn uniformly in this range, with a random sign \[rad\]
-    /// (`[0, 0]`: never). What a grasp above or beside the cube's centre of mass, or a knock
+    /// [`GRIP_TILT_LIFT`](crate::scenario::grip_tilt::GRIP_TILT_LIFT) above the table, it turns
+    /// in the grip about the axis between the pads (the TCP's x) by an angle drawn uniformly in
+    /// this range, with a random sign \[rad\] (`[0, 0]`: never; the `grip_tilt` family,
+    /// `env/src/scenario/grip_tilt/`). What a grasp above or beside the cube's centre of mass, or a knock
     /// during the lift, does on a real cell; nothing observes it.
     pub grip_tilt: Range,
     /// The friction coefficient between the fixture's walls and what touches them, drawn per
@@ -100,10 +101,6 @@ impl Default for SearchTuning {
         }
     }
 }
-
-/// How far above the table \[m\] the cube's bottom must be carried before it turns in the grip
-/// (`task.place.grip_tilt`): clear of the table, so that the turn cannot push it into anything.
-pub const GRIP_TILT_LIFT: f64 = 0.02;
 
 impl Default for PlaceConfig {
     fn default() -> Self {

@@ -3,9 +3,7 @@
 use crate::config::check::{check, check_range};
 use crate::config::error::ConfigError;
 use crate::config::place::PlaceConfig;
-
-/// The largest grip tilt a config may ask for \[rad\] (20°).
-const MAX_GRIP_TILT: f64 = 0.35;
+use crate::scenario::grip_tilt::settings::check_grip_tilt;
 
 /// Refuses a fixture or criterion that cannot mean what it says, naming the field.
 pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
@@ -108,13 +106,7 @@ fn check_observation_noise(p: &PlaceConfig) -> Result<(), ConfigError> {
 
 /// The grip's tilt and the fixture's friction, drawn per episode.
 fn check_contact_conditions(p: &PlaceConfig) -> Result<(), ConfigError> {
-    check_range(&p.grip_tilt, "task.place.grip_tilt", 0.0)?;
-    check(
-        p.grip_tilt[1] <= MAX_GRIP_TILT,
-        "task.place.grip_tilt",
-        p.grip_tilt,
-        "must be within [0, 0.35] rad (20°: more and the turned cube reaches the palm)",
-    )?;
+    check_grip_tilt(&p.grip_tilt)?;
     if let Some(friction) = &p.fixture_friction {
         check_range(friction, "task.place.fixture_friction", 0.0)?;
         check(

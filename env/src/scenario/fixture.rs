@@ -12,6 +12,7 @@ use serde::Serialize;
 use crate::cell::mount::Mount;
 use crate::config::EnvConfig;
 use crate::scenario::graspable::top_down_grasp;
+use crate::scenario::grip_tilt::draw::draw_grip_tilt;
 use crate::scenario::noise::gauss;
 
 /// The fixture's pose in one scenario: the pocket's centre on the table top, table frame.
@@ -109,13 +110,7 @@ pub fn draw_fixture(
 fn draw_contact_conditions(config: &EnvConfig, seed: u64) -> (f64, Option<f64>) {
     let p = &config.task.place;
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x6772_6970_5f74_696c);
-    let [lo, hi] = p.grip_tilt;
-    let magnitude = if hi > 0.0 {
-        rng.random_range(lo..=hi)
-    } else {
-        0.0
-    };
-    let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+    let grip_tilt = draw_grip_tilt(&mut rng, p.grip_tilt);
     let friction = p.fixture_friction.map(|[lo, hi]| rng.random_range(lo..=hi));
-    (sign * magnitude, friction)
+    (grip_tilt, friction)
 }

@@ -7,8 +7,8 @@
 use nalgebra::Vector3;
 use serde::Serialize;
 
-use crate::config::place::GRIP_TILT_LIFT;
 use crate::scenario::Scenario;
+use crate::scenario::grip_tilt::settings::GRIP_TILT_LIFT;
 use crate::sim::Sim;
 
 /// What became of this episode's turn in the grip.
