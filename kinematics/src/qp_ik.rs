@@ -4,8 +4,13 @@
 //! Levenberg–Marquardt damping `λ = λ₀ + κ·‖e‖²` (large far from the target, vanishing at it) and
 //! takes the full step. An attempt that stalls or runs out of iterations restarts from a random
 //! in-limit configuration drawn from `seed`, as TRAC-IK does; the same seed gives the same answer.
-
-use serde::Serialize;
+//!
+//! The restart loop (the crate's `restart` module) is shared with [`crate::chain_ik`]; the step
+//! is this solver's own: [`crate::diff_ik`]'s QP on the FR3's model, its step limit scaled by
+//! each joint's velocity limit, `limit_margin` kept from the limits, and a choice of frame
+//! (flange or TCP). Solving the FR3 as a URDF chain would step otherwise (a uniform step limit,
+//! the active set's answers instead of clarabel's, last bits apart) and move every grasp the
+//! planner computes with this solver.
 
 use crate::diff_ik::{
     FrameTask, JointPositionLimit, QpError, QpWorkspace, VelocityLimit, solve_step,
@@ -13,7 +18,11 @@ use crate::diff_ik::{
 use crate::fk::EndFrame;
 use crate::model::ArmModel;
 use crate::pose::Pose;
-use crate::restart::SplitMix64;
+pub use crate::restart::IterativeIkSolution;
+use crate::restart::{
+    RestartSettings, Restarted, RestartedIk, SplitMix64, finite_target_and_start,
+    solve_with_restarts,
+};
 
 /// Settings of [`ArmModel::ik_qp`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -69,20 +78,8 @@ impl Default for QpIkOptions {
     }
 }
 
-/// A converged QP IK solve.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct QpIkSolution {
-    /// Joint angles \[rad\], within the limits.
-    pub joints: [f64; 6],
-    /// Position error at the end \[m\].
-    pub position_error_m: f64,
-    /// Orientation error at the end \[rad\].
-    pub orientation_error_rad: f64,
-    /// QP steps taken over all attempts.
-    pub iterations: usize,
-    /// Attempts used (1 = converged from the given start).
-    pub attempts: usize,
-}
+/// A converged solve.
+pub type QpIkSolution = IterativeIkSolution<[f64; 6]>;
 
 /// Why the QP IK did not reach the target.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -134,23 +131,63 @@ impl ArmModel {
         options: &QpIkOptions,
         ws: &mut QpWorkspace,
     ) -> Result<QpIkSolution, QpIkError> {
-        let finite_target = target
-            .xyz()
-            .iter()
-            .chain(&target.quat_xyzw())
-            .all(|v| v.is_finite());
-        if !finite_target || !start.iter().all(|v| v.is_finite()) {
+        self.check_qp_start(target, start)?;
+        let mut problem = FrameProblem::new(self, target, options, ws);
+        let settings = RestartSettings::new(
+            (options.position_tolerance, options.orientation_tolerance),
+            options.max_iterations,
+            options.max_attempts,
+            options.seed,
+        );
+        match solve_with_restarts(&mut problem, start, &settings)? {
+            Restarted::Converged(solution) => Ok(solution),
+            Restarted::NotConverged(r) => Err(QpIkError::NotConverged {
+                best_joints: r.joints,
+                position_error_m: r.position_error_m,
+                orientation_error_rad: r.orientation_error_rad,
+                iterations: r.iterations,
+                attempts: r.attempts,
+            }),
+        }
+    }
+
+    /// Refuses a non-finite target or start, and a start outside the joint limits.
+    fn check_qp_start(&self, target: &Pose, start: &[f64; 6]) -> Result<(), QpIkError> {
+        if !finite_target_and_start(target, start) {
             return Err(QpIkError::NonFinite);
         }
-        if let Some((joint, value)) = self.first_limit_violation(start) {
-            let spec = self.joints[joint];
-            return Err(QpIkError::StartOutOfLimits {
+        match self.first_limit_violation(start) {
+            Some((joint, value)) => Err(QpIkError::StartOutOfLimits {
                 joint,
                 value,
-                lower: spec.lower,
-                upper: spec.upper,
-            });
+                lower: self.joints[joint].lower,
+                upper: self.joints[joint].upper,
+            }),
+            None => Ok(()),
         }
+    }
+}
+
+/// The FR3's frame task as a [`RestartedIk`] problem: its residual, and one QP step of
+/// [`crate::diff_ik`] under the position and step limits.
+struct FrameProblem<'a> {
+    model: &'a ArmModel,
+    options: &'a QpIkOptions,
+    task: FrameTask,
+    position_limit: JointPositionLimit,
+    /// The largest step per iteration as a velocity limit: `max_step` for the slowest joint, the
+    /// others in proportion to their velocity limits.
+    step_limit: VelocityLimit,
+    ws: &'a mut QpWorkspace,
+}
+
+impl<'a> FrameProblem<'a> {
+    fn new(
+        model: &'a ArmModel,
+        target: &Pose,
+        options: &'a QpIkOptions,
+        ws: &'a mut QpWorkspace,
+    ) -> Self {
         let task = FrameTask {
             position_clamp: options.position_clamp,
             orientation_clamp: options.orientation_clamp,
@@ -161,77 +198,62 @@ impl ArmModel {
                 options.orientation_cost,
             )
         };
-        let position_limit = JointPositionLimit {
-            margin: options.limit_margin,
-        };
-        let min_velocity = self
+        let min_velocity = model
             .velocity_limits()
             .into_iter()
             .fold(f64::INFINITY, f64::min);
-        let step_limit = VelocityLimit {
-            dt: options.max_step / min_velocity,
-            scale: 1.0,
-        };
-        let mut rng = SplitMix64(options.seed);
-        let mut best = (f64::INFINITY, *start, 0.0, 0.0);
-        let mut iterations = 0;
-        let mut q = *start;
-        for attempt in 1..=options.max_attempts {
-            if attempt > 1 {
-                q = self.joints.map(|j| {
-                    let (lo, hi) = (
-                        j.lower + options.limit_margin,
-                        j.upper - options.limit_margin,
-                    );
-                    lo + (hi - lo) * rng.next_unit()
-                });
-            }
-            let mut stalled_since = (f64::INFINITY, 0);
-            for it in 0..=options.max_iterations {
-                let (dp, dr) = task.residual(self, &q);
-                let score = dp / options.position_tolerance + dr / options.orientation_tolerance;
-                if score < best.0 {
-                    best = (score, q, dp, dr);
-                }
-                if dp <= options.position_tolerance && dr <= options.orientation_tolerance {
-                    return Ok(QpIkSolution {
-                        joints: q,
-                        position_error_m: dp,
-                        orientation_error_rad: dr,
-                        iterations,
-                        attempts: attempt,
-                    });
-                }
-                // A stall: less than 10 % progress over 8 steps.
-                if score < 0.9 * stalled_since.0 {
-                    stalled_since = (score, it);
-                } else if it - stalled_since.1 >= 8 || it == options.max_iterations {
-                    break;
-                }
-                let damping = options.damping
-                    + options.error_damping
-                        * (options.position_cost * dp * dp + options.orientation_cost * dr * dr);
-                let dq = solve_step(
-                    self,
-                    &q,
-                    &[&task],
-                    &[&position_limit, &step_limit],
-                    damping,
-                    ws,
-                )?;
-                iterations += 1;
-                for i in 0..6 {
-                    // The QP's interior-point answer may sit 1e-12 outside a bound.
-                    q[i] = (q[i] + dq[i]).clamp(self.joints[i].lower, self.joints[i].upper);
-                }
-            }
+        Self {
+            model,
+            options,
+            task,
+            position_limit: JointPositionLimit {
+                margin: options.limit_margin,
+            },
+            step_limit: VelocityLimit {
+                dt: options.max_step / min_velocity,
+                scale: 1.0,
+            },
+            ws,
         }
-        Err(QpIkError::NotConverged {
-            best_joints: best.1,
-            position_error_m: best.2,
-            orientation_error_rad: best.3,
-            iterations,
-            attempts: options.max_attempts,
+    }
+}
+
+impl RestartedIk for FrameProblem<'_> {
+    type Joints = [f64; 6];
+    /// The QP linearises at the configuration itself.
+    type Linearisation = ();
+    type Error = QpIkError;
+
+    fn evaluate(&mut self, q: &[f64; 6]) -> (f64, f64, ()) {
+        let (dp, dr) = self.task.residual(self.model, q);
+        (dp, dr, ())
+    }
+
+    fn step(&mut self, q: &mut [f64; 6], (dp, dr): (f64, f64), _: ()) -> Result<(), QpIkError> {
+        let o = self.options;
+        let damping = o.damping
+            + o.error_damping * (o.position_cost * dp * dp + o.orientation_cost * dr * dr);
+        let dq = solve_step(
+            self.model,
+            q,
+            &[&self.task],
+            &[&self.position_limit, &self.step_limit],
+            damping,
+            self.ws,
+        )?;
+        for (i, joint) in self.model.joints.iter().enumerate() {
+            // The QP's interior-point answer may sit 1e-12 outside a bound.
+            q[i] = (q[i] + dq[i]).clamp(joint.lower, joint.upper);
+        }
+        Ok(())
+    }
+
+    /// Within the limits less `limit_margin`.
+    fn draw(&self, rng: &mut SplitMix64) -> [f64; 6] {
+        let margin = self.options.limit_margin;
+        self.model.joints.map(|j| {
+            let (lo, hi) = (j.lower + margin, j.upper - margin);
+            lo + (hi - lo) * rng.next_unit()
         })
     }
 }

@@ -3,10 +3,12 @@
 use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::chain_ik::step::bounded_step;
-use serde::Serialize;
 
 use crate::pose::Pose;
-use crate::restart::SplitMix64;
+use crate::restart::{
+    IterativeIkSolution, RestartSettings, Restarted, RestartedIk, SplitMix64,
+    finite_target_and_start, solve_with_restarts,
+};
 use crate::urdf::{SerialChain, UrdfError, UrdfRobot};
 
 /// Settings of [`ChainIk::solve`].
@@ -55,19 +57,7 @@ impl Default for ChainIkOptions {
 }
 
 /// A converged solve.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct ChainIkSolution {
-    /// The movable joints' values \[rad or m\], in chain order, within their limits.
-    pub joints: Vec<f64>,
-    /// Position error at the end \[m\].
-    pub position_error_m: f64,
-    /// Orientation error at the end \[rad\].
-    pub orientation_error_rad: f64,
-    /// QP steps over all attempts.
-    pub iterations: usize,
-    /// Attempts used (1 = converged from the given start).
-    pub attempts: usize,
-}
+pub type ChainIkSolution = IterativeIkSolution<Vec<f64>>;
 
 /// Why the chain IK gave no answer.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -179,6 +169,32 @@ impl ChainIk {
         start: &[f64],
         options: &ChainIkOptions,
     ) -> Result<ChainIkSolution, ChainIkError> {
+        self.check_start(target, start)?;
+        let settings = RestartSettings::new(
+            (options.position_tolerance, options.orientation_tolerance),
+            options.max_iterations,
+            options.max_attempts,
+            options.seed,
+        );
+        let mut problem = TipProblem {
+            ik: self,
+            target,
+            options,
+        };
+        match solve_with_restarts(&mut problem, &start.to_vec(), &settings)? {
+            Restarted::Converged(solution) => Ok(solution),
+            Restarted::NotConverged(r) => Err(ChainIkError::NotConverged {
+                best_joints: r.joints,
+                position_error_m: r.position_error_m,
+                orientation_error_rad: r.orientation_error_rad,
+                iterations: r.iterations,
+                attempts: r.attempts,
+            }),
+        }
+    }
+
+    /// Refuses a start of the wrong length, non-finite values, or a start outside the limits.
+    fn check_start(&self, target: &Pose, start: &[f64]) -> Result<(), ChainIkError> {
         let n = self.dof();
         if start.len() != n {
             return Err(ChainIkError::StartLength {
@@ -187,77 +203,64 @@ impl ChainIk {
                 got: start.len(),
             });
         }
-        let finite_target = target
-            .xyz()
-            .iter()
-            .chain(&target.quat_xyzw())
-            .all(|v| v.is_finite());
-        if !finite_target || !start.iter().all(|v| v.is_finite()) {
+        if !finite_target_and_start(target, start) {
             return Err(ChainIkError::NonFinite);
         }
-        if let Some(i) = (0..n).find(|&i| start[i] < self.lower[i] || start[i] > self.upper[i]) {
-            return Err(ChainIkError::StartOutOfLimits {
+        match (0..n).find(|&i| start[i] < self.lower[i] || start[i] > self.upper[i]) {
+            Some(i) => Err(ChainIkError::StartOutOfLimits {
                 joint: self.names[i].clone(),
                 value: start[i],
                 lower: self.lower[i],
                 upper: self.upper[i],
-            });
+            }),
+            None => Ok(()),
         }
-        let o = options;
-        let mut rng = SplitMix64(o.seed);
-        let mut best = (f64::INFINITY, start.to_vec(), 0.0, 0.0);
-        let mut iterations = 0;
-        let mut q = start.to_vec();
-        for attempt in 1..=o.max_attempts {
-            if attempt > 1 {
-                q = self.draw(&mut rng);
-            }
-            let mut stalled_since = (f64::INFINITY, 0);
-            for it in 0..=o.max_iterations {
-                let (hessian, rhs, dp, dr) = self.normal_equations(target, &q, o);
-                let score = dp / o.position_tolerance + dr / o.orientation_tolerance;
-                if score < best.0 {
-                    best = (score, q.clone(), dp, dr);
-                }
-                if dp <= o.position_tolerance && dr <= o.orientation_tolerance {
-                    return Ok(ChainIkSolution {
-                        joints: q,
-                        position_error_m: dp,
-                        orientation_error_rad: dr,
-                        iterations,
-                        attempts: attempt,
-                    });
-                }
-                // A stall: less than 10 % progress over 8 steps.
-                if score < 0.9 * stalled_since.0 {
-                    stalled_since = (score, it);
-                } else if it - stalled_since.1 >= 8 || it == o.max_iterations {
-                    break;
-                }
-                let damping =
-                    o.damping + o.error_damping * (dp * dp + o.orientation_weight * dr * dr);
-                let bounds: Vec<(f64, f64)> = (0..n)
-                    .map(|i| {
-                        let lo = (self.lower[i] - q[i]).max(-o.max_step);
-                        let hi = (self.upper[i] - q[i]).min(o.max_step);
-                        (lo, hi)
-                    })
-                    .collect();
-                let dq =
-                    bounded_step(hessian, &rhs, damping, &bounds).map_err(ChainIkError::Solver)?;
-                iterations += 1;
-                for i in 0..n {
-                    // The interior-point answer may sit 1e-12 outside a bound.
-                    q[i] = (q[i] + dq[i]).clamp(self.lower[i], self.upper[i]);
-                }
-            }
+    }
+}
+
+/// The chain's tip task as a [`RestartedIk`] problem: the Gauss–Newton normal equations at a
+/// configuration, and one bounded step ([`bounded_step`]) within the limits and `max_step`.
+struct TipProblem<'a> {
+    ik: &'a ChainIk,
+    target: &'a Pose,
+    options: &'a ChainIkOptions,
+}
+
+impl RestartedIk for TipProblem<'_> {
+    type Joints = Vec<f64>;
+    /// `JᵀWJ` and `JᵀWe` at the configuration.
+    type Linearisation = (DMatrix<f64>, DVector<f64>);
+    type Error = ChainIkError;
+
+    fn evaluate(&mut self, q: &Vec<f64>) -> (f64, f64, Self::Linearisation) {
+        let (hessian, rhs, dp, dr) = self.ik.normal_equations(self.target, q, self.options);
+        (dp, dr, (hessian, rhs))
+    }
+
+    fn step(
+        &mut self,
+        q: &mut Vec<f64>,
+        (dp, dr): (f64, f64),
+        (hessian, rhs): Self::Linearisation,
+    ) -> Result<(), ChainIkError> {
+        let (ik, o) = (self.ik, self.options);
+        let damping = o.damping + o.error_damping * (dp * dp + o.orientation_weight * dr * dr);
+        let bounds: Vec<(f64, f64)> = (0..ik.dof())
+            .map(|i| {
+                let lo = (ik.lower[i] - q[i]).max(-o.max_step);
+                let hi = (ik.upper[i] - q[i]).min(o.max_step);
+                (lo, hi)
+            })
+            .collect();
+        let dq = bounded_step(hessian, &rhs, damping, &bounds).map_err(ChainIkError::Solver)?;
+        for (i, value) in q.iter_mut().enumerate() {
+            // The interior-point answer may sit 1e-12 outside a bound.
+            *value = (*value + dq[i]).clamp(ik.lower[i], ik.upper[i]);
         }
-        Err(ChainIkError::NotConverged {
-            best_joints: best.1,
-            position_error_m: best.2,
-            orientation_error_rad: best.3,
-            iterations,
-            attempts: o.max_attempts,
-        })
+        Ok(())
+    }
+
+    fn draw(&self, rng: &mut SplitMix64) -> Vec<f64> {
+        self.ik.draw(rng)
     }
 }
