@@ -1,10 +1,16 @@
-//! The environment's configuration: plain serde data with defaults ([`env_config`], the
-//! families' settings in [`families`], the staged reward's weights in [`reward`]), loaded from
-//! TOML and checked with messages that name the field ([`validate`] and the families' rules in
-//! `validate_families`, both written with `check`; [`numbers`], [`error`]),
-//! the named presets ([`presets`]), and where a key is written in a TOML text ([`toml_lines`]).
+//! The environment's configuration: plain serde data with defaults ([`env_config`], the task's
+//! settings in [`task`] and [`place`], the rewards' weights in [`reward`]), loaded from TOML and
+//! checked with messages that name the field ([`validate`], the place task's rules in
+//! `validate_place`, and `validate_families`, which calls each scenario family's rules; all
+//! written with `check`; [`numbers`], [`error`]), the named presets ([`presets`]), and where a
+//! key is written in a TOML text ([`toml_lines`]).
 //!
-//! A leaf: nothing here imports another folder of the crate, so every other room may import it.
+//! A scenario family's settings live in its own folder (`env/src/scenario/<family>/settings.rs`,
+//! plain data and its rules) and are named here only as the type of their `[randomization]`
+//! field; the grip tilt's rule is called by `validate_place`.
+//!
+//! Otherwise a leaf: nothing here imports the env's behaviour (no cell, sim, robot, task or env),
+//! so every other room may import it.
 //!
 //! Frames: `world` is z-up with the table top at `scene.table_height`; the arm's `base_link` sits
 //! at `arm.base_xyz` / `arm.base_rpy` in the world. Units: metres, radians, kilograms, seconds.
