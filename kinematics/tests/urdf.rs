@@ -278,9 +278,9 @@ fn a_floating_joint_in_the_chain_is_unsupported() {
     assert!(message.contains("joint 'j1' is floating"), "{message}");
 }
 
-/// fairgrasp reads URDFs with its own pass over the XML (no urdf-rs in the build); on every
-/// shipped file, and on the test's own, it reads what urdf-rs reads: names, links, joint types,
-/// parents, children, origins, axes and limits.
+/// urdf-rs reads the text and `map.rs` maps its robot into fairgrasp's model; on every shipped
+/// file, and on the test's own, the model holds what urdf-rs read: names, links, joint types,
+/// parents, children, origins, axes (normalised) and limits.
 #[test]
 fn every_shipped_urdf_reads_as_urdf_rs_reads_it() {
     let seven = include_str!("../../assets/seven_joint_arm.urdf");

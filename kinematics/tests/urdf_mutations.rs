@@ -1,10 +1,11 @@
-//! Random damage to the shipped URDFs never panics: every result is a robot or a named error.
+//! Random damage to the shipped URDFs never panics: every result is a robot or a named error,
+//! and every fault of one element (found by the pre-check or by urdf-rs) names its line.
 
 mod common;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-use fairgrasp_kinematics::{FR3_URDF, FR5_URDF, UrdfRobot};
+use fairgrasp_kinematics::{FR3_URDF, FR5_URDF, UrdfError, UrdfRobot};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
@@ -95,11 +96,31 @@ fn mutate(text: &str, rng: &mut ChaCha8Rng) -> (String, String) {
     }
 }
 
+/// Does the refusal of a text name its line? All do but the tree's and the size's faults, which
+/// concern several elements or none (and name the joints or links).
+fn names_its_line(error: &UrdfError) -> bool {
+    let message = error.to_string();
+    let tree_or_size = matches!(
+        error,
+        UrdfError::MissingLink { .. }
+            | UrdfError::NotATree { .. }
+            | UrdfError::BadJoint { .. }
+            | UrdfError::TooLarge { .. }
+    );
+    let after_line = message
+        .split_once(": line ")
+        .and_then(|(_, rest)| rest.split_once(": "));
+    tree_or_size || after_line.is_some_and(|(n, _)| n.parse::<usize>().is_ok())
+}
+
 /// Loads `text`, and when it loads, every chain and its FK at zero: the error messages.
 fn load_everything(text: &str) -> Vec<String> {
     let robot = match UrdfRobot::from_str_named(text, "mutated.urdf") {
         Ok(robot) => robot,
-        Err(e) => return vec![e.to_string()],
+        Err(e) => {
+            assert!(names_its_line(&e), "no line named: {e}");
+            return vec![e.to_string()];
+        }
     };
     let mut errors = Vec::new();
     let tips: Vec<Option<&str>> = std::iter::once(None)

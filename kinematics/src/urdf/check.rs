@@ -1,18 +1,28 @@
-//! A first pass over URDF text that names the offending element, attribute and line.
+//! The pre-check: one pass over URDF text, before urdf-rs reads it, that names the offending
+//! element, attribute and line (urdf-rs names none).
 //!
-//! This pass reads the XML once, in time linear in its length and with no recursion, before the
-//! robot is read out of it (`read.rs`), and reports the first fault as
-//! `line N: joint 'j2' <origin> xyz="0 0 abc": …`. It checks
-//! - the size ([`MAX_URDF_BYTES`]) and the nesting depth ([`MAX_NESTING_DEPTH`]),
-//! - every joint's type, and that revolute and prismatic joints have a `<limit>`,
-//! - that no two links and no two joints share a name,
-//! - every numeric attribute: the count of numbers, each of them finite.
+//! This pass reads the XML once, in time linear in its length and with no recursion, and reports
+//! the first fault as `line N: joint 'j2' <origin> xyz="0 0 abc": …`. It checks
+//! - the size ([`MAX_URDF_BYTES`]) and the nesting depth ([`MAX_NESTING_DEPTH`]), and that no
+//!   `<!DOCTYPE>` declares entities (fairgrasp expands none),
+//! - that the one root element is `<robot>`,
+//! - every link's and joint's name, and that no two links and no two joints share one,
+//! - every joint's type, its `<parent>`, `<child>` and (revolute, prismatic) `<limit>`
+//!   ([`check_joint`](crate::urdf::check_joint)),
+//! - every numeric attribute: the count of numbers, each of them finite, and every `<origin>`'s
+//!   rotation.
+//!
+//! What urdf-rs still refuses after this pass is located by
+//! [`locate`](crate::urdf::locate).
 
 use std::collections::HashMap;
 
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 
+use crate::urdf::check_joint::{
+    OpenJoint, allows_quaternions, at_line, check_joint_end, check_joint_part, check_origin,
+};
 use crate::urdf::error::UrdfError;
 use crate::urdf::joint::JointKind;
 
@@ -47,14 +57,6 @@ fn numeric_arity(element: &str, attribute: &str) -> Option<usize> {
 /// Line numbers of offsets, LF, CRLF and CR (old-Mac) line ends alike: the one counter.
 pub(crate) use fairgrasp_types::text::LineCounter;
 
-/// A top-level `<joint>` whose end has not been read yet.
-struct OpenJoint {
-    name: String,
-    kind: JointKind,
-    line: usize,
-    has_limit: bool,
-}
-
 /// The first line each link name and each joint name was defined on.
 #[derive(Default)]
 struct NamesSeen {
@@ -62,7 +64,23 @@ struct NamesSeen {
     joints: HashMap<String, usize>,
 }
 
-/// Checks size, nesting, joint types and limits, unique names and numeric attributes; `file` is
+/// Where the pass is: the elements open, the names seen, the joint being read.
+struct Walk {
+    /// The elements opened and not yet closed: name and line, outermost first.
+    open_elements: Vec<(String, usize)>,
+    /// The root elements read (one is `<robot>`).
+    roots: usize,
+    /// Does `<robot version>` allow `quat_xyzw`?
+    quaternions_allowed: bool,
+    /// The top-level element being read, as messages name it (`joint 'j2'`).
+    owner: String,
+    names: NamesSeen,
+    open_joint: Option<OpenJoint>,
+    /// A top-level `<link>` or `<joint>` without a name: its tag and line.
+    nameless: Option<(String, usize)>,
+}
+
+/// Checks size, entities, nesting, the root, names, joints and numeric attributes; `file` is
 /// only used in messages.
 pub fn check_urdf_text(file: &str, text: &str) -> Result<(), UrdfError> {
     if text.len() > MAX_URDF_BYTES {
@@ -74,11 +92,15 @@ pub fn check_urdf_text(file: &str, text: &str) -> Result<(), UrdfError> {
     }
     let mut reader = Reader::from_str(text);
     let mut lines = LineCounter::new(text);
-    let mut owner = String::from("robot");
-    // The elements opened and not yet closed: name and line, outermost first.
-    let mut open_elements: Vec<(String, usize)> = Vec::new();
-    let mut names = NamesSeen::default();
-    let mut open_joint: Option<OpenJoint> = None;
+    let mut walk = Walk {
+        open_elements: Vec::new(),
+        roots: 0,
+        quaternions_allowed: false,
+        owner: String::from("robot"),
+        names: NamesSeen::default(),
+        open_joint: None,
+        nameless: None,
+    };
     loop {
         let start = reader.buffer_position() as usize;
         let event = reader.read_event().map_err(|e| UrdfError::Xml {
@@ -90,68 +112,140 @@ pub fn check_urdf_text(file: &str, text: &str) -> Result<(), UrdfError> {
             Event::Start(e) => (e, false),
             Event::Empty(e) => (e, true),
             Event::End(_) => {
-                open_elements.pop();
-                if open_elements.len() == 1
-                    && let Some(joint) = open_joint.take()
-                {
-                    check_limit_present(file, &joint)?;
+                walk.open_elements.pop();
+                if walk.open_elements.len() == 1 {
+                    check_named(file, &mut walk)?;
+                    if let Some(joint) = walk.open_joint.take() {
+                        check_joint_end(file, &joint)?;
+                    }
                 }
                 continue;
             }
-            Event::Eof => return check_all_closed(file, &open_elements),
+            Event::DocType(d) if d.windows(8).any(|w| w == b"<!ENTITY") => {
+                let message = "the <!DOCTYPE> declares entities (<!ENTITY …>); a URDF needs \
+                               none and fairgrasp expands none";
+                return Err(at_line(file, lines.line_at(start), message.to_string()));
+            }
+            Event::Eof => return check_end(file, &walk),
             _ => continue,
         };
-        let line = lines.line_at(start);
-        let name = String::from_utf8_lossy(element.name().as_ref()).into_owned();
-        let level = open_elements.len() + 1;
-        if level > MAX_NESTING_DEPTH {
-            return Err(UrdfError::TooDeep {
-                file: file.to_string(),
-                line,
-                element: name,
-                depth: level,
-                limit: MAX_NESTING_DEPTH,
-            });
-        }
-        if !is_empty {
-            open_elements.push((name.clone(), line));
-        }
-        if level == 2 {
-            // A direct child of <robot>: a link, a joint, a material, a transmission, …
-            let own_name = attribute(element, "name");
-            owner = match &own_name {
-                Some(own_name) => format!("{name} '{own_name}'"),
-                None => name.clone(),
-            };
-            if let Some(own_name) = &own_name {
-                check_unique(file, line, &name, own_name, &mut names)?;
-            }
-            if name == "joint" {
-                let joint = OpenJoint {
-                    name: own_name.unwrap_or_default(),
-                    kind: check_joint_type(file, line, &owner, element)?,
-                    line,
-                    has_limit: false,
-                };
-                if is_empty {
-                    check_limit_present(file, &joint)?;
-                } else {
-                    open_joint = Some(joint);
-                }
-            }
-        } else if level == 3
-            && name == "limit"
-            && let Some(joint) = open_joint.as_mut()
-        {
-            joint.has_limit = true;
-        }
-        check_numbers(file, line, &owner, &name, element)?;
+        check_element(file, lines.line_at(start), element, is_empty, &mut walk)?;
     }
 }
 
-/// At the end of the text: is every element closed?
-fn check_all_closed(file: &str, open_elements: &[(String, usize)]) -> Result<(), UrdfError> {
-    match open_elements.last() {
+/// Checks one element that starts on `line` (`is_empty`: written `<…/>`).
+fn check_element(
+    file: &str,
+    line: usize,
+    element: &BytesStart<'_>,
+    is_empty: bool,
+    walk: &mut Walk,
+) -> Result<(), UrdfError> {
+    let name = String::from_utf8_lossy(element.name().as_ref()).into_owned();
+    let level = walk.open_elements.len() + 1;
+    if level > MAX_NESTING_DEPTH {
+        return Err(UrdfError::TooDeep {
+            file: file.to_string(),
+            line,
+            element: name,
+            depth: level,
+            limit: MAX_NESTING_DEPTH,
+        });
+    }
+    if !is_empty {
+        walk.open_elements.push((name.clone(), line));
+    }
+    match level {
+        1 => check_root(file, line, &name, element, walk)?,
+        2 => check_top_level(file, line, &name, element, is_empty, walk)?,
+        3 => {
+            if let Some(joint) = walk.open_joint.as_mut() {
+                check_joint_part(file, line, joint, &name, element)?;
+            }
+        }
+        _ => {}
+    }
+    check_numbers(file, line, &walk.owner, &name, element)?;
+    if name == "origin" {
+        check_origin(file, line, &walk.owner, element, walk.quaternions_allowed)?;
+    }
+    Ok(())
+}
+
+/// The root element: one, and `<robot>`.
+fn check_root(
+    file: &str,
+    line: usize,
+    name: &str,
+    element: &BytesStart<'_>,
+    walk: &mut Walk,
+) -> Result<(), UrdfError> {
+    walk.roots += 1;
+    if walk.roots > 1 {
+        let message = format!("a second root element <{name}>; a URDF has one <robot>");
+        return Err(at_line(file, line, message));
+    }
+    if name != "robot" {
+        let message = format!("the root element is <{name}>; a URDF's is <robot>");
+        return Err(at_line(file, line, message));
+    }
+    walk.quaternions_allowed = allows_quaternions(element);
+    Ok(())
+}
+
+/// A direct child of `<robot>`: a link, a joint, a material, a transmission, …
+fn check_top_level(
+    file: &str,
+    line: usize,
+    name: &str,
+    element: &BytesStart<'_>,
+    is_empty: bool,
+    walk: &mut Walk,
+) -> Result<(), UrdfError> {
+    let own_name = attribute(element, "name");
+    walk.owner = match &own_name {
+        Some(own_name) => format!("{name} '{own_name}'"),
+        None => name.to_string(),
+    };
+    let Some(own_name) = own_name else {
+        if matches!(name, "link" | "joint") {
+            // Reported at its end, after anything inside it (an element nested too deep).
+            walk.nameless = Some((name.to_string(), line));
+            if is_empty {
+                return check_named(file, walk);
+            }
+        }
+        return Ok(());
+    };
+    check_unique(file, line, name, &own_name, &mut walk.names)?;
+    if name == "joint" {
+        let kind = check_joint_type(file, line, &walk.owner, element)?;
+        let joint = OpenJoint::new(own_name, kind, line);
+        if is_empty {
+            check_joint_end(file, &joint)?;
+        } else {
+            walk.open_joint = Some(joint);
+        }
+    }
+    Ok(())
+}
+
+/// At the end of a top-level element: did it have the name it needs?
+fn check_named(file: &str, walk: &mut Walk) -> Result<(), UrdfError> {
+    match walk.nameless.take() {
+        Some((tag, line)) => Err(at_line(
+            file,
+            line,
+            format!("a <{tag}> has no name attribute"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// At the end of the text: is every element closed, and was there a `<robot>`?
+fn check_end(file: &str, walk: &Walk) -> Result<(), UrdfError> {
+    match walk.open_elements.last() {
+        None if walk.roots == 0 => Err(at_line(file, 1, "no <robot> element".to_string())),
         None => Ok(()),
         Some((name, line)) => Err(UrdfError::Xml {
             file: file.to_string(),
@@ -183,18 +277,6 @@ fn check_unique(
         });
     }
     first_lines.insert(name.to_string(), line);
-    Ok(())
-}
-
-fn check_limit_present(file: &str, joint: &OpenJoint) -> Result<(), UrdfError> {
-    if joint.kind.has_position_limits() && !joint.has_limit {
-        return Err(UrdfError::MissingLimit {
-            file: file.to_string(),
-            line: joint.line,
-            joint: joint.name.clone(),
-            kind: joint.kind.name().to_string(),
-        });
-    }
     Ok(())
 }
 

@@ -1,21 +1,20 @@
 //! Reading a URDF into its joint table ([`UrdfRobot`]) and picking a serial chain from it.
 //!
-//! Errors name the file, the element and the value at fault. Reading and checking take time
-//! linear in the file's length (every look-up by name goes through a hash map), and files larger
-//! than [`MAX_URDF_BYTES`] or nested deeper than
-//! [`MAX_NESTING_DEPTH`](crate::urdf::MAX_NESTING_DEPTH) are refused.
+//! Text goes through the pre-check (`check.rs`), then urdf-rs, then the mapping into
+//! fairgrasp's model (`map.rs`), then the tree's checks here. Errors name the file, the element
+//! and the value at fault. Reading and checking take time linear in the file's length (every
+//! look-up by name goes through a hash map), and files larger than [`MAX_URDF_BYTES`] or nested
+//! deeper than [`MAX_NESTING_DEPTH`](crate::urdf::MAX_NESTING_DEPTH) are refused.
 
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
-use nalgebra::Vector3;
-
-use crate::pose::Pose;
 use crate::urdf::chain::SerialChain;
 use crate::urdf::check::{MAX_URDF_BYTES, check_urdf_text};
 use crate::urdf::error::UrdfError;
 use crate::urdf::joint::{JointKind, UrdfJoint};
-use crate::urdf::read::{JointText, RobotText, read_robot};
+use crate::urdf::locate::locate;
+use crate::urdf::map::{Mapped, map_robot};
 
 /// A parsed robot: its joints in depth-first order from the root link.
 #[derive(Clone, Debug, PartialEq)]
@@ -60,7 +59,16 @@ impl UrdfRobot {
     /// Parses URDF text of at most [`MAX_URDF_BYTES`]; `file` names it in error messages.
     pub fn from_str_named(text: &str, file: &str) -> Result<Self, UrdfError> {
         check_urdf_text(file, text)?;
-        build_tree(file, read_robot(file, text)?)
+        let robot =
+            urdf_rs::read_from_string(text).map_err(|e| locate(file, text, &e.to_string()))?;
+        Self::from_urdf_rs(&robot, file)
+    }
+
+    /// The joint table of a robot urdf-rs read (`file` names it in error messages), with the
+    /// same checks as text gets after the pre-check: finite numbers, non-zero axes, ordered
+    /// limits, one tree. No line is named: a `urdf_rs::Robot` keeps none.
+    pub fn from_urdf_rs(robot: &urdf_rs::Robot, file: &str) -> Result<Self, UrdfError> {
+        build_tree(file, map_robot(file, robot)?)
     }
 
     /// Joints with one degree of freedom, in tree order.
@@ -129,7 +137,7 @@ fn child_joints(joints: &[UrdfJoint]) -> HashMap<&str, Vec<&UrdfJoint>> {
     children
 }
 
-fn build_tree(file: &str, robot: RobotText) -> Result<UrdfRobot, UrdfError> {
+fn build_tree(file: &str, robot: Mapped) -> Result<UrdfRobot, UrdfError> {
     let links = robot.links;
     let known_links: HashSet<&str> = links.iter().map(String::as_str).collect();
     let mut parent_of: HashMap<&str, &str> = HashMap::new();
@@ -173,14 +181,9 @@ fn build_tree(file: &str, robot: RobotText) -> Result<UrdfRobot, UrdfError> {
             detail,
         });
     };
-    let converted = robot
-        .joints
-        .iter()
-        .map(|j| convert_joint(file, j))
-        .collect::<Result<Vec<_>, _>>()?;
     // Depth-first from the root; joints never reached sit on a cycle.
-    let joints = depth_first(&converted, root);
-    if joints.len() != converted.len() {
+    let joints = depth_first(&robot.joints, root);
+    if joints.len() != robot.joints.len() {
         return Err(UrdfError::NotATree {
             file: file.to_string(),
             detail: "some joints are not reachable from the root link (a cycle)".to_string(),
@@ -211,50 +214,4 @@ fn depth_first(pool: &[UrdfJoint], root: &str) -> Vec<UrdfJoint> {
         stack.extend(children(&joint.child).iter().rev());
     }
     ordered
-}
-
-fn convert_joint(file: &str, j: &JointText) -> Result<UrdfJoint, UrdfError> {
-    let bad = |problem: String| UrdfError::BadJoint {
-        file: file.to_string(),
-        joint: j.name.clone(),
-        problem,
-    };
-    let kind = j.kind;
-    // Scaled by its largest component first, so that 1e200 does not overflow the norm.
-    let axis = Vector3::from(j.axis);
-    let largest = axis.amax();
-    let axis = if largest > 0.0 { axis / largest } else { axis };
-    let norm = axis.norm();
-    if kind.is_single_axis() && largest < 1e-9 {
-        let [x, y, z] = j.axis;
-        return Err(bad(format!(
-            "its axis is zero: <axis xyz=\"{x} {y} {z}\"/>; a unit vector is expected"
-        )));
-    }
-    let limits = if kind.has_position_limits() {
-        let (lower, upper) = (j.lower, j.upper);
-        if lower > upper {
-            return Err(bad(format!(
-                "limit lower = {lower} is above upper = {upper}"
-            )));
-        }
-        Some([lower, upper])
-    } else {
-        None
-    };
-    Ok(UrdfJoint {
-        name: j.name.clone(),
-        kind,
-        parent: j.parent.clone(),
-        child: j.child.clone(),
-        origin: Pose::from_xyz_rpy(j.xyz, j.rpy),
-        axis: if norm > 0.0 {
-            (axis / norm).into()
-        } else {
-            [0.0, 0.0, 1.0]
-        },
-        limits,
-        max_velocity: j.velocity,
-        max_effort: j.effort,
-    })
 }
