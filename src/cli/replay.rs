@@ -1,7 +1,10 @@
 //! `fairgrasp replay`: one scenario run by one or more policies, recorded, and written as the
-//! interactive 3D replay (one self-contained HTML file; see `fairgrasp_report::replay3d`).
+//! interactive 3D replay (one self-contained HTML file; see `fairgrasp_report::replay3d`), and/or
+//! as JSON (`--json`, [`json`]: what `python -m fairgrasp.rerun` turns into a Rerun `.rrd`).
 
-use std::path::PathBuf;
+mod json;
+
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::{Context, bail};
@@ -37,17 +40,39 @@ pub struct ReplayArgs {
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
     arm: ArmSimulation,
-    /// The HTML file to write. An existing file is replaced only if it is a fairgrasp replay.
-    #[arg(long, value_name = "FILE.html", default_value = "replay.html")]
-    out: PathBuf,
+    /// The HTML file to write [default: replay.html, unless --json is given]. An existing file
+    /// is replaced only if it is a fairgrasp replay.
+    #[arg(long, value_name = "FILE.html")]
+    out: Option<PathBuf>,
+    /// Also (or, without --out, only) write the recorded episodes as JSON: each method's
+    /// trajectory and the contact forces of every step, what `python -m fairgrasp.rerun` turns
+    /// into a Rerun .rrd. An existing file is replaced only if it is such a JSON.
+    #[arg(long, value_name = "FILE.json")]
+    json: Option<PathBuf>,
 }
 
 pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
-    if a.out.exists() && !replay3d::is_replay_file(&a.out) {
+    let html = match (&a.out, &a.json) {
+        (Some(out), _) => Some(out.clone()),
+        (None, Some(_)) => None,
+        (None, None) => Some(PathBuf::from("replay.html")),
+    };
+    if let Some(out) = html.as_ref().filter(|o| o.exists())
+        && !replay3d::is_replay_file(out)
+    {
         bail!(
             "--out {}: the file exists and is not a fairgrasp replay; choose another name (it is \
              never replaced)",
-            a.out.display()
+            out.display()
+        );
+    }
+    if let Some(path) = a.json.as_ref().filter(|p| p.exists())
+        && !json::is_replay_json(path)
+    {
+        bail!(
+            "--json {}: the file exists and is not a fairgrasp replay JSON; choose another name \
+             (it is never replaced)",
+            path.display()
         );
     }
     let config =
@@ -89,13 +114,6 @@ pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
             trajectory: &r.trajectory,
         })
         .collect();
-    let title = format!(
-        "fairgrasp replay: {} on {} #{}",
-        names.join(" vs "),
-        a.preset,
-        a.episode
-    );
-    replay3d::write_replay(&a.out, &title, &episodes)?;
     for (name, r) in names.iter().zip(&recordings) {
         println!(
             "{name}: {} in {} steps",
@@ -103,12 +121,51 @@ pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
             r.trajectory.rows.len().saturating_sub(1)
         );
     }
+    if let Some(out) = &html {
+        write_html(out, a, &names, &episodes)?;
+    }
+    if let Some(path) = &a.json {
+        let methods: Vec<json::MethodEpisode<'_>> = episodes
+            .iter()
+            .map(|e| json::MethodEpisode {
+                method: &e.method,
+                trajectory: e.trajectory,
+            })
+            .collect();
+        let scenario = &scenarios[a.episode];
+        let id = (a.preset.as_str(), a.episode, a.seed);
+        json::write_replay_json(path, &config, scenario, id, &methods)?;
+        println!(
+            "Written {} ({} KB): `python -m fairgrasp.rerun {} --rrd episode.rrd` makes a Rerun \
+             recording of it",
+            path.display(),
+            std::fs::metadata(path).map_or(0, |m| m.len() / 1024),
+            path.display()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Writes the interactive 3D replay page of `episodes` to `out` and says how to open it.
+fn write_html(
+    out: &Path,
+    a: &ReplayArgs,
+    names: &[String],
+    episodes: &[ReplayEpisode<'_>],
+) -> anyhow::Result<()> {
+    let title = format!(
+        "fairgrasp replay: {} on {} #{}",
+        names.join(" vs "),
+        a.preset,
+        a.episode
+    );
+    replay3d::write_replay(out, &title, episodes)?;
     let with = if episodes.len() > 1 { "&with=1" } else { "" };
     println!(
         "Written {} ({} KB): open it in a browser, e.g. {}#episode=0&t=0{with}",
-        a.out.display(),
-        std::fs::metadata(&a.out).map_or(0, |m| m.len() / 1024),
-        a.out.display()
+        out.display(),
+        std::fs::metadata(out).map_or(0, |m| m.len() / 1024),
+        out.display()
     );
-    Ok(ExitCode::SUCCESS)
+    Ok(())
 }
