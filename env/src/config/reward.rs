@@ -5,6 +5,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::config::check::check;
+use crate::config::error::ConfigError;
+
 /// Weights of the seed reward (`task.reward = "seed"`): paid `success` on success, `collision`
 /// on a collision or protective stop, else `distance` per metre still to go.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,5 +61,66 @@ impl Default for StagedReward {
             success: 20.0,
             collision: -1.0,
         }
+    }
+}
+
+impl StagedReward {
+    /// Refuses weights and scales outside their ranges, naming the field (`task.staged.*`).
+    pub(crate) fn check(&self) -> Result<(), ConfigError> {
+        // Weights beyond these make the per-step reward (and PPO's value targets) overflow long
+        // before they mean anything: 1e308 trained to NaN and the error named the learning rate.
+        let w = self;
+        for (value, field, rule) in [
+            (
+                w.reach,
+                "task.staged.reach",
+                "must be in [0, 1000] (default 1)",
+            ),
+            (
+                w.grasp,
+                "task.staged.grasp",
+                "must be in [0, 1000] (default 1)",
+            ),
+            (
+                w.lift,
+                "task.staged.lift",
+                "must be in [0, 1000] (default 1)",
+            ),
+            (
+                w.reach_sharpness,
+                "task.staged.reach_sharpness",
+                "must be in [0, 1000] 1/m (default 5)",
+            ),
+            (
+                w.lift_sharpness,
+                "task.staged.lift_sharpness",
+                "must be in [0, 1000] 1/m (default 50)",
+            ),
+        ] {
+            check(
+                value.is_finite() && (0.0..=1000.0).contains(&value),
+                field,
+                value,
+                rule,
+            )?;
+        }
+        check(
+            w.reach + w.grasp + w.lift > 0.0,
+            "task.staged",
+            w.reach + w.grasp + w.lift,
+            "reach + grasp + lift must be positive (the per-step normaliser)",
+        )?;
+        for (value, field) in [
+            (w.success, "task.staged.success"),
+            (w.collision, "task.staged.collision"),
+        ] {
+            check(
+                value.is_finite() && value.abs() <= 1e4,
+                field,
+                value,
+                "must be a number in [-10000, 10000]",
+            )?;
+        }
+        Ok(())
     }
 }

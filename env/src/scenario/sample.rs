@@ -13,6 +13,7 @@ use crate::config::{EnvConfig, TaskKind};
 use crate::scenario::fixture::{FixturePose, draw_fixture};
 use crate::scenario::graspable::top_down_grasp;
 use crate::scenario::noise::gauss;
+use crate::scenario::nudge::draw_nudge;
 use fairgrasp_kinematics::ArmModel;
 
 /// Redraws allowed before a scenario is given up as ungraspable.
@@ -132,7 +133,9 @@ impl Scenario {
         Scenario::sample_in(&Cell::from_config(config), config, seed)
     }
 
-    /// [`Scenario::sample`] for a cell already derived from `config`.
+    /// [`Scenario::sample`] for a cell already derived from `config`: the cube and the start
+    /// drawn ([`draw_start`]) until the cube admits a top-down grasp (and, for the place task,
+    /// a fixture fits beside it), then the families' own draws.
     pub fn sample_in(
         cell: &Cell,
         config: &EnvConfig,
@@ -142,64 +145,30 @@ impl Scenario {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let (model, mount) = (&cell.model, cell.mount);
         for _ in 0..MAX_DRAWS {
-            let object_xy = if r.position {
-                // Uniform over the sector's area: radius ~ sqrt(U(r0², r1²)).
-                let rad = rng
-                    .random_range(r.radius[0].powi(2)..=r.radius[1].powi(2))
-                    .sqrt();
-                let angle = rng.random_range(r.angle[0]..=r.angle[1]);
-                [rad * angle.cos(), rad * angle.sin()]
-            } else {
-                config.scene.cube_xy
-            };
-            let object_yaw = if r.yaw {
-                rng.random_range(0.0..TAU)
-            } else {
-                0.0
-            };
-            let friction = r.friction.map_or(config.scene.cube_friction, |f| {
-                rng.random_range(f[0]..=f[1])
-            });
-            let mass = config.scene.cube_mass
-                * r.mass_scale.map_or(1.0, |m| rng.random_range(m[0]..=m[1]));
-            let start_joints = noisy_home(config, model, &mut rng);
-            let p = r.observed_position_noise;
-            // Perception noise lies on the table plane: the cube's height is known.
-            let observed_position_error = [gauss(&mut rng, p), gauss(&mut rng, p), 0.0];
-            let observed_yaw_error = gauss(&mut rng, r.observed_yaw_noise);
-            let pose = mount.resting_object_in_base(object_xy, object_yaw, config.scene.cube_size);
-            let Ok(fixture) = fixture_for(config, cell, seed, object_xy, &start_joints) else {
+            let mut s = draw_start(config, model, seed, &mut rng);
+            let pose =
+                mount.resting_object_in_base(s.object_xy, s.object_yaw, config.scene.cube_size);
+            let Ok(fixture) = fixture_for(config, cell, seed, s.object_xy, &s.start_joints) else {
                 if r.position {
                     continue; // another cube position may leave room for the fixture
                 }
                 break;
             };
-            if top_down_grasp(model, &mount, &pose, &start_joints).is_some() {
-                let nudge = r.nudge.as_ref().and_then(|n| {
-                    crate::scenario::nudge::draw_nudge(
+            if top_down_grasp(model, &mount, &pose, &s.start_joints).is_some() {
+                s.fixture = fixture;
+                s.nudge = r.nudge.as_ref().and_then(|n| {
+                    draw_nudge(
                         n,
                         config,
                         model,
                         &mount,
                         seed,
-                        object_xy,
-                        object_yaw,
-                        &start_joints,
+                        s.object_xy,
+                        s.object_yaw,
+                        &s.start_joints,
                     )
                 });
-                return Ok(Scenario {
-                    seed,
-                    object_xy,
-                    object_yaw,
-                    friction,
-                    mass,
-                    start_joints,
-                    observed_position_error,
-                    observed_yaw_error,
-                    nudge,
-                    camera_offset: r.camera_offset,
-                    fixture,
-                });
+                return Ok(s);
             }
             if !r.position {
                 break; // a fixed position will not become graspable by redrawing
@@ -213,6 +182,51 @@ impl Scenario {
             base_height_above_table: mount.base_height_above_table(),
             base_tilt: mount.tilt(),
         })
+    }
+}
+
+/// One draw of the cube and the start from `rng`, in the generator's order: position (table
+/// frame), yaw, friction, mass, start joints, perception errors. The families' draws (the
+/// fixture, the push) come later, from generators of their own; the camera offset is the
+/// config's.
+fn draw_start(config: &EnvConfig, model: &ArmModel, seed: u64, rng: &mut ChaCha8Rng) -> Scenario {
+    let r = &config.randomization;
+    let object_xy = if r.position {
+        // Uniform over the sector's area: radius ~ sqrt(U(r0², r1²)).
+        let rad = rng
+            .random_range(r.radius[0].powi(2)..=r.radius[1].powi(2))
+            .sqrt();
+        let angle = rng.random_range(r.angle[0]..=r.angle[1]);
+        [rad * angle.cos(), rad * angle.sin()]
+    } else {
+        config.scene.cube_xy
+    };
+    let object_yaw = if r.yaw {
+        rng.random_range(0.0..TAU)
+    } else {
+        0.0
+    };
+    let friction = r.friction.map_or(config.scene.cube_friction, |f| {
+        rng.random_range(f[0]..=f[1])
+    });
+    let mass = config.scene.cube_mass * r.mass_scale.map_or(1.0, |m| rng.random_range(m[0]..=m[1]));
+    let start_joints = noisy_home(config, model, rng);
+    let p = r.observed_position_noise;
+    // Perception noise lies on the table plane: the cube's height is known.
+    let observed_position_error = [gauss(rng, p), gauss(rng, p), 0.0];
+    let observed_yaw_error = gauss(rng, r.observed_yaw_noise);
+    Scenario {
+        seed,
+        object_xy,
+        object_yaw,
+        friction,
+        mass,
+        start_joints,
+        observed_position_error,
+        observed_yaw_error,
+        nudge: None,
+        camera_offset: r.camera_offset,
+        fixture: None,
     }
 }
 
