@@ -134,7 +134,7 @@ impl Scenario {
     }
 
     /// [`Scenario::sample`] for a cell already derived from `config`: the cube and the start
-    /// drawn ([`draw_start`]) until the cube admits a top-down grasp (and, for the place task,
+    /// drawn (`draw_start`) until the cube admits a top-down grasp (and, for the place task,
     /// a fixture fits beside it), then the families' own draws.
     pub fn sample_in(
         cell: &Cell,
