@@ -39,3 +39,44 @@ fn an_episode_written_as_rrd_reads_back_with_rerun() {
         "every Rerun test must run here:\n{stdout}"
     );
 }
+
+/// `--json` never replaces a file that is not a fairgrasp replay JSON, and writes no HTML
+/// unless `--out` asks for it.
+#[test]
+fn replay_json_refuses_a_foreign_file_and_writes_only_the_json() {
+    let dir = std::env::temp_dir().join(format!("fairgrasp-replay-json-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let foreign = dir.join("notes.json");
+    std::fs::write(&foreign, "my notes").unwrap();
+    let run = |json: &std::path::Path| {
+        Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
+            .args(["replay", "--policy", "open_loop", "--json"])
+            .arg(json)
+            .current_dir(&dir)
+            .output()
+            .unwrap()
+    };
+    let refused = run(&foreign);
+    assert!(!refused.status.success());
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains("notes.json: the file exists and is not a fairgrasp replay JSON"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_to_string(&foreign).unwrap(), "my notes");
+    let written = dir.join("episode.json");
+    assert!(run(&written).status.success());
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&written).unwrap()).unwrap();
+    assert_eq!(doc["methods"][0]["method"], "scripted baseline");
+    assert!(
+        doc["urdf"]
+            .as_str()
+            .unwrap()
+            .contains("<robot name=\"fairino_fr3\">")
+    );
+    assert!(!dir.join("replay.html").exists(), "no --out: no HTML");
+    // Written over: it is a replay JSON now.
+    assert!(run(&written).status.success());
+    std::fs::remove_dir_all(&dir).ok();
+}

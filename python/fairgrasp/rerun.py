@@ -1,4 +1,4 @@
-"""Episodes as Rerun recordings (``.rrd``): ``fairgrasp.rerun.save`` and ``python -m fairgrasp.rerun``.
+"""Episodes as Rerun recordings (``.rrd``): ``fairgrasp.rerun.save``, ``python -m fairgrasp.rerun``.
 
     fairgrasp replay --policy open_loop --policy oracle --json episode.json
     python -m fairgrasp.rerun episode.json --rrd episode.rrd
@@ -282,7 +282,8 @@ def _log_joints(rec, tree, name, row, scene):
     for joint, value in values.items():
         j = tree.get_joint_by_name(joint)
         if j is not None:
-            rec.log(f"/{name}/joints/{joint}", j.compute_transform(float(value), clamp=False))
+            transform = j.compute_transform(float(value), clamp=False)
+            rec.log(f"/{name}/joints/{joint}", transform)
 
 
 def _finger_travel(tree, row, scene):
@@ -349,9 +350,11 @@ def main(argv=None):
         prog="python -m fairgrasp.rerun",
         description="Write a `fairgrasp replay --json` file (or a trajectory JSON) as a Rerun .rrd",
     )
-    parser.add_argument("episode", help="fairgrasp replay --json output, or a trajectory .json[.gz]")
+    parser.add_argument("episode",
+                        help="fairgrasp replay --json output, or a trajectory .json[.gz]")
     parser.add_argument("--rrd", required=True, help="the .rrd file to write")
-    parser.add_argument("--urdf", help="robot URDF (default: the one in the JSON, else assets/fr3.urdf)")
+    parser.add_argument("--urdf",
+                        help="robot URDF (default: the one in the JSON, else assets/fr3.urdf)")
     parser.add_argument("--spacing", type=float, default=1.6,
                         help="distance between the methods' cells along world y [m] (default 1.6)")
     a = parser.parse_args(argv)

@@ -62,7 +62,8 @@ def test_two_methods_make_one_subtree_each_over_the_episodes_steps(episode, tmp_
                        "contact_force/pad_left", "contact_force/robot_strongest",
                        "wrist_force/z"):
             assert f"/{name}/{suffix}" in entities, (name, suffix, sorted(entities)[:20])
-        assert "Capsules3D:radii" in entities[f"/{name}/fairino_fr3/collision_geometries/capsule/shoulder_link/collision_0"][0]
+        shoulder = f"/{name}/fairino_fr3/collision_geometries/capsule/shoulder_link/collision_0"
+        assert "Capsules3D:radii" in entities[shoulder][0]
         assert "Transform3D:quaternion" in entities[f"/{name}/joints/j1"][0]
         names, steps, seconds = entities[f"/{name}/reward"]
         assert (min(steps), max(steps)) == (rows[0]["step"], rows[-1]["step"]) == (0, len(rows) - 1)
