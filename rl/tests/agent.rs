@@ -9,7 +9,6 @@ use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
 use fairgrasp_rl::ppo::PpoConfig;
 use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
-use fairgrasp_rl::ppo::normalizer::RunningNorm;
 use fairgrasp_rl::run::checkpoint::{self, CheckpointMeta};
 use fairgrasp_rl::run::train::{TrainConfig, agent_policy, train};
 
@@ -21,23 +20,7 @@ fn fresh_meta(agent: AgentConfig) -> (CheckpointMeta, ActorCritic) {
     };
     let input_dim = agent.input_dim();
     let model = ActorCritic::new(input_dim, ACT_DIM, &model_config, 0, &Device::flex());
-    let meta = CheckpointMeta {
-        version: 1,
-        input_dim,
-        act_dim: ACT_DIM,
-        model: model_config,
-        agent,
-        obs_norm: RunningNorm::new(input_dim, true),
-        timesteps: 0,
-        updates: 0,
-        wall_time_s: 0.0,
-        eval_success_rate: None,
-        best_eval_success_rate: None,
-        metrics_row: None,
-        curriculum_stage: None,
-        model_checksum: None,
-        optimizer_checksum: None,
-    };
+    let meta = CheckpointMeta::fresh(model_config, agent, true);
     (meta, model)
 }
 

@@ -12,7 +12,6 @@ use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig, Mode, OBS_DIM};
 use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
 use fairgrasp_rl::ppo::PpoConfig;
 use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
-use fairgrasp_rl::ppo::normalizer::RunningNorm;
 use fairgrasp_rl::ppo::vec_api::VecEnvironment;
 use fairgrasp_rl::run::checkpoint::{self, CheckpointMeta};
 use fairgrasp_rl::run::train::{TrainConfig, agent_policy, train};
@@ -32,23 +31,7 @@ fn fresh(agent: AgentConfig, zero: bool) -> (CheckpointMeta, ActorCritic) {
     };
     let input_dim = agent.input_dim();
     let model = ActorCritic::new(input_dim, ACT_DIM, &model_config, 0, &Device::flex());
-    let meta = CheckpointMeta {
-        version: 1,
-        input_dim,
-        act_dim: ACT_DIM,
-        model: model_config,
-        agent,
-        obs_norm: RunningNorm::new(input_dim, true),
-        timesteps: 0,
-        updates: 0,
-        wall_time_s: 0.0,
-        eval_success_rate: None,
-        best_eval_success_rate: None,
-        metrics_row: None,
-        curriculum_stage: None,
-        model_checksum: None,
-        optimizer_checksum: None,
-    };
+    let meta = CheckpointMeta::fresh(model_config, agent, true);
     (meta, model)
 }
 

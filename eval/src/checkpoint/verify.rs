@@ -5,7 +5,8 @@
 
 use std::path::Path;
 
-use super::{CheckpointError, CheckpointMeta, checksum, err};
+use crate::checkpoint::error::{CheckpointError, err};
+use crate::checkpoint::meta::{CheckpointMeta, checksum};
 
 /// The longest run in environment steps (10¹⁰: years on a laptop); also caps the counters of a
 /// checkpoint (an update holds at least one step).

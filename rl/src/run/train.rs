@@ -21,7 +21,6 @@ use fairgrasp_types::write_atomic;
 use crate::agent::grasp_agent::ACT_DIM;
 use crate::agent::grasp_env::GraspVecEnv;
 use crate::ppo::model::ActorCritic;
-use crate::ppo::normalizer::RunningNorm;
 use crate::ppo::{Ppo, UpdateStats};
 use crate::run::checkpoint::{self, CheckpointMeta};
 pub use crate::run::config::TrainConfig;
@@ -208,23 +207,11 @@ fn start_from(
         format!("{}\n", metrics_header()).as_bytes(),
     )
     .map_err(io(run_dir))?;
-    let meta = CheckpointMeta {
-        version: checkpoint::CHECKPOINT_VERSION,
-        input_dim,
-        act_dim: ACT_DIM,
-        model: config.model.clone(),
-        agent: config.agent.clone(),
-        obs_norm: RunningNorm::new(input_dim, config.ppo.norm_obs),
-        timesteps: 0,
-        updates: 0,
-        wall_time_s: 0.0,
-        eval_success_rate: None,
-        best_eval_success_rate: None,
-        metrics_row: None,
-        curriculum_stage: None,
-        model_checksum: None,
-        optimizer_checksum: None,
-    };
+    let meta = CheckpointMeta::fresh(
+        config.model.clone(),
+        config.agent.clone(),
+        config.ppo.norm_obs,
+    );
     let model = ActorCritic::new(input_dim, ACT_DIM, &config.model, config.seed, device);
     Ok((meta, model, None))
 }
