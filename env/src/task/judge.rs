@@ -6,7 +6,7 @@ use serde::Serialize;
 use crate::config::TaskConfig;
 use crate::task::reward::reward;
 use crate::task::state::TaskState;
-use crate::task::{lift, place};
+pub use crate::task::tasks::is_success;
 
 /// Why an episode ended without success.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -33,15 +33,6 @@ impl Failure {
     }
 }
 
-/// The task's success: for the lift task lifted and held ([`crate::task::lift::is_lifted`]),
-/// for the place task seated, released and clear ([`crate::task::place::is_placed`]).
-pub fn is_success(s: &TaskState, cfg: &TaskConfig) -> bool {
-    match &s.place {
-        Some(f) => place::is_placed(s, f, &cfg.place),
-        None => lift::is_lifted(s, cfg),
-    }
-}
-
 /// Has the object left the table (fallen below its top, or past its edge)?
 pub fn is_off_table(s: &TaskState) -> bool {
     s.object[2] < s.table_height - 0.02
@@ -51,7 +42,7 @@ pub fn is_off_table(s: &TaskState) -> bool {
 /// What the task makes of one step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Judgement {
-    /// Lifted and held ([`is_success`]).
+    /// The task succeeded ([`is_success`]: lifted and held, or placed).
     pub success: bool,
     /// Why the episode failed, if it did (never together with success).
     pub failure: Option<Failure>,

@@ -4,22 +4,17 @@
 
 pub use crate::config::reward::SeedReward;
 use crate::task::state::TaskState;
-use crate::task::{lift, place};
+use crate::task::tasks::distance_to_go;
 
 /// The seed reward of a step that ended in `s`: `w.success` on success, `w.collision` on a
-/// collision, else `w.distance ·` the distance still to go \[m\]: `|TCP − object|` (lift,
-/// [`lift::distance_to_go`]), plus the cube's distance from its seat in the pocket (place,
-/// [`place::distance_to_go`]).
+/// collision, else `w.distance ·` the distance still to go \[m\] ([`distance_to_go`]:
+/// `|TCP − object|`, plus for the place task the cube's distance from its seat in the pocket).
 pub fn seed_reward(s: &TaskState, success: bool, collision: bool, w: &SeedReward) -> f64 {
     if success {
         w.success
     } else if collision {
         w.collision
     } else {
-        let to_go = match &s.place {
-            Some(f) => place::distance_to_go(s, f),
-            None => lift::distance_to_go(s),
-        };
-        w.distance * to_go
+        w.distance * distance_to_go(s)
     }
 }
