@@ -72,8 +72,8 @@ impl Axis {
     /// The axis over the finite `values` (non-finite ones are skipped), widened by `margin` of
     /// its span on each side and to at least `min_span`; 0 to 1 when no value is finite.
     pub fn fit(values: impl IntoIterator<Item = f64>, margin: f64, min_span: f64) -> Self {
-        let (lo, hi) = super::min_max(values);
-        let (lo, hi) = super::padded(lo, hi, margin, min_span);
+        let (lo, hi) = min_max(values);
+        let (lo, hi) = padded(lo, hi, margin, min_span);
         Self::new(lo, hi)
     }
 
@@ -209,6 +209,34 @@ impl ValueFormatter<f64> for Axis {
     fn format_ext(&self, value: &f64) -> String {
         self.label(*value)
     }
+}
+
+/// `[lo, hi]` (each clamped to ±[`AXIS_LIMIT`]) widened by `margin` of its span and to at least
+/// `min_span`; `[0, 1]` so widened when the bounds are not finite or not ordered (no value).
+/// The result is finite for any input.
+pub(crate) fn padded(lo: f64, hi: f64, margin: f64, min_span: f64) -> (f64, f64) {
+    let (lo, hi) = if lo.is_finite() && hi.is_finite() && lo <= hi {
+        (
+            lo.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+            hi.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+        )
+    } else {
+        (0.0, 1.0)
+    };
+    // Halves first: `lo + hi` and `hi - lo` could overflow.
+    let mid = 0.5 * lo + 0.5 * hi;
+    let half = (0.5 * hi - 0.5 * lo).max(0.5 * min_span) * (1.0 + margin);
+    (mid - half, mid + half)
+}
+
+/// The smallest and largest finite value (`(∞, −∞)` when there is none).
+pub(crate) fn min_max(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
 }
 
 #[cfg(test)]

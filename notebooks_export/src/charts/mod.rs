@@ -18,10 +18,12 @@ pub mod squeeze;
 pub mod success;
 pub mod workspace;
 
+pub(crate) use axis::{min_max, padded};
+
 use plotters::prelude::*;
 
 use crate::raster::{FONT, de};
-use axis::{AXIS_LIMIT, Axis};
+use axis::Axis;
 use fairgrasp_types::Outcome;
 
 /// Every chart here: [`Axis`] × [`Axis`] Cartesian coordinates on the bitmap backend.
@@ -105,34 +107,6 @@ pub fn outcome_color(outcome: Outcome) -> RGBColor {
         Outcome::Timeout => RGBColor(120, 120, 120),
         Outcome::PhysicsFault => RGBColor(0, 0, 0),
     }
-}
-
-/// `[lo, hi]` (each clamped to ±[`AXIS_LIMIT`]) widened by `margin` of its span and to at least
-/// `min_span`; `[0, 1]` so widened when the bounds are not finite or not ordered (no value).
-/// The result is finite for any input.
-pub(crate) fn padded(lo: f64, hi: f64, margin: f64, min_span: f64) -> (f64, f64) {
-    let (lo, hi) = if lo.is_finite() && hi.is_finite() && lo <= hi {
-        (
-            lo.clamp(-AXIS_LIMIT, AXIS_LIMIT),
-            hi.clamp(-AXIS_LIMIT, AXIS_LIMIT),
-        )
-    } else {
-        (0.0, 1.0)
-    };
-    // Halves first: `lo + hi` and `hi - lo` could overflow.
-    let mid = 0.5 * lo + 0.5 * hi;
-    let half = (0.5 * hi - 0.5 * lo).max(0.5 * min_span) * (1.0 + margin);
-    (mid - half, mid + half)
-}
-
-/// The smallest and largest finite value (`(∞, −∞)` when there is none).
-pub(crate) fn min_max(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
-    values
-        .into_iter()
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v), hi.max(v))
-        })
 }
 
 /// Axes for an equal-aspect plot of `(x, y)` bounds (from [`padded`]) in a `w × h` pixel area.

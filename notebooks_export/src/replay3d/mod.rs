@@ -12,13 +12,14 @@
 //! another method on the same scenario side by side. `replay.html#episode=3&t=2.5` opens
 //! entry 3 (as numbered in the selector) at 2.5 s; `&with=5` adds entry 5 beside it.
 
+pub mod episode;
 pub mod pack;
 pub mod section;
 
+pub use episode::ReplayEpisode;
+
 use std::path::Path;
 
-use fairgrasp_types::Outcome;
-use fairgrasp_types::trajectory::Trajectory;
 use serde_json::json;
 
 use crate::error::{ReportError, write_file};
@@ -37,19 +38,6 @@ const VIEWER_CSS: &str = include_str!("viewer.css");
 
 /// Marks a file as a fairgrasp replay (what `fairgrasp replay` may overwrite).
 pub const GENERATOR: &str = "fairgrasp replay";
-
-/// One episode in a replay.
-#[derive(Clone, Debug)]
-pub struct ReplayEpisode<'a> {
-    /// The method's name (`scripted baseline`, `residual PPO: residual_hard`, …).
-    pub method: String,
-    pub preset: String,
-    /// Index of the scenario in the preset's seeded set.
-    pub episode: usize,
-    /// How it ended (else the trajectory's own record).
-    pub outcome: Option<Outcome>,
-    pub trajectory: &'a Trajectory,
-}
 
 /// The three.js version inlined into replays (`0.187.0`): every build has the committed bundle.
 pub fn three_version() -> &'static str {

@@ -13,7 +13,7 @@ use fairgrasp_types::trajectory::Trajectory;
 use serde::Serialize;
 use serde_json::{Value, json};
 
-use crate::replay3d::ReplayEpisode;
+use crate::replay3d::episode::ReplayEpisode;
 
 /// Position quantum \[m\].
 pub const POSITION_STEP: f64 = 1e-4;
