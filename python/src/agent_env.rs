@@ -4,43 +4,18 @@
 //! randomisation; it advances on the episodes this env plays).
 
 use fairgrasp_env::env::obs::Observation;
-use fairgrasp_env::scenario::curriculum::Curriculum;
 use fairgrasp_env::{Action, EnvError, GraspEnv, Info, Step};
 use fairgrasp_eval::agent::{AgentConfig, EnvAgent};
 
+use crate::curriculum::EnvCurriculum;
 use crate::info::Stage;
 use crate::setup::Setup;
-
-/// The curriculum's stage, as the info reports it.
-pub(crate) fn stage_of(c: &Curriculum) -> Stage {
-    (c.stage(), c.stage_name(c.stage()))
-}
-
-/// Applies the agent's verdict to an ended episode's record and feeds the curriculum; returns
-/// the curriculum's new randomisation if the stage advanced. The success the curriculum counts
-/// is the record's (as the trainer counts it).
-pub(crate) fn episode_ended(
-    info: &mut Info,
-    agent: Option<&EnvAgent>,
-    curriculum: Option<&mut Curriculum>,
-) -> Option<fairgrasp_env::config::RandomizationConfig> {
-    if let Some(a) = agent {
-        info.episode = info
-            .episode
-            .take()
-            .map(|r| r.with_policy_verdict(a.verdict()));
-    }
-    let c = curriculum?;
-    let success = info.episode.as_ref().is_some_and(|r| r.success());
-    let xy = info.scenario.map(|s| s.object_xy);
-    c.record_at(success, xy).then(|| c.randomization())
-}
 
 /// One env with its agent side and curriculum.
 pub(crate) struct AgentEnv {
     env: GraspEnv,
     agent: Option<(AgentConfig, EnvAgent)>,
-    curriculum: Option<Curriculum>,
+    curriculum: EnvCurriculum,
     /// The observation handed out last: the policy input (the env's flat observation without
     /// an agent).
     input: Vec<f32>,
@@ -51,9 +26,9 @@ pub(crate) struct AgentEnv {
 impl AgentEnv {
     pub fn new(setup: &Setup) -> Result<Self, EnvError> {
         let mut env = GraspEnv::new(setup.config.clone())?;
-        let curriculum = setup.curriculum();
-        if let Some(c) = &curriculum {
-            env.set_randomization(c.randomization())?;
+        let curriculum = EnvCurriculum::new(setup);
+        if let Some(r) = curriculum.randomization() {
+            env.set_randomization(r)?;
         }
         Ok(Self {
             agent: setup
@@ -82,16 +57,14 @@ impl AgentEnv {
     }
 
     pub fn stage(&self) -> Option<Stage> {
-        self.curriculum.as_ref().map(stage_of)
+        self.curriculum.stage()
     }
 
     /// Moves the curriculum to `stage` (clamped to the last) with empty windows; the new
     /// randomisation holds from the next reset.
     pub fn set_stage(&mut self, stage: usize) -> Result<(), EnvError> {
-        if let Some(c) = self.curriculum.take() {
-            let c = c.at_stage(stage);
-            self.env.set_randomization(c.randomization())?;
-            self.curriculum = Some(c);
+        if let Some(r) = self.curriculum.move_to(stage) {
+            self.env.set_randomization(r)?;
         }
         Ok(())
     }
@@ -131,7 +104,7 @@ impl AgentEnv {
         let mut step = self.env.step(&env_action)?;
         if step.terminated || step.truncated {
             let agent = self.agent.as_ref().map(|(_, a)| a);
-            if let Some(r) = episode_ended(&mut step.info, agent, self.curriculum.as_mut()) {
+            if let Some(r) = self.curriculum.episode_ended(&mut step.info, agent) {
                 self.env.set_randomization(r)?;
             }
         }

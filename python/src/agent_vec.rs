@@ -4,12 +4,11 @@
 //! shared by all envs (as the trainer shares it: every ended episode counts, in env order, and
 //! a new stage's randomisation holds from each env's next reset).
 
-use fairgrasp_env::scenario::curriculum::Curriculum;
 use fairgrasp_env::vec::{VecEnv, VecStep};
 use fairgrasp_env::{Action, EnvError, Info};
 use fairgrasp_eval::agent::{AgentConfig, EnvAgent};
 
-use crate::agent_env::{episode_ended, stage_of};
+use crate::curriculum::EnvCurriculum;
 use crate::info::Stage;
 use crate::setup::Setup;
 
@@ -17,7 +16,7 @@ use crate::setup::Setup;
 pub(crate) struct AgentVecEnv {
     inner: VecEnv,
     agent: Option<(AgentConfig, Vec<EnvAgent>)>,
-    curriculum: Option<Curriculum>,
+    curriculum: EnvCurriculum,
     n: usize,
     dim: usize,
     /// Observations handed out, `[env][dim]`: policy inputs (after an auto-reset, the new
@@ -34,9 +33,9 @@ impl AgentVecEnv {
     /// `seed + i · 1 000 000 + k`.
     pub fn new(setup: &Setup, n: usize, threads: usize, seed: u64) -> Result<Self, EnvError> {
         let mut inner = VecEnv::new(&setup.config, n, threads, seed)?;
-        let curriculum = setup.curriculum();
-        if let Some(c) = &curriculum {
-            inner.set_randomization(&c.randomization())?;
+        let curriculum = EnvCurriculum::new(setup);
+        if let Some(r) = curriculum.randomization() {
+            inner.set_randomization(&r)?;
         }
         let dim = setup.obs_dim();
         Ok(Self {
@@ -78,15 +77,13 @@ impl AgentVecEnv {
     }
 
     pub fn stage(&self) -> Option<Stage> {
-        self.curriculum.as_ref().map(stage_of)
+        self.curriculum.stage()
     }
 
     /// Moves the shared curriculum to `stage` (clamped to the last) with empty windows.
     pub fn set_stage(&mut self, stage: usize) -> Result<(), EnvError> {
-        if let Some(c) = self.curriculum.take() {
-            let c = c.at_stage(stage);
-            self.inner.set_randomization(&c.randomization())?;
-            self.curriculum = Some(c);
+        if let Some(r) = self.curriculum.move_to(stage) {
+            self.inner.set_randomization(&r)?;
         }
         Ok(())
     }
@@ -158,7 +155,7 @@ impl AgentVecEnv {
                 }
                 let mut info = batch.infos[e].clone();
                 let agent = self.agent.as_ref().map(|(_, a)| &a[e]);
-                if let Some(r) = episode_ended(&mut info, agent, self.curriculum.as_mut()) {
+                if let Some(r) = self.curriculum.episode_ended(&mut info, agent) {
                     advanced = Some(r);
                 }
                 self.ended.push((e, last, info));

@@ -18,6 +18,7 @@ mod bench;
 mod calibrate;
 mod chain;
 mod compare;
+mod curriculum;
 mod env;
 mod info;
 mod kinematics;
