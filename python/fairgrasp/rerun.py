@@ -85,16 +85,24 @@ def load_episodes(path):
             f"{path}: neither a `fairgrasp replay --json` file (no `fairgrasp_replay_json` key) "
             "nor a trajectory (no `rows` list)"
         )
-    if not isinstance(methods, list) or not methods:
-        raise ReplayFileError(f"{path}: `methods` must be a non-empty list")
-    for i, m in enumerate(methods):
-        _check_method(path, i, m)
+    _check_methods(path, methods)
     return doc
+
+
+def _check_methods(label, methods):
+    """Raises ReplayFileError (naming ``label``) unless ``methods`` is a non-empty list of
+    entries each with a name and rows with the fields ``save`` uses."""
+    if not isinstance(methods, list) or not methods:
+        raise ReplayFileError(f"{label}: `methods` must be a non-empty list")
+    for i, m in enumerate(methods):
+        _check_method(label, i, m)
 
 
 def _check_method(path, i, m):
     """Raises ReplayFileError unless method entry ``i`` has a name and rows with the fields used."""
-    rows = (m.get("trajectory") or {}).get("rows") if isinstance(m, dict) else None
+    if not isinstance(m, dict) or not isinstance(m.get("method"), str):
+        raise ReplayFileError(f"{path}: methods[{i}].method: missing or not a string")
+    rows = (m.get("trajectory") or {}).get("rows")
     if not isinstance(rows, list) or not rows:
         raise ReplayFileError(f"{path}: methods[{i}].trajectory.rows: missing or empty")
     for key in ("step", "time_s", "joints", "tcp_xyz", "object_xyz", "reward"):
@@ -122,7 +130,11 @@ def save(source, rrd, *, urdf=None, spacing_m=1.6, application_id="fairgrasp"):
     if not (isinstance(spacing_m, (int, float)) and math.isfinite(spacing_m) and spacing_m >= 0):
         raise ValueError(f"spacing_m = {spacing_m!r}: must be a finite number >= 0 [m]")
     rr = _rerun()
-    doc = source if isinstance(source, dict) else load_episodes(source)
+    if isinstance(source, dict):
+        doc = source
+        _check_methods("the episodes given", doc.get("methods"))
+    else:
+        doc = load_episodes(source)
     names = [entity_name(m["method"]) for m in doc["methods"]]
     if len(set(names)) != len(names):
         raise ValueError(f"two methods have the same entity name: {names}")

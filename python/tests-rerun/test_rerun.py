@@ -101,6 +101,8 @@ def test_bad_input_is_refused_with_the_file_named(tmp_path):
     empty.write_text('{"fairgrasp_replay_json": 1, "methods": []}', encoding="utf-8")
     with pytest.raises(fr.ReplayFileError, match="`methods` must be a non-empty list"):
         fr.save(empty, tmp_path / "x.rrd")
+    with pytest.raises(fr.ReplayFileError, match=r"methods\[0\].method: missing"):
+        fr.save({"methods": [{"trajectory": {"rows": [{}]}}]}, tmp_path / "x.rrd")
     with pytest.raises(ValueError, match="spacing_m = nan"):
         fr.save(empty, tmp_path / "x.rrd", spacing_m=float("nan"))
     assert not (tmp_path / "x.rrd").exists()
