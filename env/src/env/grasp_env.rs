@@ -3,8 +3,13 @@
 //! An action is 6 joint-velocity commands and 1 gripper command, each in [-1, 1]: joints move at
 //! `action · arm.action_scale` rad/s (or, with `arm.action_space = "tcp"`, entries 0–3 are the
 //! TCP's velocity and yaw rate, see [`crate::robot::tcp_action`]); the gripper closes toward travel
-//! `(g + 1)/2 · 42.5 mm` (−1 open, +1 closed) with a limited force. `terminated` means success or failure, `truncated`
-//! the time limit or a physics fault; never both.
+//! `(g + 1)/2 · 42.5 mm` (−1 open, +1 closed) with a limited force. `terminated` means success
+//! or failure, `truncated` the time limit or a physics fault; never both.
+//!
+//! This file reads in the order of an episode: building the env, the reset, then
+//! [`GraspEnv::step`] and each part it calls in the order it calls them (the scenario's events,
+//! the action, the arm's motion in free space or physics, the contacts, the observation, the
+//! task's judgement, the episode's record), then what the env lets a caller read.
 
 use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
