@@ -43,6 +43,28 @@ fn every_shipped_policy_acts_the_same_without_burn_to_1e_5() {
     }
 }
 
+/// A checkpoint's deterministic policy through burn's forward pass (what training's evaluations
+/// ran before they ran the burn-free actor, `agent_policy`).
+fn burn_policy(
+    meta: &fairgrasp_rl::run::checkpoint::CheckpointMeta,
+    model: &fairgrasp_rl::ppo::model::ActorCritic,
+    env: &fairgrasp_env::EnvConfig,
+) -> fairgrasp_rl::agent::GraspAgent {
+    let inference = burn::module::Module::valid(model);
+    let norm = meta.obs_norm.clone();
+    let device = Device::flex();
+    let mean = move |x: &[f32]| {
+        let input =
+            Tensor::<2>::from_data(TensorData::new(norm.normalize(x), [1, x.len()]), &device);
+        inference
+            .mean(input)
+            .into_data()
+            .try_to_vec::<f32>()
+            .expect("f32 output")
+    };
+    fairgrasp_rl::agent::GraspAgent::new(meta.agent.clone(), env, Box::new(mean))
+}
+
 /// The presets a shipped policy was trained on: its run's `preset`, then `mix` (a generalist's
 /// other families).
 fn families(policy: ShippedPolicy) -> Vec<String> {
@@ -57,7 +79,6 @@ fn every_shipped_policy_ends_300_episodes_the_same_without_burn() {
     use fairgrasp_env::episode::evaluate;
     use fairgrasp_env::scenario::scenario_set;
     use fairgrasp_eval::checkpoint::{actor_policy, load_actor};
-    use fairgrasp_rl::run::evaluate::agent_policy;
 
     let device = Device::flex();
     let each = ShippedPolicy::ALL
@@ -74,7 +95,7 @@ fn every_shipped_policy_ends_300_episodes_the_same_without_burn() {
             &scenarios,
             2,
             None,
-            &|| agent_policy(&meta, &model, &config),
+            &|| burn_policy(&meta, &model, &config),
             &|| {},
         )
         .unwrap();

@@ -3,6 +3,8 @@
 //!
 //! Shapes: observations `[batch, obs_dim]`, actions `[batch, act_dim]`, values `[batch]`.
 
+use std::collections::BTreeMap;
+
 use burn::module::{Module, Param};
 use burn::nn::{Initializer, Linear, LinearConfig};
 use burn::tensor::{Device, Tensor, TensorData};
@@ -11,6 +13,9 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::ppo::gaussian;
 use crate::ppo::init::orthogonal;
+
+use fairgrasp_eval::actor::Actor;
+use fairgrasp_eval::burnpack::Tensor as PlainTensor;
 
 pub use fairgrasp_eval::checkpoint::network::{MAX_LAYERS, MAX_WIDTH, ModelConfig};
 
@@ -176,6 +181,34 @@ impl ActorCritic {
         }
         push(self.log_std());
         out
+    }
+
+    /// The actor's mean as the burn-free [`Actor`] that `eval`, `compare` and `replay` run: the
+    /// same weights, read out of burn (`actor.<i>.weight` `[inputs, outputs]` row-major and
+    /// `actor.<i>.bias`, as `model.bpk` stores them), so a policy acts alike in training's
+    /// evaluations and after loading its checkpoint.
+    pub fn plain_actor(&self) -> Actor {
+        let mut tensors = BTreeMap::new();
+        let mut sizes = Vec::with_capacity(self.actor.len() + 1);
+        for (i, layer) in self.actor.iter().enumerate() {
+            let [inputs, outputs] = layer.weight.dims();
+            if i == 0 {
+                sizes.push(inputs);
+            }
+            sizes.push(outputs);
+            let weight = layer.weight.val().into_data().iter::<f32>().collect();
+            let bias = match &layer.bias {
+                Some(b) => b.val().into_data().iter::<f32>().collect(),
+                None => vec![0.0; outputs],
+            };
+            let mut insert = |part: &str, shape: Vec<usize>, values: Vec<f32>| {
+                let tensor = PlainTensor { shape, values };
+                tensors.insert(format!("actor.{i}.{part}"), tensor);
+            };
+            insert("weight", vec![inputs, outputs], weight);
+            insert("bias", vec![outputs], bias);
+        }
+        Actor::from_tensors(&tensors, &sizes).expect("the actor's own layers fit its sizes")
     }
 
     /// Are all parameters (weights, biases, log-std) finite? A diverged update makes them NaN

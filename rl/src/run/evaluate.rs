@@ -1,8 +1,8 @@
 //! A model as a deterministic policy, and its evaluation on a fixed scenario set.
 
-use burn::tensor::Device;
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::episode::{EvalReport, evaluate_seeded};
+use fairgrasp_eval::checkpoint::actor_policy;
 use fairgrasp_eval::recipe::EnvFor;
 
 use crate::agent::grasp_agent::GraspAgent;
@@ -27,13 +27,14 @@ pub fn evaluate_model(
         .env_configs(EnvFor::Evaluation)
         .map_err(TrainError::Config)?;
     let k = env_configs.len();
+    let actor = model.plain_actor();
     let mut results = Vec::with_capacity(n);
     for (j, env_config) in env_configs.iter().enumerate() {
         let share = n / k + usize::from(j < n % k);
         if share == 0 {
             continue;
         }
-        let make = || agent_policy(meta, model, env_config);
+        let make = || actor_policy(meta, &actor, env_config);
         let report = evaluate_seeded(
             env_config,
             EVAL_SEED,
@@ -48,21 +49,8 @@ pub fn evaluate_model(
     Ok(EvalReport::from_results(results))
 }
 
-/// The deterministic agent policy of a checkpoint's model.
+/// The deterministic agent policy of a checkpoint's model: the burn-free actor users run
+/// ([`actor_policy`], what `eval` and `compare` load from `model.bpk`), on the model's weights.
 pub fn agent_policy(meta: &CheckpointMeta, model: &ActorCritic, env: &EnvConfig) -> GraspAgent {
-    let inference = burn::module::Module::valid(model);
-    let norm = meta.obs_norm.clone();
-    let device = Device::flex();
-    let mean = move |x: &[f32]| {
-        let input = burn::tensor::Tensor::<2>::from_data(
-            burn::tensor::TensorData::new(norm.normalize(x), [1, x.len()]),
-            &device,
-        );
-        inference
-            .mean(input)
-            .into_data()
-            .try_to_vec::<f32>()
-            .expect("f32 output")
-    };
-    GraspAgent::new(meta.agent.clone(), env, Box::new(mean))
+    actor_policy(meta, &model.plain_actor(), env)
 }
