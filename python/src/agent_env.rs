@@ -63,10 +63,8 @@ impl AgentEnv {
     /// Moves the curriculum to `stage` (clamped to the last) with empty windows; the new
     /// randomisation holds from the next reset.
     pub fn set_stage(&mut self, stage: usize) -> Result<(), EnvError> {
-        if let Some(r) = self.curriculum.move_to(stage) {
-            self.env.set_randomization(r)?;
-        }
-        Ok(())
+        self.curriculum
+            .move_to(stage, |r| self.env.set_randomization(r))
     }
 
     fn observe(&mut self, obs: &Observation) {

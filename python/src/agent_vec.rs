@@ -82,10 +82,8 @@ impl AgentVecEnv {
 
     /// Moves the shared curriculum to `stage` (clamped to the last) with empty windows.
     pub fn set_stage(&mut self, stage: usize) -> Result<(), EnvError> {
-        if let Some(r) = self.curriculum.move_to(stage) {
-            self.inner.set_randomization(&r)?;
-        }
-        Ok(())
+        self.curriculum
+            .move_to(stage, |r| self.inner.set_randomization(&r))
     }
 
     fn write_obs(

@@ -3,9 +3,9 @@
 //! counts. Its stage sets the scenario randomisation; the owner applies the randomisation this
 //! hands back.
 
-use fairgrasp_env::Info;
 use fairgrasp_env::config::RandomizationConfig;
 use fairgrasp_env::scenario::curriculum::Curriculum;
+use fairgrasp_env::{EnvError, Info};
 use fairgrasp_eval::agent::EnvAgent;
 
 use crate::info::Stage;
@@ -32,13 +32,21 @@ impl EnvCurriculum {
             .map(|c| (c.stage(), c.stage_name(c.stage())))
     }
 
-    /// Moves to `stage` (clamped to the last) with empty windows; returns the new stage's
-    /// randomisation (None without a curriculum).
-    pub fn move_to(&mut self, stage: usize) -> Option<RandomizationConfig> {
-        let moved = self.0.take()?.at_stage(stage);
-        let randomization = moved.randomization();
+    /// Moves to `stage` (clamped to the last) with empty windows, once `apply` has taken the new
+    /// stage's randomisation; a refusal leaves the curriculum where it was. Nothing to do
+    /// without a curriculum.
+    pub fn move_to(
+        &mut self,
+        stage: usize,
+        apply: impl FnOnce(RandomizationConfig) -> Result<(), EnvError>,
+    ) -> Result<(), EnvError> {
+        let Some(current) = &self.0 else {
+            return Ok(());
+        };
+        let moved = current.clone().at_stage(stage);
+        apply(moved.randomization())?;
         self.0 = Some(moved);
-        Some(randomization)
+        Ok(())
     }
 
     /// Applies the agent's verdict to an ended episode's record and counts the episode; returns
