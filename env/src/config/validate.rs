@@ -8,6 +8,7 @@ use crate::config::check::{check, check_range};
 use crate::config::env_config::{EnvConfig, SIMULATED_ARM};
 pub use crate::config::error::ConfigError;
 pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
+use crate::scenario::perception_noise::check_perception_noise;
 
 /// The largest tilt of the base from upright that the env accepts \[rad\] (15°).
 pub const MAX_BASE_TILT: f64 = 15.0 * std::f64::consts::PI / 180.0;
@@ -256,36 +257,14 @@ impl EnvConfig {
                 "must be positive",
             )?;
         }
-        // Noise beyond these puts the start joints or the observed cube outside anything a
-        // scenario means (the workspace is 0.25–0.45 m from the base).
-        for (value, field, bound, rule) in [
-            (
-                r.joint_noise,
-                "randomization.joint_noise",
-                0.5,
-                "must be in [0, 0.5] rad (default 0.05 on the randomised presets)",
-            ),
-            (
-                r.observed_position_noise,
-                "randomization.observed_position_noise",
-                0.2,
-                "must be in [0, 0.2] m (hard: 0.01)",
-            ),
-            (
-                r.observed_yaw_noise,
-                "randomization.observed_yaw_noise",
-                std::f64::consts::PI,
-                "must be in [0, π] rad (hard: 0.1745, 10°)",
-            ),
-        ] {
-            check(
-                value.is_finite() && (0.0..=bound).contains(&value),
-                field,
-                value,
-                rule,
-            )?;
-        }
-        Ok(())
+        // Noise beyond this puts the start joints outside anything a scenario means.
+        check(
+            r.joint_noise.is_finite() && (0.0..=0.5).contains(&r.joint_noise),
+            "randomization.joint_noise",
+            r.joint_noise,
+            "must be in [0, 0.5] rad (default 0.05 on the randomised presets)",
+        )?;
+        check_perception_noise(r.observed_position_noise, r.observed_yaw_noise)
     }
 
     /// The task's fields (`[task]`, the staged reward's weights, `[task.place]`).

@@ -6,7 +6,7 @@
 //! A scenario family (an imperfection of a real cell, set in `[randomization]`) is a folder with
 //! its settings and their rules, its draw and its effect on the step or the observation:
 //! [`nudge`] (a push of the cube), [`camera_offset`] (a miscalibrated camera), [`wrist_camera`]
-//! (a camera on the wrist). The place task's fixture and its contact conditions are drawn in
+//! (a camera on the wrist), [`perception_noise`] (an error on the observed cube). The place task's fixture and its contact conditions are drawn in
 //! [`fixture`] and turned in the grip by [`grip_tilt`].
 
 pub mod camera_offset;
@@ -17,6 +17,7 @@ pub mod grip_tilt;
 pub mod noise;
 pub mod nudge;
 pub mod perception;
+pub mod perception_noise;
 pub mod sample;
 pub mod wrist_camera;
 

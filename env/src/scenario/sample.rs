@@ -14,6 +14,7 @@ use crate::scenario::fixture::{FixturePose, draw_fixture};
 use crate::scenario::graspable::top_down_grasp;
 use crate::scenario::noise::gauss;
 use crate::scenario::nudge::draw_nudge;
+use crate::scenario::perception_noise::draw_perception_errors;
 use fairgrasp_kinematics::ArmModel;
 
 /// Redraws allowed before a scenario is given up as ungraspable.
@@ -211,10 +212,8 @@ fn draw_start(config: &EnvConfig, model: &ArmModel, seed: u64, rng: &mut ChaCha8
     });
     let mass = config.scene.cube_mass * r.mass_scale.map_or(1.0, |m| rng.random_range(m[0]..=m[1]));
     let start_joints = noisy_home(config, model, rng);
-    let p = r.observed_position_noise;
-    // Perception noise lies on the table plane: the cube's height is known.
-    let observed_position_error = [gauss(rng, p), gauss(rng, p), 0.0];
-    let observed_yaw_error = gauss(rng, r.observed_yaw_noise);
+    let (observed_position_error, observed_yaw_error) =
+        draw_perception_errors(rng, r.observed_position_noise, r.observed_yaw_noise);
     Scenario {
         seed,
         object_xy,
