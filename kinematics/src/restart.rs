@@ -74,7 +74,8 @@ pub(crate) trait RestartedIk {
     type Linearisation;
     type Error;
 
-    /// At `q`: the position \[m\] and orientation \[rad\] errors, and the linearisation to step from.
+    /// At `q`: the position \[m\] and orientation \[rad\] errors, and the linearisation to step
+    /// from.
     fn evaluate(&mut self, q: &Self::Joints) -> (f64, f64, Self::Linearisation);
 
     /// Moves `q` one step toward the target, within the joint limits.

@@ -10,7 +10,7 @@
 //! problem, which keeps it a proper rotation); then `(R_A − I)·t_X = R_X·t_B − t_A` is solved for
 //! `t_X` by linear least squares. `Y` is the mean of `G_i⁻¹·X·C_i`. Every pair `i < j` is used.
 
-use nalgebra::{Isometry3, Matrix3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Rotation3, UnitQuaternion, Vector3};
 
 use super::{CalibrationError, kabsch, mm, principal_spread};
 use crate::Pose;
@@ -74,12 +74,38 @@ pub struct HandEyeFit {
     pub method: &'static str,
 }
 
+/// What the station errors name.
+const WHAT: &str = "station";
+
 /// Fits the camera's pose in `base_link` and the marker's on the gripper (see the module docs).
 pub fn fit_eye_to_hand(
     samples: &[HandEyeSample],
     opts: &HandEyeOptions,
 ) -> Result<HandEyeFit, CalibrationError> {
-    const WHAT: &str = "station";
+    check_stations(samples)?;
+    let motions = motions(samples);
+    let (r_x, motions_used) = camera_rotation(&motions, opts)?;
+    let t_x = camera_translation(&motions, &r_x)?;
+    let x = Isometry3::from_parts(t_x.into(), UnitQuaternion::from_rotation_matrix(&r_x));
+    let y = marker_on_gripper(samples, &x);
+    let (position_residuals, angle_residuals) = residuals(samples, &x, &y);
+    check_residuals(&position_residuals, &angle_residuals, opts)?;
+    let n = samples.len() as f64;
+    let rms = |v: &[f64]| (v.iter().map(|r| r * r).sum::<f64>() / n).sqrt();
+    Ok(HandEyeFit {
+        camera_in_base: Pose { iso: x },
+        marker_in_tcp: Pose { iso: y },
+        rms_position: rms(&position_residuals),
+        rms_angle: rms(&angle_residuals),
+        position_residuals,
+        angle_residuals,
+        motions_used,
+        method: METHOD,
+    })
+}
+
+/// Refuses fewer than three stations, or one holding a non-finite number.
+fn check_stations(samples: &[HandEyeSample]) -> Result<(), CalibrationError> {
     if samples.len() < 3 {
         return Err(CalibrationError::TooFew {
             what: "stations (robot pose + marker pose)",
@@ -89,16 +115,21 @@ pub fn fit_eye_to_hand(
         });
     }
     let finite = |p: &Pose| p.xyz().iter().chain(&p.quat_xyzw()).all(|v| v.is_finite());
-    if let Some(i) = samples
+    match samples
         .iter()
         .position(|s| !finite(&s.tcp_in_base) || !finite(&s.marker_in_camera))
     {
-        return Err(CalibrationError::NonFinite {
+        Some(i) => Err(CalibrationError::NonFinite {
             what: WHAT,
             index: i + 1,
-        });
+        }),
+        None => Ok(()),
     }
-    let motions: Vec<(Isometry3<f64>, Isometry3<f64>)> = (0..samples.len())
+}
+
+/// The motion `(A, B) = (G_j·G_i⁻¹, C_j·C_i⁻¹)` of every pair of stations `i < j`.
+fn motions(samples: &[HandEyeSample]) -> Vec<(Isometry3<f64>, Isometry3<f64>)> {
+    (0..samples.len())
         .flat_map(|i| (i + 1..samples.len()).map(move |j| (i, j)))
         .map(|(i, j)| {
             let (gi, gj) = (samples[i].tcp_in_base.iso, samples[j].tcp_in_base.iso);
@@ -108,9 +139,15 @@ pub fn fit_eye_to_hand(
             );
             (gj * gi.inverse(), cj * ci.inverse())
         })
-        .collect();
+        .collect()
+}
 
-    // Rotation: α = R_X·β for the motions that rotate enough to have an axis.
+/// `R_X`: `α = R_X·β` for the motions that rotate enough to have an axis, and how many those
+/// are; refused when their axes lie along one axis (the rotation about it is undetermined).
+fn camera_rotation(
+    motions: &[(Isometry3<f64>, Isometry3<f64>)],
+    opts: &HandEyeOptions,
+) -> Result<(Rotation3<f64>, usize), CalibrationError> {
     let axes: Vec<(Vector3<f64>, Vector3<f64>)> = motions
         .iter()
         .map(|(a, b)| (a.rotation.scaled_axis(), b.rotation.scaled_axis()))
@@ -140,26 +177,34 @@ pub fn fit_eye_to_hand(
         .map(|(alpha, beta)| beta * alpha.transpose())
         .sum();
     let (r_x, _) = kabsch(&h);
+    Ok((r_x, axes.len()))
+}
 
-    // Translation: (R_A − I)·t_X = R_X·t_B − t_A, stacked, by the normal equations.
+/// `t_X` \[m\]: `(R_A − I)·t_X = R_X·t_B − t_A` over every motion, stacked, by the normal
+/// equations; refused when they do not determine it.
+fn camera_translation(
+    motions: &[(Isometry3<f64>, Isometry3<f64>)],
+    r_x: &Rotation3<f64>,
+) -> Result<Vector3<f64>, CalibrationError> {
     let mut ata = Matrix3::<f64>::zeros();
     let mut atb = Vector3::<f64>::zeros();
-    for (a, b) in &motions {
+    for (a, b) in motions {
         let m = a.rotation.to_rotation_matrix().into_inner() - Matrix3::identity();
         let rhs = r_x * b.translation.vector - a.translation.vector;
         ata += m.transpose() * m;
         atb += m.transpose() * rhs;
     }
-    let t_x = ata.cholesky().map(|c| c.solve(&atb)).ok_or_else(|| {
+    ata.cholesky().map(|c| c.solve(&atb)).ok_or_else(|| {
         CalibrationError::Degenerate(
             "the motions do not determine the camera's position (every motion turns about one \
              axis): add stations with other rotations"
                 .into(),
         )
-    })?;
-    let x = Isometry3::from_parts(t_x.into(), UnitQuaternion::from_rotation_matrix(&r_x));
+    })
+}
 
-    // Y: the mean of G_i⁻¹·X·C_i (translations averaged, rotations by the chordal mean).
+/// `Y`: the mean of `G_i⁻¹·X·C_i` (translations averaged, rotations by the chordal mean).
+fn marker_on_gripper(samples: &[HandEyeSample], x: &Isometry3<f64>) -> Isometry3<f64> {
     let ys: Vec<Isometry3<f64>> = samples
         .iter()
         .map(|s| s.tcp_in_base.iso.inverse() * x * s.marker_in_camera.iso)
@@ -176,25 +221,44 @@ pub fn fit_eye_to_hand(
         .sum();
     // The rotation nearest to the sum: Kabsch with a = the identity's columns, b = sum's.
     let (r_y, _) = kabsch(&sum.transpose());
-    let y = Isometry3::from_parts(t_y.into(), UnitQuaternion::from_rotation_matrix(&r_y));
+    Isometry3::from_parts(t_y.into(), UnitQuaternion::from_rotation_matrix(&r_y))
+}
 
-    let (mut position_residuals, mut angle_residuals) = (Vec::new(), Vec::new());
-    for s in samples {
-        let by_arm = s.tcp_in_base.iso * y;
-        let by_camera = x * s.marker_in_camera.iso;
-        position_residuals.push((by_arm.translation.vector - by_camera.translation.vector).norm());
-        angle_residuals.push(by_arm.rotation.angle_to(&by_camera.rotation));
-    }
-    let rms = |v: &[f64]| (v.iter().map(|r| r * r).sum::<f64>() / n).sqrt();
+/// Per station, the distance \[m\] and the angle \[rad\] between the marker placed by the arm
+/// (`G_i·Y`) and by the camera (`X·C_i`).
+fn residuals(
+    samples: &[HandEyeSample],
+    x: &Isometry3<f64>,
+    y: &Isometry3<f64>,
+) -> (Vec<f64>, Vec<f64>) {
+    samples
+        .iter()
+        .map(|s| {
+            let by_arm = s.tcp_in_base.iso * y;
+            let by_camera = x * s.marker_in_camera.iso;
+            (
+                (by_arm.translation.vector - by_camera.translation.vector).norm(),
+                by_arm.rotation.angle_to(&by_camera.rotation),
+            )
+        })
+        .unzip()
+}
+
+/// Refuses the first station beyond either bound, naming every station's residuals.
+fn check_residuals(
+    position_residuals: &[f64],
+    angle_residuals: &[f64],
+    opts: &HandEyeOptions,
+) -> Result<(), CalibrationError> {
     let all = || {
         position_residuals
             .iter()
-            .zip(&angle_residuals)
+            .zip(angle_residuals)
             .map(|(p, a)| format!("{} {:.2}°", mm(*p), a.to_degrees()))
             .collect::<Vec<_>>()
             .join(", ")
     };
-    for (i, (p, a)) in position_residuals.iter().zip(&angle_residuals).enumerate() {
+    for (i, (p, a)) in position_residuals.iter().zip(angle_residuals).enumerate() {
         if *p > opts.max_position_residual || *a > opts.max_angle_residual {
             return Err(CalibrationError::ResidualTooLarge {
                 what: WHAT,
@@ -209,14 +273,5 @@ pub fn fit_eye_to_hand(
             });
         }
     }
-    Ok(HandEyeFit {
-        camera_in_base: Pose { iso: x },
-        marker_in_tcp: Pose { iso: y },
-        rms_position: rms(&position_residuals),
-        rms_angle: rms(&angle_residuals),
-        position_residuals,
-        angle_residuals,
-        motions_used: axes.len(),
-        method: METHOD,
-    })
+    Ok(())
 }

@@ -68,12 +68,49 @@ pub struct PointFit {
     pub warnings: Vec<String>,
 }
 
+/// What the point pair errors name.
+const WHAT: &str = "point pair";
+
 /// Fits `T_world_base` to the point pairs (see the module docs).
 pub fn fit_points(
     pairs: &[PointPair],
     opts: &PointFitOptions,
 ) -> Result<PointFit, CalibrationError> {
-    const WHAT: &str = "point pair";
+    check_pairs(pairs)?;
+    let world: Vec<Vector3<f64>> = pairs.iter().map(|p| Vector3::from(p.world)).collect();
+    let base: Vec<Vector3<f64>> = pairs.iter().map(|p| Vector3::from(p.base)).collect();
+    let n = pairs.len() as f64;
+    let closed = closed_form(&base, &world, opts)?;
+    let closed_form_rms =
+        (squared_distances(&base, &world, &closed.rotation, &closed.translation) / n).sqrt();
+    let (rotation, translation, iterations) =
+        refine(&base, &world, closed.rotation, closed.translation);
+
+    let residuals: Vec<f64> = base
+        .iter()
+        .zip(&world)
+        .map(|(b, w)| (rotation * b + translation - w).norm())
+        .collect();
+    let rms = (residuals.iter().map(|r| r * r).sum::<f64>() / n).sqrt();
+    check_residuals(&residuals, opts)?;
+    let iso = nalgebra::Isometry3::from_parts(
+        translation.into(),
+        nalgebra::UnitQuaternion::from_rotation_matrix(&rotation),
+    );
+    Ok(PointFit {
+        base_in_world: Pose { iso },
+        residuals,
+        rms,
+        closed_form_rms,
+        iterations,
+        scale: closed.scale,
+        spread: closed.spread,
+        warnings: warnings(pairs.len(), &closed.spread, opts),
+    })
+}
+
+/// Refuses fewer than three pairs, or one holding a non-finite number.
+fn check_pairs(pairs: &[PointPair]) -> Result<(), CalibrationError> {
     if pairs.len() < 3 {
         return Err(CalibrationError::TooFew {
             what: "point pairs",
@@ -82,18 +119,37 @@ pub fn fit_points(
             hint: ": touch three or more points that are not on one line",
         });
     }
-    if let Some(i) = pairs
+    match pairs
         .iter()
         .position(|p| p.world.iter().chain(&p.base).any(|v| !v.is_finite()))
     {
-        return Err(CalibrationError::NonFinite {
+        Some(i) => Err(CalibrationError::NonFinite {
             what: WHAT,
             index: i + 1,
-        });
+        }),
+        None => Ok(()),
     }
-    let world: Vec<Vector3<f64>> = pairs.iter().map(|p| Vector3::from(p.world)).collect();
-    let base: Vec<Vector3<f64>> = pairs.iter().map(|p| Vector3::from(p.base)).collect();
-    let n = pairs.len() as f64;
+}
+
+/// The closed-form fit and what it tells of the points.
+struct ClosedForm {
+    rotation: Rotation3<f64>,
+    /// \[m\]
+    translation: Vector3<f64>,
+    /// Umeyama's scale (world size / base size).
+    scale: f64,
+    /// Spread of the base points along their principal axes, largest first \[m\].
+    spread: [f64; 3],
+}
+
+/// Kabsch on the centred points, refused when they lie on one line or when Umeyama's scale says
+/// the two sides are in different units.
+fn closed_form(
+    base: &[Vector3<f64>],
+    world: &[Vector3<f64>],
+    opts: &PointFitOptions,
+) -> Result<ClosedForm, CalibrationError> {
+    let n = base.len() as f64;
     let cw = world.iter().sum::<Vector3<f64>>() / n;
     let cb = base.iter().sum::<Vector3<f64>>() / n;
     let xb: Vec<Vector3<f64>> = base.iter().map(|b| b - cb).collect();
@@ -119,23 +175,23 @@ pub fn fit_points(
             tolerance: opts.scale_tolerance,
         });
     }
-    let translation = cw - rotation * cb;
-    let closed_form_rms = (squared_distances(&base, &world, &rotation, &translation) / n).sqrt();
-    let (rotation, translation, iterations) = refine(&base, &world, rotation, translation);
+    Ok(ClosedForm {
+        rotation,
+        translation: cw - rotation * cb,
+        scale,
+        spread,
+    })
+}
 
-    let residuals: Vec<f64> = base
-        .iter()
-        .zip(&world)
-        .map(|(b, w)| (rotation * b + translation - w).norm())
-        .collect();
-    let rms = (residuals.iter().map(|r| r * r).sum::<f64>() / n).sqrt();
-    if let Some((i, r)) = residuals
+/// Refuses the worst pair beyond `max_residual`, naming every pair's residual.
+fn check_residuals(residuals: &[f64], opts: &PointFitOptions) -> Result<(), CalibrationError> {
+    match residuals
         .iter()
         .enumerate()
         .filter(|(_, r)| **r > opts.max_residual)
         .max_by(|a, b| a.1.total_cmp(b.1))
     {
-        return Err(CalibrationError::ResidualTooLarge {
+        Some((i, r)) => Err(CalibrationError::ResidualTooLarge {
             what: WHAT,
             index: i + 1,
             residual: mm(*r),
@@ -145,10 +201,15 @@ pub fn fit_points(
                 .map(|r| mm(*r))
                 .collect::<Vec<_>>()
                 .join(", "),
-        });
+        }),
+        None => Ok(()),
     }
+}
+
+/// What a person should know of an accepted fit: only three pairs, or nearly collinear points.
+fn warnings(pairs: usize, spread: &[f64; 3], opts: &PointFitOptions) -> Vec<String> {
     let mut warnings = Vec::new();
-    if pairs.len() == 3 {
+    if pairs == 3 {
         warnings.push(
             "three points leave little to check a touch by (a misplaced one shifts the answer \
              without a large residual): touch four or more"
@@ -163,20 +224,7 @@ pub fn fit_points(
             mm(opts.warn_spread)
         ));
     }
-    let iso = nalgebra::Isometry3::from_parts(
-        translation.into(),
-        nalgebra::UnitQuaternion::from_rotation_matrix(&rotation),
-    );
-    Ok(PointFit {
-        base_in_world: Pose { iso },
-        residuals,
-        rms,
-        closed_form_rms,
-        iterations,
-        scale,
-        spread,
-        warnings,
-    })
+    warnings
 }
 
 /// `Σ |R·b + t − w|²` over the pairs \[m²\]: what the fit minimises.
