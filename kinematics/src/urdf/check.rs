@@ -25,6 +25,7 @@ use crate::urdf::check_joint::{
 };
 use crate::urdf::error::UrdfError;
 use crate::urdf::joint::JointKind;
+use crate::urdf::xml::attribute;
 
 /// The largest URDF text read \[bytes\]. A URDF names its mesh files rather than holding them:
 /// the shipped FR3 file is 8 kB, a humanoid's a few hundred kB.
@@ -325,15 +326,6 @@ fn check_numbers(
 /// [`MAX_QUOTED_CHARS`](fairgrasp_types::text::MAX_QUOTED_CHARS) characters and its length.
 fn shorten(value: String) -> String {
     fairgrasp_types::text::excerpt(&value, fairgrasp_types::text::MAX_QUOTED_CHARS)
-}
-
-/// Attribute `key` of `element`, unescaped (`None` when absent or not decodable).
-pub(crate) fn attribute(element: &BytesStart<'_>, key: &str) -> Option<String> {
-    element
-        .attributes()
-        .flatten()
-        .find(|a| a.key.as_ref() == key.as_bytes())
-        .and_then(|a| a.unescape_value().ok().map(|v| v.into_owned()))
 }
 
 /// The joint's `type`, if it is a URDF joint type.

@@ -5,9 +5,9 @@
 
 use quick_xml::events::BytesStart;
 
-use crate::urdf::check::attribute;
 use crate::urdf::error::UrdfError;
 use crate::urdf::joint::JointKind;
+use crate::urdf::xml::attribute;
 
 /// The joint's child elements a URDF gives at most once, and which of them fairgrasp reads.
 const JOINT_PARTS: [&str; 5] = ["parent", "child", "origin", "axis", "limit"];

@@ -12,9 +12,10 @@ use std::ops::Range;
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 
-use crate::urdf::check::{LineCounter, attribute};
+use crate::urdf::check::LineCounter;
 use crate::urdf::check_joint::at_line;
 use crate::urdf::error::UrdfError;
+use crate::urdf::xml::attribute;
 
 /// The longest part of urdf-rs's message quoted \[characters\] (it may quote a value whole).
 const MAX_MESSAGE_CHARS: usize = 200;

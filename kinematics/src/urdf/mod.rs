@@ -5,7 +5,8 @@
 //! joint rules in `check_joint.rs`); urdf-rs, which reads the text; the search for the line of
 //! what urdf-rs still refuses (`locate.rs`); the mapping of urdf-rs's robot into fairgrasp's
 //! model (`map.rs`); the errors (`error.rs`), the joint (`joint.rs`), the tree and its checks
-//! (`robot.rs`) and the chain (`chain.rs`). It builds only on [`crate::pose`]; anything in the
+//! (`robot.rs`), the chain (`chain.rs`) and the one reader of an XML attribute both the pre-check
+//! and the line search use (`xml.rs`). It builds only on [`crate::pose`]; anything in the
 //! crate above it (the IK for serial chains) and any other crate may import it, through the
 //! names re-exported here (urdf-rs among them, so that a caller's `urdf_rs::Robot` is the one
 //! [`UrdfRobot::from_urdf_rs`] takes).
@@ -18,6 +19,7 @@ mod joint;
 mod locate;
 mod map;
 mod robot;
+mod xml;
 
 pub use chain::SerialChain;
 pub use check::{MAX_NESTING_DEPTH, MAX_URDF_BYTES};
