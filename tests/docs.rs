@@ -1,5 +1,5 @@
 //! The docs cite only what exists: every repository path written in backticks in the READMEs and
-//! `docs/*.md` (`env/src/task/reward.rs`, `assets/configs/seed.toml`, `assets/policies/<name>/`)
+//! `docs/*.md` (`env/src/task/reward/staged.rs`, `assets/configs/seed.toml`, `assets/policies/<name>/`)
 //! and every relative link (with its `#anchor`, a heading of the target page) resolves. Files
 //! move; this test names the page and the stale path when they do. Also: the README stays two
 //! pages, shows the test command CI runs, and the docs index links every page.
