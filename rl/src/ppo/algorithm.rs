@@ -8,6 +8,8 @@
 //! Where this follows SB3 rather than CleanRL: the optional `target_kl` stop (checked per
 //! minibatch) and observation normalisation (`VecNormalize`'s running statistics).
 
+use std::ops::Range;
+
 use burn::grad_clipping::GradientClippingConfig;
 use burn::module::Module;
 use burn::optim::{AdamConfig, GradientsParams, ModuleOptimizer};
@@ -22,12 +24,12 @@ use crate::ppo::error::PpoError;
 use crate::ppo::error::finite_output;
 use crate::ppo::gae::{explained_variance, normalize};
 use crate::ppo::gaussian;
-use crate::ppo::loss::{clipped_surrogate, ratio_diagnostics, value_loss};
+use crate::ppo::loss::{RatioDiagnostics, clipped_surrogate, ratio_diagnostics, value_loss};
 use crate::ppo::model::ActorCritic;
 use crate::ppo::normalizer::RunningNorm;
 use crate::ppo::rollout::{RolloutBuffer, RolloutShape, gather, gather_rows};
 use crate::ppo::teacher::Kickstart;
-use crate::ppo::vec_api::{EpisodeStats, VecEnvError, VecEnvironment, check_finite};
+use crate::ppo::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 
 use crate::ppo::config::PpoConfig;
 
@@ -151,100 +153,160 @@ impl Ppo {
             obs_dim: env.obs_dim(),
             act_dim: env.act_dim(),
         };
-        let (n_envs, od, ad) = (shape.n_envs, shape.obs_dim, shape.act_dim);
-        let mut b = match self.buffer.take() {
+        let mut b = self.buffer_for(shape);
+        self.start_observations(env, &shape)?;
+        let device = self.device.clone().inner();
+        let inference = self.model.valid();
+        b.episodes.clear();
+        if self.kickstart.is_some() {
+            self.teacher_targets
+                .resize(shape.samples() * shape.act_dim, 0.0);
+            self.teacher_mask
+                .resize(shape.samples() * shape.act_dim, 0.0);
+        }
+        for t in 0..shape.n_steps {
+            let rows = b.step_range(t);
+            self.sample_actions(&inference, &mut b, rows.clone(), &device)?;
+            let actions = &b.actions[rows.start * shape.act_dim..rows.end * shape.act_dim];
+            let step = env.step(actions)?;
+            step.check_shape(shape.n_envs, shape.obs_dim)?;
+            self.record_step(&inference, &mut b, rows, step, &device)?;
+        }
+        self.bootstrap_next_values(&inference, &mut b, &device)?;
+        Ok(b)
+    }
+
+    /// The kept rollout buffer if it has `shape`, else a new one (and a reset of the envs).
+    fn buffer_for(&mut self, shape: RolloutShape) -> RolloutBuffer {
+        match self.buffer.take() {
             Some(b) if b.shape == shape => b,
             _ => {
                 self.next_obs.clear();
                 RolloutBuffer::new(shape)
             }
-        };
-        if self.next_obs.len() != n_envs * od {
-            let first = env.reset()?;
-            if first.len() != n_envs * od {
-                return Err(VecEnvError::Shape {
-                    what: "observation",
-                    expected: n_envs * od,
-                    got: first.len(),
-                }
-                .into());
-            }
-            self.next_obs.clear();
-            self.next_obs.extend_from_slice(first);
         }
-        let device = self.device.clone().inner();
-        let inference = self.model.valid();
-        b.episodes.clear();
-        if self.kickstart.is_some() {
-            self.teacher_targets.resize(shape.samples() * ad, 0.0);
-            self.teacher_mask.resize(shape.samples() * ad, 0.0);
+    }
+
+    /// Resets the envs when there are no observations to continue from.
+    fn start_observations<E: VecEnvironment>(
+        &mut self,
+        env: &mut E,
+        shape: &RolloutShape,
+    ) -> Result<(), PpoError> {
+        let expected = shape.n_envs * shape.obs_dim;
+        if self.next_obs.len() == expected {
+            return Ok(());
         }
-        for t in 0..shape.n_steps {
-            let rows = b.step_range(t);
-            check_finite(&self.next_obs, od, "observation")?;
-            if self.config.norm_obs {
-                self.obs_norm.update_rows(&self.next_obs);
+        let first = env.reset()?;
+        if first.len() != expected {
+            return Err(VecEnvError::Shape {
+                what: "observation",
+                expected,
+                got: first.len(),
             }
-            let obs_n = &mut b.obs[rows.start * od..rows.end * od];
-            self.normalize_rows(&self.next_obs, od, obs_n);
-            if let Some(k) = &self.kickstart {
-                let labels = rows.start * ad..rows.end * ad;
-                k.label_step(
-                    &self.next_obs,
-                    od,
-                    ad,
-                    &mut self.teacher_targets[labels.clone()],
-                    &mut self.teacher_mask[labels],
-                );
-            }
-            let x = tensor2(obs_n.to_vec(), od, &device);
-            let mean_t = inference.mean(x.clone());
-            let mean = to_vec(mean_t.clone())?;
-            let values = to_vec(inference.value(x))?;
-            let log_std_t = inference.log_std();
-            let log_std = to_vec(log_std_t.clone())?;
-            finite_output(&mean, ad, "mean action")?;
-            finite_output(&values, 1, "value")?;
-            let actions = &mut b.actions[rows.start * ad..rows.end * ad];
-            for (k, a) in actions.iter_mut().enumerate() {
-                let z: f32 = StandardNormal.sample(&mut self.rng);
-                *a = mean[k] + log_std[k % ad].exp() * z;
-            }
-            finite_output(actions, ad, "sampled action")?;
-            let logprob =
-                gaussian::log_prob(mean_t, log_std_t, tensor2(actions.to_vec(), ad, &device));
-            for (slot, v) in b.logprobs[rows.clone()].iter_mut().zip(to_vec(logprob)?) {
-                *slot = v;
-            }
-            b.values[rows.clone()].copy_from_slice(&values);
-            let step = env.step(actions)?;
-            step.check_shape(n_envs, od)?;
-            // Bootstrap values of ended episodes' last observations.
-            let ended: Vec<usize> = (0..n_envs).filter(|&e| step.ended(e)).collect();
-            b.final_values[rows.clone()].fill(0.0);
-            if !ended.is_empty() {
-                let raw = gather_rows(&step.final_obs, od, &ended);
-                check_finite(&raw, od, "final observation")?;
-                let mut finals = vec![0.0; raw.len()];
-                self.normalize_rows(&raw, od, &mut finals);
-                let final_values = Self::values_of(&inference, finals, od, &device)?;
-                for (&e, v) in ended.iter().zip(final_values) {
-                    b.final_values[rows.start + e] = v;
-                }
-            }
-            b.rewards[rows.clone()].copy_from_slice(&step.rewards);
-            b.terminated[rows.clone()].copy_from_slice(&step.terminated);
-            b.truncated[rows.clone()].copy_from_slice(&step.truncated);
-            b.episodes.extend(step.finished.iter().flatten());
-            self.next_obs.copy_from_slice(&step.obs);
+            .into());
         }
+        self.next_obs.clear();
+        self.next_obs.extend_from_slice(first);
+        Ok(())
+    }
+
+    /// For the samples `rows` (one step of every env): the normalised observations (after the
+    /// statistics take them in), the teachers' labels, the values, the actions sampled around
+    /// the policy's mean and their log-probabilities.
+    fn sample_actions(
+        &mut self,
+        inference: &ActorCritic,
+        b: &mut RolloutBuffer,
+        rows: Range<usize>,
+        device: &Device,
+    ) -> Result<(), PpoError> {
+        let (od, ad) = (b.shape.obs_dim, b.shape.act_dim);
+        check_finite(&self.next_obs, od, "observation")?;
+        if self.config.norm_obs {
+            self.obs_norm.update_rows(&self.next_obs);
+        }
+        let obs_n = &mut b.obs[rows.start * od..rows.end * od];
+        self.normalize_rows(&self.next_obs, od, obs_n);
+        if let Some(k) = &self.kickstart {
+            let labels = rows.start * ad..rows.end * ad;
+            k.label_step(
+                &self.next_obs,
+                od,
+                ad,
+                &mut self.teacher_targets[labels.clone()],
+                &mut self.teacher_mask[labels],
+            );
+        }
+        let x = tensor2(obs_n.to_vec(), od, device);
+        let mean_t = inference.mean(x.clone());
+        let mean = to_vec(mean_t.clone())?;
+        let values = to_vec(inference.value(x))?;
+        let log_std_t = inference.log_std();
+        let log_std = to_vec(log_std_t.clone())?;
+        finite_output(&mean, ad, "mean action")?;
+        finite_output(&values, 1, "value")?;
+        let actions = &mut b.actions[rows.start * ad..rows.end * ad];
+        for (k, a) in actions.iter_mut().enumerate() {
+            let z: f32 = StandardNormal.sample(&mut self.rng);
+            *a = mean[k] + log_std[k % ad].exp() * z;
+        }
+        finite_output(actions, ad, "sampled action")?;
+        let logprob = gaussian::log_prob(mean_t, log_std_t, tensor2(actions.to_vec(), ad, device));
+        for (slot, v) in b.logprobs[rows.clone()].iter_mut().zip(to_vec(logprob)?) {
+            *slot = v;
+        }
+        b.values[rows].copy_from_slice(&values);
+        Ok(())
+    }
+
+    /// Stores what the envs' step gave for the samples `rows`: the bootstrap values of ended
+    /// episodes' last observations, rewards, flags and finished episodes; the step's
+    /// observations are where the next one starts.
+    fn record_step(
+        &mut self,
+        inference: &ActorCritic,
+        b: &mut RolloutBuffer,
+        rows: Range<usize>,
+        step: &StepBatch,
+        device: &Device,
+    ) -> Result<(), PpoError> {
+        let (n_envs, od) = (b.shape.n_envs, b.shape.obs_dim);
+        let ended: Vec<usize> = (0..n_envs).filter(|&e| step.ended(e)).collect();
+        b.final_values[rows.clone()].fill(0.0);
+        if !ended.is_empty() {
+            let raw = gather_rows(&step.final_obs, od, &ended);
+            check_finite(&raw, od, "final observation")?;
+            let mut finals = vec![0.0; raw.len()];
+            self.normalize_rows(&raw, od, &mut finals);
+            let final_values = Self::values_of(inference, finals, od, device)?;
+            for (&e, v) in ended.iter().zip(final_values) {
+                b.final_values[rows.start + e] = v;
+            }
+        }
+        b.rewards[rows.clone()].copy_from_slice(&step.rewards);
+        b.terminated[rows.clone()].copy_from_slice(&step.terminated);
+        b.truncated[rows].copy_from_slice(&step.truncated);
+        b.episodes.extend(step.finished.iter().flatten());
+        self.next_obs.copy_from_slice(&step.obs);
+        Ok(())
+    }
+
+    /// The values of the observations the rollout ends on (GAE bootstraps from them).
+    fn bootstrap_next_values(
+        &self,
+        inference: &ActorCritic,
+        b: &mut RolloutBuffer,
+        device: &Device,
+    ) -> Result<(), PpoError> {
+        let od = b.shape.obs_dim;
         check_finite(&self.next_obs, od, "observation")?;
         let mut obs_n = vec![0.0; self.next_obs.len()];
         self.normalize_rows(&self.next_obs, od, &mut obs_n);
-        let next_values = Self::values_of(&inference, obs_n, od, &device)?;
+        let next_values = Self::values_of(inference, obs_n, od, device)?;
         finite_output(&next_values, 1, "value")?;
         b.next_values.copy_from_slice(&next_values);
-        Ok(b)
+        Ok(())
     }
 
     /// One PPO iteration: a rollout of `n_steps` per env, then the update. `progress` in
@@ -258,7 +320,6 @@ impl Ppo {
         let mut b = self.collect(env)?;
         b.compute_advantages(c.gamma, c.gae_lambda);
         let lr = c.learning_rate_at(progress);
-        let (od, ad) = (b.shape.obs_dim, b.shape.act_dim);
         let mut b_inds: Vec<usize> = (0..b.shape.samples()).collect();
         let mut stats = UpdateStats {
             learning_rate: lr,
@@ -270,64 +331,11 @@ impl Ppo {
         'epochs: for _ in 0..c.n_epochs {
             b_inds.shuffle(&mut self.rng);
             for mb_inds in b_inds.chunks(c.batch_size) {
-                let mb_obs = tensor2(gather_rows(&b.obs, od, mb_inds), od, &self.device);
-                let mb_actions = tensor2(gather_rows(&b.actions, ad, mb_inds), ad, &self.device);
-                let mut mb_adv = gather(&b.advantages, mb_inds);
-                if c.norm_adv {
-                    normalize(&mut mb_adv);
-                }
-                let (new_logprob, entropy) =
-                    self.model.log_prob_and_entropy(mb_obs.clone(), mb_actions);
-                let (pg_loss, log_ratio) = clipped_surrogate(
-                    new_logprob,
-                    tensor1(gather(&b.logprobs, mb_inds), &self.device),
-                    tensor1(mb_adv, &self.device),
-                    c.clip_coef,
-                );
-                let new_values = self.model.value(mb_obs.clone());
-                let v_loss = value_loss(
-                    new_values,
-                    tensor1(gather(&b.returns, mb_inds), &self.device),
-                    tensor1(gather(&b.values, mb_inds), &self.device),
-                    c.clip_vloss.then_some(c.clip_coef),
-                );
-                let entropy = entropy.mean();
-                let mut loss = pg_loss
-                    .clone()
-                    .sub(entropy.clone().mul_scalar(c.ent_coef))
-                    .add(v_loss.clone().mul_scalar(c.vf_coef));
-                let mut kick_loss = 0.0;
-                if let Some(w) = kick_weight {
-                    let target = gather_rows(&self.teacher_targets, ad, mb_inds);
-                    let mask = gather_rows(&self.teacher_mask, ad, mb_inds);
-                    let diff = self
-                        .model
-                        .mean(mb_obs)
-                        .sub(tensor2(target, ad, &self.device));
-                    let term = diff
-                        .clone()
-                        .mul(diff)
-                        .mul(tensor2(mask, ad, &self.device))
-                        .sum()
-                        .div_scalar(mb_inds.len() as f32);
-                    kick_loss = scalar(term.clone().inner())?;
-                    loss = loss.add(term.mul_scalar(w));
-                }
-                // Diagnostics (no gradients).
-                let diagnostics = ratio_diagnostics(&to_vec(log_ratio.inner())?, c.clip_coef);
+                let (terms, diagnostics) = self.minibatch_update(&b, mb_inds, lr, kick_weight)?;
                 if count == 0.0 {
                     stats.first_ratio_deviation = diagnostics.max_deviation;
                 }
-                let grads = GradientsParams::from_grads(loss.backward(), &self.model);
-                self.model = self.optimizer.step(lr, self.model.clone(), grads);
-                for (s, v) in sums.iter_mut().zip([
-                    scalar(pg_loss.inner())?,
-                    scalar(v_loss.inner())?,
-                    scalar(entropy.inner())?,
-                    diagnostics.approx_kl,
-                    diagnostics.clip_fraction,
-                    kick_loss,
-                ]) {
+                for (s, v) in sums.iter_mut().zip(terms) {
                     *s += v;
                 }
                 count += 1.0;
@@ -348,8 +356,88 @@ impl Ppo {
         ] = sums.map(|s| s / count.max(1.0));
         stats.explained_variance = explained_variance(&b.values, &b.returns);
         self.buffer = Some(b);
-        // Only a non-finite loss (or parameter, below) is divergence; the KL and the clip
-        // fraction are diagnostics, reported as they are.
+        self.check_divergence(&stats)?;
+        Ok(stats)
+    }
+
+    /// One gradient step on the minibatch `mb_inds` of the rollout: PPO's clipped surrogate,
+    /// value loss and entropy bonus, plus the kickstart term when teachers pull (`kick_weight`).
+    /// Returns the terms averaged into [`UpdateStats`] (policy loss, value loss, entropy,
+    /// approximate KL, clip fraction, kickstart loss) and the ratio diagnostics.
+    fn minibatch_update(
+        &mut self,
+        b: &RolloutBuffer,
+        mb_inds: &[usize],
+        lr: f64,
+        kick_weight: Option<f32>,
+    ) -> Result<([f32; 6], RatioDiagnostics), PpoError> {
+        let c = &self.config;
+        let (od, ad) = (b.shape.obs_dim, b.shape.act_dim);
+        let mb_obs = tensor2(gather_rows(&b.obs, od, mb_inds), od, &self.device);
+        let mb_actions = tensor2(gather_rows(&b.actions, ad, mb_inds), ad, &self.device);
+        let mut mb_adv = gather(&b.advantages, mb_inds);
+        if c.norm_adv {
+            normalize(&mut mb_adv);
+        }
+        let (new_logprob, entropy) = self.model.log_prob_and_entropy(mb_obs.clone(), mb_actions);
+        let (pg_loss, log_ratio) = clipped_surrogate(
+            new_logprob,
+            tensor1(gather(&b.logprobs, mb_inds), &self.device),
+            tensor1(mb_adv, &self.device),
+            c.clip_coef,
+        );
+        let new_values = self.model.value(mb_obs.clone());
+        let v_loss = value_loss(
+            new_values,
+            tensor1(gather(&b.returns, mb_inds), &self.device),
+            tensor1(gather(&b.values, mb_inds), &self.device),
+            c.clip_vloss.then_some(c.clip_coef),
+        );
+        let entropy = entropy.mean();
+        let mut loss = pg_loss
+            .clone()
+            .sub(entropy.clone().mul_scalar(c.ent_coef))
+            .add(v_loss.clone().mul_scalar(c.vf_coef));
+        let mut kick_loss = 0.0;
+        if let Some(w) = kick_weight {
+            let term = self.kickstart_term(mb_obs, mb_inds, ad);
+            kick_loss = scalar(term.clone().inner())?;
+            loss = loss.add(term.mul_scalar(w));
+        }
+        // Diagnostics (no gradients).
+        let diagnostics = ratio_diagnostics(&to_vec(log_ratio.inner())?, c.clip_coef);
+        let grads = GradientsParams::from_grads(loss.backward(), &self.model);
+        self.model = self.optimizer.step(lr, self.model.clone(), grads);
+        let terms = [
+            scalar(pg_loss.inner())?,
+            scalar(v_loss.inner())?,
+            scalar(entropy.inner())?,
+            diagnostics.approx_kl,
+            diagnostics.clip_fraction,
+            kick_loss,
+        ];
+        Ok((terms, diagnostics))
+    }
+
+    /// The kickstart term of a minibatch: the squared distance of the policy's mean from the
+    /// teachers' labels, over the labelled entries, per sample.
+    fn kickstart_term(&self, mb_obs: Tensor<2>, mb_inds: &[usize], ad: usize) -> Tensor<1> {
+        let target = gather_rows(&self.teacher_targets, ad, mb_inds);
+        let mask = gather_rows(&self.teacher_mask, ad, mb_inds);
+        let diff = self
+            .model
+            .mean(mb_obs)
+            .sub(tensor2(target, ad, &self.device));
+        diff.clone()
+            .mul(diff)
+            .mul(tensor2(mask, ad, &self.device))
+            .sum()
+            .div_scalar(mb_inds.len() as f32)
+    }
+
+    /// Divergence: a non-finite loss or parameter. The KL and the clip fraction are
+    /// diagnostics, reported as they are.
+    fn check_divergence(&self, stats: &UpdateStats) -> Result<(), PpoError> {
         let losses = [
             ("policy loss", stats.policy_loss),
             ("value loss", stats.value_loss),
@@ -362,7 +450,7 @@ impl Ppo {
         if !self.model.parameters_finite() {
             return Err(PpoError::NonFiniteParameters);
         }
-        Ok(stats)
+        Ok(())
     }
 
     /// The deterministic (mean) action for a raw policy input.
