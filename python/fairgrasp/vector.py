@@ -98,14 +98,26 @@ class VectorEnv(gym.vector.VectorEnv):
         info = self._masked(info)
         if ended:
             final_obs = np.full(self.num_envs, None, dtype=object)
-            final_info = {}
-            for i, last, last_info in ended:
+            for i, last, _ in ended:
                 final_obs[i] = last
-                final_info = self._add_info(final_info, last_info, i)
+            final_info = self._final_infos(ended)
             mask = terminated | truncated
             info["final_obs"], info["_final_obs"] = final_obs, mask
             info["final_info"], info["_final_info"] = final_info, mask.copy()
         return obs, rewards, terminated, truncated, info
+
+    def _final_infos(self, ended):
+        """The ended episodes' infos batched as gymnasium batches infos. A key whose value is
+        ``None`` (``failure`` of an episode that did not fail) is left out of that env's info, so
+        it is masked out (``_failure`` false) rather than stored: gymnasium's batching keeps the
+        first value's kind, and a ``None`` batched before another env's ``failure`` dict made it
+        an array that the dict could not be merged into (``AttributeError: 'numpy.ndarray' object
+        has no attribute 'get'`` when two episodes ended in one step)."""
+        final_info = {}
+        for i, _, last_info in ended:
+            present = {key: value for key, value in last_info.items() if value is not None}
+            final_info = self._add_info(final_info, present, i)
+        return final_info
 
     def _masked(self, info):
         for key in list(info):

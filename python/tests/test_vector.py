@@ -71,3 +71,17 @@ def test_bad_vector_actions_raise_value_error_naming_env_and_index():
         vec.step(bad)
     with pytest.raises(ValueError, match="shape"):
         vec.step(np.zeros((3, 7)))
+
+
+def test_episodes_ending_in_one_step_with_and_without_a_failure_batch_their_infos():
+    # Env 0's episode ended without a failure (its info says failure None), env 2's with one:
+    # batched, env 2's failure is there and masked in, env 0's masked out; env 1 did not end.
+    vec = fairgrasp.VectorEnv(num_envs=3, preset="fixed", threads=1, seed=1)
+    no_failure = {"step": 40, "success": True, "failure": None}
+    failure = {"step": 12, "success": False, "failure": {"kind": "collision", "bodies": "link3"}}
+    for order in ([(0, None, no_failure), (2, None, failure)], [(2, None, failure), (0, None, no_failure)]):
+        info = vec._final_infos(order)
+        assert list(info["_failure"]) == [False, False, True]
+        assert info["failure"]["kind"][2] == "collision"
+        assert list(info["success"][[0, 2]]) == [True, False]
+        assert list(info["_step"]) == [True, False, True]
