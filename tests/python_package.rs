@@ -5,7 +5,7 @@
 //! `full` episode in the Rust `GraspEnv` and hands its observations to pytest, which must see
 //! the very same bits from Python.
 
-use std::process::Command;
+mod common;
 
 use fairgrasp_env::{Action, GraspEnv, config::presets};
 
@@ -34,24 +34,11 @@ fn rust_reference() -> serde_json::Value {
 
 #[test]
 fn the_python_package_passes_its_pytest_suite() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let reference =
         std::env::temp_dir().join(format!("fairgrasp-py-ref-{}.json", std::process::id()));
     std::fs::write(&reference, rust_reference().to_string()).unwrap();
-    // target/<profile>/deps/python_package-HASH → target/<profile>/deps/lib_native.so, the
-    // workspace build's cdylib (linked against libpython; the crate's doctest makes cargo
-    // build it).
-    let exe = std::env::current_exe().unwrap();
-    let native = exe.parent().map(|d| d.join("lib_native.so"));
-    let mut cmd = Command::new("bash");
-    cmd.arg(root.join("scripts/python-package-test.sh"));
-    if let Some(lib) = native.filter(|p| p.exists()) {
-        cmd.env("FAIRGRASP_NATIVE_LIB", lib);
-    }
-    let out = cmd
-        .env("FAIRGRASP_BIN", env!("CARGO_BIN_EXE_fairgrasp"))
+    let out = common::pytest(None)
         .env("FAIRGRASP_RUST_REFERENCE", &reference)
-        .current_dir(root)
         .output()
         .unwrap();
     std::fs::remove_file(&reference).ok();

@@ -8,33 +8,19 @@
 //! so the test is not compiled.
 #![cfg(feature = "train")]
 
-use std::process::Command;
+mod common;
 
 #[test]
 fn a_ray_tune_sweep_of_rust_trainings_passes_its_pytest_suite() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    // target/<profile>/deps/ray_tune-HASH → target/<profile>/deps/lib_native.so, the
-    // workspace build's cdylib (as tests/python_package.rs finds it).
-    let exe = std::env::current_exe().unwrap();
-    let native = exe.parent().map(|d| d.join("lib_native.so"));
-    let mut cmd = Command::new("bash");
-    cmd.arg(root.join("scripts/python-package-test.sh"));
-    if let Some(lib) = native.filter(|p| p.exists()) {
-        cmd.env("FAIRGRASP_NATIVE_LIB", lib);
-    }
     let start = std::time::Instant::now();
-    let out = cmd
-        .arg("-s")
-        .env("FAIRGRASP_BIN", env!("CARGO_BIN_EXE_fairgrasp"))
-        .env("FAIRGRASP_PY_VENV", root.join("target/python-ray-venv"))
-        .env(
-            "FAIRGRASP_PY_REQUIREMENTS",
-            root.join("scripts/requirements-ray.txt"),
-        )
-        .env("FAIRGRASP_PY_TESTS", "python/tests-ray")
-        .current_dir(root)
-        .output()
-        .unwrap();
+    let out = common::pytest(Some(&common::PythonSuite {
+        venv: "target/python-ray-venv",
+        requirements: "scripts/requirements-ray.txt",
+        tests: "python/tests-ray",
+    }))
+    .arg("-s")
+    .output()
+    .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "pytest failed:\n{stdout}\n{stderr}");

@@ -37,3 +37,38 @@ pub fn stderr(o: &Output) -> String {
 pub fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
+
+/// A pytest suite with Python packages of its own: its venv (under the repository root), the
+/// requirements file the venv is made from, and the folder pytest runs.
+pub struct PythonSuite {
+    pub venv: &'static str,
+    pub requirements: &'static str,
+    pub tests: &'static str,
+}
+
+/// `scripts/python-package-test.sh` as a command, run in the repository root: pytest in a venv
+/// the script makes on first use, with the extension this build made (`lib_native.so`, beside
+/// the test binary in `target/<profile>/deps/`; without it the script builds one with maturin)
+/// and this build's `fairgrasp` binary (`FAIRGRASP_BIN`). `suite`: `None` runs the package's own
+/// suite (`python/tests` in `target/python-package-venv`).
+pub fn pytest(suite: Option<&PythonSuite>) -> Command {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let native = std::env::current_exe()
+        .ok()
+        .and_then(|exe| exe.parent().map(|deps| deps.join("lib_native.so")));
+    let mut command = Command::new("bash");
+    command
+        .arg(root.join("scripts/python-package-test.sh"))
+        .env("FAIRGRASP_BIN", env!("CARGO_BIN_EXE_fairgrasp"))
+        .current_dir(root);
+    if let Some(lib) = native.filter(|p| p.exists()) {
+        command.env("FAIRGRASP_NATIVE_LIB", lib);
+    }
+    if let Some(suite) = suite {
+        command
+            .env("FAIRGRASP_PY_VENV", root.join(suite.venv))
+            .env("FAIRGRASP_PY_REQUIREMENTS", root.join(suite.requirements))
+            .env("FAIRGRASP_PY_TESTS", suite.tests);
+    }
+    command
+}
