@@ -27,13 +27,7 @@ const CRATES: [&str; 10] = [
 /// Children that still import their parent back (a parent used as a toolbox), as (crate, child,
 /// parent): issue 48's remaining debts. The loop search leaves these imports out; each must
 /// still be there, so one that is moved away must leave this list too.
-const KNOWN_BACK_IMPORTS: [(&str, &str, &str); 5] = [
-    ("rl", "run::tensorboard::records", "run::tensorboard"),
-    ("notebooks_export", "charts::axis", "charts"),
-    ("notebooks_export", "replay3d::pack", "replay3d"),
-    (".", "cli::measurements", "cli"),
-    (".", "cli::train", "cli"),
-];
+const KNOWN_BACK_IMPORTS: [(&str, &str, &str); 0] = [];
 
 /// Leaves out of `graph` the known back-imports of `krate`; names each one that is gone.
 fn without_known_back_imports(
@@ -131,6 +125,56 @@ fn code_of(text: &str) -> String {
             }
             _ => out.push(c),
         }
+    }
+    out
+}
+
+/// `code` with the paths inside its inline modules (`mod tests { use super::*; }`, `mod trainer
+/// { use super::Args; }`) written as the file's own: there `super::` is the file's module, not
+/// its parent, so a leading `super::` becomes `self::` and `super::super::` becomes `super::`.
+fn inline_modules_resolved(code: &str) -> String {
+    let mut out = String::with_capacity(code.len());
+    let mut depth = 0usize;
+    // The brace depths at which the inline modules entered so far opened.
+    let mut inline: Vec<usize> = Vec::new();
+    let mut i = 0;
+    while i < code.len() {
+        let rest = &code[i..];
+        let boundary = code[..i]
+            .chars()
+            .last()
+            .is_none_or(|c| !(c.is_alphanumeric() || c == '_' || c == ':'));
+        if boundary && rest.starts_with("mod ") {
+            let name_end = rest[4..]
+                .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .map_or(rest.len(), |e| 4 + e);
+            if rest[name_end..].trim_start().starts_with('{') {
+                inline.push(depth + 1);
+            }
+        }
+        if boundary && !inline.is_empty() && rest.starts_with("super::") {
+            let mut k = 0;
+            while code[i + 7 * k..].starts_with("super::") {
+                k += 1;
+            }
+            out.push_str(if k == 1 { "self::" } else { "" });
+            out.push_str(&"super::".repeat(k.saturating_sub(1)));
+            i += 7 * k;
+            continue;
+        }
+        let c = rest.chars().next().unwrap();
+        match c {
+            '{' => depth += 1,
+            '}' => {
+                if inline.last() == Some(&depth) {
+                    inline.pop();
+                }
+                depth = depth.saturating_sub(1);
+            }
+            _ => {}
+        }
+        out.push(c);
+        i += c.len_utf8();
     }
     out
 }
@@ -388,7 +432,10 @@ fn import_graph(src: &Path) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
     let modules = modules(src);
     let texts: BTreeMap<Vec<String>, String> = modules
         .iter()
-        .map(|(m, p)| (m.clone(), code_of(&std::fs::read_to_string(p).unwrap())))
+        .map(|(m, p)| {
+            let code = code_of(&std::fs::read_to_string(p).unwrap());
+            (m.clone(), inline_modules_resolved(&code))
+        })
         .collect();
     let mut edges: BTreeMap<Vec<String>, BTreeSet<Vec<String>>> = BTreeMap::new();
     for (module, path) in &modules {
@@ -539,4 +586,38 @@ fn a_parent_and_its_child_importing_each_other_through_relative_paths_is_a_loop(
         said.contains("parent ↔ child: a uses its child a::child"),
         "{said}"
     );
+}
+
+#[test]
+fn super_inside_an_inline_module_is_the_file_itself_not_its_parent() {
+    // The child's inline test module says `use super::*`: the child, not the parent. Only the
+    // same words outside an inline module import the parent.
+    let dir = scratch_crate(
+        "inline",
+        &[
+            ("lib.rs", "pub mod a;\n"),
+            (
+                "a/mod.rs",
+                "mod child;\npub fn helper() {}\npub fn run() { child::work() }\n",
+            ),
+            (
+                "a/child.rs",
+                "pub fn work() {}\nmod tests { use super::*; fn t() { work() } }\n",
+            ),
+        ],
+    );
+    assert!(
+        find_cycle(&import_graph(&dir)).is_none(),
+        "inline super:: is the file"
+    );
+    std::fs::write(
+        dir.join("a/child.rs"),
+        "use super::helper;\npub fn work() { helper() }\nmod tests { use super::*; }\n",
+    )
+    .unwrap();
+    assert!(
+        find_cycle(&import_graph(&dir)).is_some(),
+        "super:: at file level is the parent"
+    );
+    std::fs::remove_dir_all(&dir).ok();
 }
