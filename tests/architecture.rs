@@ -11,12 +11,13 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The crates whose `src/` is checked (the workspace's members and the root package).
-const CRATES: [&str; 10] = [
+const CRATES: [&str; 11] = [
     "types",
     "kinematics",
     "env",
     "planner",
-    "eval",
+    "policy",
+    "evaluate",
     "rl",
     "bench",
     "notebooks_export",

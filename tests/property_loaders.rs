@@ -218,7 +218,7 @@ fn checkpoints_meta_and_weights() {
     let meta = dir.join("meta.json");
     let seed = std::fs::read(&meta).unwrap();
     check_loader("meta.json", &seed, 3000, &meta, Some(&meta), &|| {
-        fairgrasp_eval::checkpoint::load_meta(&dir)
+        fairgrasp_policy::checkpoint::load_meta(&dir)
             .map(drop)
             .map_err(|e| e.to_string())
     });
@@ -228,7 +228,7 @@ fn checkpoints_meta_and_weights() {
     let weights = std::fs::read(&model).unwrap();
     check_loader("model.bpk", &weights, 1500, &model, None, &|| {
         let bytes = std::fs::read(&model).unwrap();
-        fairgrasp_eval::burnpack::read_tensors(&bytes)
+        fairgrasp_policy::burnpack::read_tensors(&bytes)
             .map(drop)
             .map_err(|e| e.to_string())
     });
@@ -239,7 +239,7 @@ fn checkpoints_meta_and_weights() {
         &model,
         Some(&dir),
         &|| {
-            fairgrasp_eval::checkpoint::load_actor(&dir)
+            fairgrasp_policy::checkpoint::load_actor(&dir)
                 .map(drop)
                 .map_err(|e| e.to_string())
         },

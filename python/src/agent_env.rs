@@ -5,7 +5,7 @@
 
 use fairgrasp_env::env::obs::Observation;
 use fairgrasp_env::{Action, EnvError, GraspEnv, Info, Step};
-use fairgrasp_eval::agent::{AgentConfig, EnvAgent};
+use fairgrasp_policy::agent::{AgentConfig, EnvAgent};
 
 use crate::curriculum::EnvCurriculum;
 use crate::info::Stage;

@@ -6,7 +6,7 @@
 
 use fairgrasp_env::vec::{VecEnv, VecStep};
 use fairgrasp_env::{Action, EnvError, Info};
-use fairgrasp_eval::agent::{AgentConfig, EnvAgent};
+use fairgrasp_policy::agent::{AgentConfig, EnvAgent};
 
 use crate::curriculum::EnvCurriculum;
 use crate::info::Stage;

@@ -4,11 +4,11 @@
 
 use std::path::Path;
 
-use fairgrasp_eval::compare::{
+use fairgrasp_evaluate::compare::{
     ComparePreset, CompareSpec, DEFAULT_PRESETS, DEFAULT_REPLAY_EPISODES, LearnedPolicy,
     default_threads, run_comparison,
 };
-use fairgrasp_eval::shipped;
+use fairgrasp_policy::shipped;
 use fairgrasp_report::comparison_folder::write_comparison_folder;
 use fairgrasp_report::{Existing, StagedFolder};
 use fairgrasp_types::EpisodeRecord;

@@ -6,7 +6,7 @@
 use fairgrasp_env::config::RandomizationConfig;
 use fairgrasp_env::scenario::curriculum::Curriculum;
 use fairgrasp_env::{EnvError, Info};
-use fairgrasp_eval::agent::EnvAgent;
+use fairgrasp_policy::agent::EnvAgent;
 
 use crate::info::Stage;
 use crate::setup::Setup;

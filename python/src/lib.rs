@@ -2,7 +2,7 @@
 //! The gymnasium classes live in the pure-Python package around it (`python/fairgrasp/`);
 //! everything here takes and returns NumPy arrays, plain numbers and dicts (infos), and runs the
 //! physics with the GIL released. A training recipe's env (`recipe=`) is built here from the
-//! recipe's agent and curriculum (fairgrasp-eval), as `fairgrasp train` builds it.
+//! recipe's agent and curriculum (fairgrasp-policy), as `fairgrasp train` builds it.
 //!
 //! ```
 //! // The module's action size is the env's.

@@ -3,9 +3,9 @@
 //! statistics, the deterministic mean action), and the seeded scenario list `fairgrasp eval`
 //! evaluates on, so a Python loop plays exactly its episodes.
 
-use fairgrasp_eval::actor::Actor;
-use fairgrasp_eval::checkpoint::{CheckpointMeta, load_actor};
-use fairgrasp_eval::shipped::checkpoint_folder;
+use fairgrasp_policy::actor::Actor;
+use fairgrasp_policy::checkpoint::{CheckpointMeta, load_actor};
+use fairgrasp_policy::shipped::checkpoint_folder;
 use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 

@@ -8,10 +8,10 @@ use fairgrasp_env::env::spaces::{
     ACT_DIM, BoxSpace, action_space_of, f32_outward, observation_space,
 };
 use fairgrasp_env::scenario::curriculum::{Curriculum, CurriculumConfig};
-use fairgrasp_eval::agent::AgentConfig;
-use fairgrasp_eval::agent::env_agent::{output_names, script_input_bounds};
-use fairgrasp_eval::recipe::{EnvFor, Recipe, check_agent_env};
-use fairgrasp_eval::recipes;
+use fairgrasp_policy::agent::AgentConfig;
+use fairgrasp_policy::agent::env_agent::{output_names, script_input_bounds};
+use fairgrasp_policy::recipe::{EnvFor, Recipe, check_agent_env};
+use fairgrasp_policy::recipes;
 use pyo3::prelude::*;
 
 use crate::args::{env_config, value_error};
@@ -159,7 +159,7 @@ pub(crate) fn recipe_names() -> Vec<&'static str> {
 }
 
 /// The shipped recipe of the task-space residual for the shipped preset `preset`
-/// (`fairgrasp_eval::recipes::task_residual_recipe`); an unknown preset is a ValueError.
+/// (`fairgrasp_policy::recipes::task_residual_recipe`); an unknown preset is a ValueError.
 #[pyfunction]
 pub(crate) fn task_residual_recipe(preset: &str) -> PyResult<&'static str> {
     let config = fairgrasp_env::config::presets::load(preset).map_err(crate::args::value_error)?;

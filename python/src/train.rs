@@ -5,8 +5,8 @@
 
 use std::path::Path;
 
-use fairgrasp_eval::recipe::overlay;
-use fairgrasp_eval::recipes;
+use fairgrasp_policy::recipe::overlay;
+use fairgrasp_policy::recipes;
 use fairgrasp_rl::run::resume::{self, ResumeOptions};
 use fairgrasp_rl::run::train::{Progress, TrainConfig, train_with};
 use pyo3::prelude::*;

@@ -2,12 +2,12 @@
 //!
 //! Three rooms, each building only on the ones before it:
 //! - [`ppo`]: the algorithm (network, rollouts, GAE, losses, the update), nothing about grasping;
-//! - [`agent`]: the grasp env as PPO sees it (the agents themselves are `fairgrasp-eval`'s,
+//! - [`agent`]: the grasp env as PPO sees it (the agents themselves are `fairgrasp-policy`'s,
 //!   re-exported);
 //! - [`run`]: training runs, checkpoints, resume, evaluation.
 //!
 //! What a trained policy needs after training (its checkpoint read and run without burn, the
-//! shipped policies, the comparison) is the `fairgrasp-eval` crate.
+//! shipped policies) is the `fairgrasp-policy` crate; the comparison is `fairgrasp-evaluate`.
 //!
 //! The `bench ppo` measurement lives in the `fairgrasp-bench` crate (`bench/`).
 

@@ -8,7 +8,7 @@ use fairgrasp_env::episode::run_episode;
 use fairgrasp_env::episode::trajectory::Trajectory;
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{Action, GraspEnv};
-use fairgrasp_eval::recipe::EnvFor;
+use fairgrasp_policy::recipe::EnvFor;
 use fairgrasp_rl::agent::grasp_agent::Mode;
 use fairgrasp_rl::run::checkpoint::load_model;
 use fairgrasp_rl::run::evaluate::agent_policy;

@@ -1,9 +1,9 @@
-//! The burn-free actor (`fairgrasp-eval`) computes the shipped policies' mean actions as burn's
+//! The burn-free actor (`fairgrasp-policy`) computes the shipped policies' mean actions as burn's
 //! forward pass does, to 1e-5, on inputs across the normalised range.
 
 use burn::tensor::{Device, Tensor, TensorData};
-use fairgrasp_eval::actor::Actor;
-use fairgrasp_eval::burnpack::read_tensors;
+use fairgrasp_policy::actor::Actor;
+use fairgrasp_policy::burnpack::read_tensors;
 use fairgrasp_rl::agent::Mode;
 use fairgrasp_rl::run::checkpoint::load_model;
 use fairgrasp_rl::run::shipped::ShippedPolicy;
@@ -78,7 +78,7 @@ fn every_shipped_policy_ends_300_episodes_the_same_without_burn() {
     use fairgrasp_env::config::presets;
     use fairgrasp_env::episode::evaluate;
     use fairgrasp_env::scenario::scenario_set;
-    use fairgrasp_eval::checkpoint::{actor_policy, load_actor};
+    use fairgrasp_policy::checkpoint::{actor_policy, load_actor};
 
     let device = Device::flex();
     let each = ShippedPolicy::ALL

@@ -4,9 +4,9 @@
 //! refused before its folder is touched.
 
 use burn::tensor::Device;
-use fairgrasp_eval::checkpoint::load_actor;
-use fairgrasp_eval::recipe::EnvFor;
-use fairgrasp_eval::shipped::ShippedPolicy;
+use fairgrasp_policy::checkpoint::load_actor;
+use fairgrasp_policy::recipe::EnvFor;
+use fairgrasp_policy::shipped::ShippedPolicy;
 use fairgrasp_rl::agent::grasp_agent::ACT_DIM;
 use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
 use fairgrasp_rl::ppo::free_env::FreeEnv;

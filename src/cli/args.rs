@@ -209,11 +209,11 @@ pub fn thread_count(text: &str) -> Result<usize, String> {
 }
 
 /// The checkpoint folder a `--policy` names, resolved as every command resolves it
-/// ([`fairgrasp_eval::shipped::checkpoint_folder`]: a shipped policy's name, a policy folder, a
+/// ([`fairgrasp_policy::shipped::checkpoint_folder`]: a shipped policy's name, a policy folder, a
 /// checkpoint folder or a run folder). A folder whose `meta.json` exists but is not a regular
 /// file is returned as it is, so that loading it says what is wrong with it.
 pub fn policy_folder(given: &str) -> anyhow::Result<PathBuf> {
-    match fairgrasp_eval::shipped::checkpoint_folder(given) {
+    match fairgrasp_policy::shipped::checkpoint_folder(given) {
         Ok(dir) => Ok(dir),
         Err(_) if Path::new(given).join("meta.json").exists() => Ok(PathBuf::from(given)),
         Err(why) => bail!("--policy {why}"),

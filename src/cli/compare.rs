@@ -8,11 +8,11 @@ use anyhow::Context;
 use clap::Args;
 use fairgrasp_env::TaskKind;
 use fairgrasp_env::config::presets;
-use fairgrasp_eval::compare::{
+use fairgrasp_evaluate::compare::{
     ComparePreset, CompareSpec, DEFAULT_REPLAY_EPISODES, LearnedPolicy, default_threads,
     run_comparison,
 };
-use fairgrasp_eval::shipped;
+use fairgrasp_policy::shipped;
 use fairgrasp_report::compare;
 use fairgrasp_report::comparison_folder::write_comparison_folder;
 use fairgrasp_report::{Existing, StagedFolder};
@@ -103,7 +103,7 @@ fn policy_folders(names: &[String]) -> anyhow::Result<Vec<PathBuf>> {
 
 pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     let names = if a.presets.is_empty() {
-        fairgrasp_eval::compare::DEFAULT_PRESETS
+        fairgrasp_evaluate::compare::DEFAULT_PRESETS
             .map(String::from)
             .to_vec()
     } else {

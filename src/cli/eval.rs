@@ -1,5 +1,5 @@
 //! `fairgrasp eval`: a trained agent (a checkpoint folder, or the shipped residual policy) on a
-//! preset's seeded scenarios, run without burn (`fairgrasp_eval::checkpoint`).
+//! preset's seeded scenarios, run without burn (`fairgrasp_policy::checkpoint`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 use fairgrasp_env::EnvConfig;
-use fairgrasp_eval::checkpoint::{actor_policy, load_actor};
+use fairgrasp_policy::checkpoint::{actor_policy, load_actor};
 
 use super::baseline::{ScenarioArgs, evaluate_and_print};
 
@@ -44,7 +44,7 @@ pub fn run_eval(a: &EvalArgs) -> anyhow::Result<ExitCode> {
     // The shipped residual policy is built into the binary: found from any folder.
     let policy = match &a.policy {
         Some(p) => super::args::policy_folder(p)?,
-        None => fairgrasp_eval::shipped::default_policy()
+        None => fairgrasp_policy::shipped::default_policy()
             .context("unpacking the shipped residual policy")?,
     };
     let (meta, actor) =

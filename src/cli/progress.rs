@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::io::IsTerminal;
 use std::time::Instant;
 
-use fairgrasp_eval::compare::CompareEvent;
+use fairgrasp_evaluate::compare::CompareEvent;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// `compare`'s progress: a bar per preset × method in a terminal, else a line per finished

@@ -10,9 +10,9 @@ use std::process::ExitCode;
 use anyhow::{Context, bail};
 use clap::Args;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_eval::compare::methods::Method;
-use fairgrasp_eval::compare::record::record_episodes;
-use fairgrasp_eval::compare::{LearnedPolicy, scripts_for};
+use fairgrasp_evaluate::compare::methods::Method;
+use fairgrasp_evaluate::compare::record::record_episodes;
+use fairgrasp_evaluate::compare::{LearnedPolicy, scripts_for};
 use fairgrasp_report::replay3d::{self, ReplayEpisode};
 use fairgrasp_types::ArmSimulation;
 

@@ -1,6 +1,6 @@
 //! `fairgrasp eval --squeeze-chart FILE.png`: what a squeezing residual learned, drawn. Each
 //! episode's grip force as the lift began against the squeeze its cube needed
-//! ([`fairgrasp_eval::squeeze_probe`]), as a PNG and the same rows as `FILE.csv`.
+//! ([`fairgrasp_evaluate::squeeze_probe`]), as a PNG and the same rows as `FILE.csv`.
 
 use std::path::{Path, PathBuf};
 
@@ -8,7 +8,7 @@ use anyhow::Context;
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_eval::squeeze_probe::{correlation, probe_squeeze, squeeze_csv};
+use fairgrasp_evaluate::squeeze_probe::{correlation, probe_squeeze, squeeze_csv};
 use fairgrasp_report::charts::squeeze::squeeze_chart;
 use fairgrasp_types::output::{check_replaceable, png_is_ours};
 

@@ -15,7 +15,7 @@ use fairgrasp_env::{Action, EnvConfig, EnvError};
 use crate::agent::grasp_agent::{ACT_DIM, AgentConfig};
 use crate::ppo::vec_api::{EpisodeStats, StepBatch, VecEnvError, VecEnvironment, check_finite};
 use fairgrasp_env::robot::tcp_action::TaskSpaceAction;
-use fairgrasp_eval::agent::EnvAgent;
+use fairgrasp_policy::agent::EnvAgent;
 
 /// Vectorised grasp envs plus one agent side (script) per env.
 pub struct GraspVecEnv {

@@ -14,7 +14,7 @@
 //! - [`teacher`]: kickstarting, a term that pulls the policy towards teachers' actions.
 
 pub mod algorithm;
-pub use fairgrasp_eval::recipe::ppo as config;
+pub use fairgrasp_policy::recipe::ppo as config;
 pub mod error;
 pub mod free_env;
 pub mod gae;

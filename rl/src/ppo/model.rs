@@ -14,10 +14,10 @@ use rand_chacha::ChaCha8Rng;
 use crate::ppo::gaussian;
 use crate::ppo::init::orthogonal;
 
-use fairgrasp_eval::actor::Actor;
-use fairgrasp_eval::burnpack::Tensor as PlainTensor;
+use fairgrasp_policy::actor::Actor;
+use fairgrasp_policy::burnpack::Tensor as PlainTensor;
 
-pub use fairgrasp_eval::checkpoint::network::{MAX_LAYERS, MAX_WIDTH, ModelConfig};
+pub use fairgrasp_policy::checkpoint::network::{MAX_LAYERS, MAX_WIDTH, ModelConfig};
 
 /// The ChaCha stream the initial weights are drawn from (PPO's sampling uses stream 0).
 const INIT_STREAM: u64 = 1;

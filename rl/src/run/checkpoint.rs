@@ -1,7 +1,7 @@
 //! Checkpoints: a folder with the network (`model.bpk`, burnpack), the optimiser state
 //! (`optimizer.bpk`) and `meta.json` (sizes, configs, observation statistics, progress). What
 //! reading one needs without burn (the meta, its checks, the weights' checksum) is
-//! `fairgrasp_eval::checkpoint`, re-exported here; this module writes checkpoints and loads them
+//! `fairgrasp_policy::checkpoint`, re-exported here; this module writes checkpoints and loads them
 //! into burn to train on.
 //!
 //! Written atomically: into `NAME.tmp`, then `NAME` is moved to `NAME.old`, the new folder into
@@ -19,8 +19,8 @@ use burn::module::Module;
 use burn::optim::ModuleOptimizer;
 use burn::tensor::Device;
 
-use fairgrasp_eval::checkpoint::verify::{FOLDER_CHECKSUM, folder_checksum_text};
-pub use fairgrasp_eval::checkpoint::{
+use fairgrasp_policy::checkpoint::verify::{FOLDER_CHECKSUM, folder_checksum_text};
+pub use fairgrasp_policy::checkpoint::{
     CHECKPOINT_VERSION, CheckpointError, CheckpointMeta, checksum, err, existing, load_meta,
     verified_model_bytes,
 };

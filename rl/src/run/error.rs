@@ -33,13 +33,13 @@ pub enum TrainError {
     },
 }
 
-impl From<fairgrasp_eval::recipe::RecipeError> for TrainError {
-    fn from(e: fairgrasp_eval::recipe::RecipeError) -> Self {
+impl From<fairgrasp_policy::recipe::RecipeError> for TrainError {
+    fn from(e: fairgrasp_policy::recipe::RecipeError) -> Self {
         match e {
-            fairgrasp_eval::recipe::RecipeError::Io { path, source } => {
+            fairgrasp_policy::recipe::RecipeError::Io { path, source } => {
                 TrainError::Io { path, source }
             }
-            fairgrasp_eval::recipe::RecipeError::Invalid(message) => TrainError::Config(message),
+            fairgrasp_policy::recipe::RecipeError::Invalid(message) => TrainError::Config(message),
         }
     }
 }

@@ -2,8 +2,8 @@
 
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::episode::{EvalReport, evaluate_seeded};
-use fairgrasp_eval::checkpoint::actor_policy;
-use fairgrasp_eval::recipe::EnvFor;
+use fairgrasp_policy::checkpoint::actor_policy;
+use fairgrasp_policy::recipe::EnvFor;
 
 use crate::agent::grasp_agent::GraspAgent;
 use crate::ppo::model::ActorCritic;

@@ -12,12 +12,12 @@
 //! as a teacher follows that run's `best`; a shipped name follows the binary's policy).
 
 use fairgrasp_env::EnvConfig;
-use fairgrasp_eval::actor::Actor;
-use fairgrasp_eval::agent::env_agent::output_names;
-use fairgrasp_eval::checkpoint::{load_actor, normalizer::RunningNorm};
-use fairgrasp_eval::shipped::checkpoint_folder;
+use fairgrasp_policy::actor::Actor;
+use fairgrasp_policy::agent::env_agent::output_names;
+use fairgrasp_policy::checkpoint::{load_actor, normalizer::RunningNorm};
+use fairgrasp_policy::shipped::checkpoint_folder;
 
-pub use fairgrasp_eval::recipe::kickstart::KickstartConfig;
+pub use fairgrasp_policy::recipe::kickstart::KickstartConfig;
 
 use crate::agent::grasp_agent::AgentConfig;
 use crate::ppo::teacher::{Kickstart, Teacher};

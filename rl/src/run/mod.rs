@@ -10,7 +10,7 @@
 //!   safely; [`snapshot`]: the run's copy of its preset file; [`crash`]: the kill tests' fault injection.
 //! - [`evaluate`]: a checkpoint as a policy, evaluated on a preset.
 //! - [`kickstart`]: a run's teachers (one trained policy per preset it trains on).
-//! - [`shipped`]: the policies built into the binary (`fairgrasp_eval::shipped`, re-exported).
+//! - [`shipped`]: the policies built into the binary (`fairgrasp_policy::shipped`, re-exported).
 
 pub mod checkpoint;
 pub mod config;
@@ -21,8 +21,8 @@ pub mod folder;
 pub mod kickstart;
 pub mod metrics;
 pub mod resume;
-pub use fairgrasp_eval::recipe::snapshot;
-pub use fairgrasp_eval::shipped;
+pub use fairgrasp_policy::recipe::snapshot;
+pub use fairgrasp_policy::shipped;
 pub mod tensorboard;
 pub mod train;
 

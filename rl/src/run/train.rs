@@ -15,7 +15,7 @@ use burn::tensor::Device;
 use fairgrasp_env::episode::EvalReport;
 use fairgrasp_env::scenario::curriculum::Curriculum;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_eval::recipe::EnvFor;
+use fairgrasp_policy::recipe::EnvFor;
 use fairgrasp_types::write_atomic;
 
 use crate::agent::grasp_agent::ACT_DIM;

@@ -6,7 +6,7 @@
 //! carries the FR3's URDF (`assets/fr3.urdf`, the model the env simulates), so it stands alone.
 //!
 //! Why play again: the trajectory does not record forces, and the policies are built inside
-//! `fairgrasp-eval`. The env is deterministic, so the same scenario and actions give the same
+//! `fairgrasp-evaluate`. The env is deterministic, so the same scenario and actions give the same
 //! episode; every step's joints and cube pose are compared with the recording, and a method whose
 //! replay departs from it (a policy that changed the grip force, which actions do not carry)
 //! gets no forces rather than wrong ones.

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use fairgrasp_eval::recipe::Recipe;
+use fairgrasp_policy::recipe::Recipe;
 
 /// The message `Recipe::validate` gives for `text` (a recipe file's content).
 fn refusal(text: &str) -> String {

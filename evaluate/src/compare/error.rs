@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use fairgrasp_env::EnvError;
 
-use crate::checkpoint::CheckpointError;
+use fairgrasp_policy::checkpoint::CheckpointError;
 
 /// Why a comparison could not run.
 #[derive(Debug, thiserror::Error)]

@@ -1,5 +1,5 @@
-//! fairgrasp-eval: trained policies as they are used after training — read and run without
-//! burn, so evaluating, comparing and exporting need none of the training stack.
+//! fairgrasp-policy: the policies as they are used after training — read and run without burn,
+//! so evaluating, comparing and exporting need none of the training stack.
 //!
 //! - [`agent`]: the grasping agents (config, policy input and action, the residual's script).
 //! - [`recipe`]: the training recipe, one type for training, evaluation and Python, and the
@@ -9,18 +9,14 @@
 //! - [`actor`]: the policy network's actor as plain arrays (its mean action).
 //! - [`checkpoint`]: a checkpoint's `meta.json` and verified weights, as a policy.
 //! - [`shipped`]: the trained policies built into the binary.
-//! - [`compare`]: every method on the same scenario sets (the `compare` experiment).
-//! - [`export`]: one episode as a servo stream for a real FR3 (`fairgrasp export`).
-//! - [`squeeze_probe`]: the grip force a squeezing residual commands against the squeeze each
-//!   cube needed (`fairgrasp eval --squeeze-chart`).
+//!
+//! What is run with these policies (the comparison, the squeeze probe, the export to the
+//! controller) is `fairgrasp-evaluate`.
 
 pub mod actor;
 pub mod agent;
 pub mod burnpack;
 pub mod checkpoint;
-pub mod compare;
-pub mod export;
 pub mod recipe;
 pub mod recipes;
 pub mod shipped;
-pub mod squeeze_probe;

@@ -6,10 +6,10 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use fairgrasp_env::config::presets;
-use fairgrasp_eval::compare::{
+use fairgrasp_evaluate::compare::{
     CompareError, CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, SCRIPTS, run_comparison,
 };
-use fairgrasp_eval::shipped::ShippedPolicy;
+use fairgrasp_policy::shipped::ShippedPolicy;
 use fairgrasp_types::ArmSimulation;
 
 fn preset(name: &str) -> ComparePreset {
@@ -274,7 +274,10 @@ fn the_generalist_grasps_on_every_family_it_was_trained_for() {
 fn a_place_comparison_runs_the_place_scripts_and_refuses_a_lift_preset_beside_them() {
     let out = run_comparison(&spec(&["place", "place_fixture_error"], 4), &[], &|_| {}).unwrap();
     let c = &out.comparison;
-    assert_eq!(c.methods, fairgrasp_eval::compare::PLACE_SCRIPTS.to_vec());
+    assert_eq!(
+        c.methods,
+        fairgrasp_evaluate::compare::PLACE_SCRIPTS.to_vec()
+    );
     // Seated on the noise-free preset; the replay records the place task's episodes.
     let seated = &c.get("place script", "place").unwrap().report;
     assert_eq!(seated.successes, 4, "{:?}", seated.outcomes);

@@ -4,8 +4,8 @@
 
 use std::path::PathBuf;
 
-use fairgrasp_eval::compare::methods::Method;
-use fairgrasp_eval::shipped::ShippedPolicy;
+use fairgrasp_evaluate::compare::methods::Method;
+use fairgrasp_policy::shipped::ShippedPolicy;
 
 #[test]
 fn a_method_is_a_script_a_shipped_policy_a_checkpoint_or_a_run_folder() {

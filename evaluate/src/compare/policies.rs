@@ -11,9 +11,9 @@ use fairgrasp_planner::{
     ScriptedPlace, SearchParams, TunedGripScript,
 };
 
-use crate::actor::Actor;
-use crate::checkpoint::{self, CheckpointMeta, actor_policy};
 use crate::compare::error::CompareError;
+use fairgrasp_policy::actor::Actor;
+use fairgrasp_policy::checkpoint::{self, CheckpointMeta, actor_policy};
 
 /// The name of the scripted baseline (the open-loop script) in every comparison.
 pub const BASELINE: &str = "scripted baseline";
@@ -60,7 +60,7 @@ pub struct LearnedPolicy {
     /// The checkpoint folder.
     pub dir: PathBuf,
     pub meta: CheckpointMeta,
-    /// Its actor, run without burn ([`crate::actor`]).
+    /// Its actor, run without burn ([`fairgrasp_policy::actor`]).
     pub actor: Actor,
 }
 

@@ -5,8 +5,8 @@
 
 use std::path::{Path, PathBuf};
 
-use fairgrasp_eval::checkpoint::{load_actor, load_meta};
-use fairgrasp_eval::shipped::ShippedPolicy;
+use fairgrasp_policy::checkpoint::{load_actor, load_meta};
+use fairgrasp_policy::shipped::ShippedPolicy;
 
 const SHIPPED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/policies");
 

@@ -7,8 +7,8 @@ use fairgrasp_env::cell::Cell;
 use fairgrasp_env::episode::Outcome;
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{EnvConfig, GraspEnv};
-use fairgrasp_eval::compare::methods::Method;
-use fairgrasp_eval::export::export_episode;
+use fairgrasp_evaluate::compare::methods::Method;
+use fairgrasp_evaluate::export::export_episode;
 use fairgrasp_planner::stream::check::peaks;
 use fairgrasp_planner::stream::{StreamLimits, check_stream, play};
 

@@ -4,7 +4,7 @@
 
 use crate::compare::error::CompareError;
 use crate::compare::policies::{LearnedPolicy, SCRIPTS};
-use crate::shipped::checkpoint_folder;
+use fairgrasp_policy::shipped::checkpoint_folder;
 
 /// The command-line names of the scripts, in the order of [`SCRIPTS`].
 pub const SCRIPT_NAMES: [&str; 5] = [
