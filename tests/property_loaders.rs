@@ -379,7 +379,7 @@ fn comparisons_episodes_and_run_metrics() {
     let seed = std::fs::read(&compare_json).unwrap();
     let file = dir.join("compare.json");
     check_loader("compare.json", &seed, 2000, &file, Some(&file), &|| {
-        fairgrasp_report::compare::load(&file)
+        fairgrasp_report::comparison_table::load(&file)
             .map(drop)
             .map_err(|e| e.to_string())
     });

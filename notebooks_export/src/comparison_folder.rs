@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use crate::compare::{Comparison, to_csv};
+use crate::comparison_table::{Comparison, to_csv};
 use crate::error::{ReportError, write_file};
 use crate::output_folder::StagedFolder;
 use crate::report::{Input, write_report};

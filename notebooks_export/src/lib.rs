@@ -5,7 +5,8 @@
 //! result schema (`fairgrasp-types`), so the charts can be redrawn from a colleague's folders
 //! without the simulator.
 //!
-//! - [`compare`]: the comparison's data (`compare.json`), `compare.csv`, text and Markdown tables.
+//! - [`comparison_table`]: the comparison's data (`compare.json`), `compare.csv`, text and
+//!   Markdown tables.
 //! - [`runs`]: a training run folder and its `metrics.csv`.
 //! - [`trajectory`]: a recorded episode (`episode_NNNN.json`).
 //! - [`charts`]: success bars, learning curves, workspace maps, episode charts, GIF replays.
@@ -23,8 +24,8 @@
 //! needed.
 
 pub mod charts;
-pub mod compare;
 pub mod comparison_folder;
+pub mod comparison_table;
 pub mod document;
 pub mod error;
 pub mod folder_marker;
@@ -36,7 +37,7 @@ pub mod report;
 pub mod runs;
 pub mod trajectory;
 
-pub use compare::{Comparison, EpisodeRecord, MethodResult, Outcome, RecordedEpisode};
+pub use comparison_table::{Comparison, EpisodeRecord, MethodResult, Outcome, RecordedEpisode};
 pub use error::ReportError;
 pub use output_folder::{Existing, StagedFolder};
 pub use report::{Input, build_report, load_inputs, write_report};

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use crate::charts::curves;
 use crate::charts::draw_all::draw_comparison_charts;
-use crate::compare::{
+use crate::comparison_table::{
     Comparison, key_paired_markdown, markdown_table, paired_markdown, pivot_markdown,
 };
 use crate::document::{Document, toml_block};
@@ -38,7 +38,7 @@ impl Input {
             });
         }
         if path.join("compare.json").is_file() {
-            let comparison = crate::compare::load(&path.join("compare.json"))?;
+            let comparison = crate::comparison_table::load(&path.join("compare.json"))?;
             let trajectories = comparison
                 .recorded
                 .iter()

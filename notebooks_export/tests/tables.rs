@@ -3,7 +3,7 @@
 mod common;
 
 use common::{method_result, temp_dir, write_comparison, write_run};
-use fairgrasp_report::compare::{self, Comparison, Outcome};
+use fairgrasp_report::comparison_table::{self, Comparison, Outcome};
 use fairgrasp_report::{Input, ReportError, RunFolder};
 
 /// Splits a CSV line (fields here hold no quotes except around commas).
@@ -26,7 +26,7 @@ fn csv_json_and_text_table_agree() {
     let mut c = write_comparison(&dir, Vec::new());
     c.results[1].method = "residual, with a comma".into();
     c.methods[1] = c.results[1].method.clone();
-    let csv = compare::to_csv(&c);
+    let csv = comparison_table::to_csv(&c);
     let reread: Comparison = serde_json::from_str(&c.to_json()).unwrap();
     assert!(
         reread == c,
@@ -36,7 +36,7 @@ fn csv_json_and_text_table_agree() {
     let header = fields(lines[0]);
     assert_eq!(header.len(), 12 + Outcome::ALL.len());
     assert_eq!(lines.len(), 1 + c.results.len());
-    let table = compare::text_table(&c);
+    let table = comparison_table::text_table(&c);
     for (line, r) in lines[1..].iter().zip(&c.results) {
         let row = fields(line);
         assert_eq!(row.len(), header.len(), "{line}");
@@ -70,11 +70,11 @@ fn csv_json_and_text_table_agree() {
             "{printed}"
         );
         assert!(
-            printed.contains(&compare::failure_breakdown(r)),
+            printed.contains(&comparison_table::failure_breakdown(r)),
             "{printed}"
         );
     }
-    let md = compare::markdown_table(&c);
+    let md = comparison_table::markdown_table(&c);
     assert_eq!(md.lines().count(), 2 + c.results.len());
 }
 
@@ -95,7 +95,7 @@ fn inconsistent_comparisons_are_refused() {
     let dir = temp_dir("tables-bad-json");
     let teleported = c.to_json().replace("\"collision\"", "\"teleported\"");
     std::fs::write(dir.join("compare.json"), teleported).unwrap();
-    let e = compare::load(&dir.join("compare.json"))
+    let e = comparison_table::load(&dir.join("compare.json"))
         .unwrap_err()
         .to_string();
     assert!(
@@ -110,7 +110,7 @@ fn inconsistent_comparisons_are_refused() {
     assert!(short.check().unwrap_err().0.contains("9 episode records"));
 
     std::fs::write(dir.join("compare.json"), "{\"presets\": 3}").unwrap();
-    let e = compare::load(&dir.join("compare.json"))
+    let e = comparison_table::load(&dir.join("compare.json"))
         .unwrap_err()
         .to_string();
     assert!(
@@ -178,11 +178,11 @@ fn missing_and_malformed_run_folders_are_named() {
 fn the_pivot_tables_numbers_are_compare_csvs() {
     let dir = temp_dir("tables-pivot");
     let c = write_comparison(&dir, Vec::new());
-    let csv = compare::to_csv(&c);
+    let csv = comparison_table::to_csv(&c);
     let lines: Vec<&str> = csv.lines().collect();
     let header = fields(lines[0]);
-    let text = compare::pivot_text(&c);
-    let markdown = compare::pivot_markdown(&c);
+    let text = comparison_table::pivot_text(&c);
+    let markdown = comparison_table::pivot_markdown(&c);
     // One row per method after the header and the rule, one column per preset.
     assert_eq!(text.lines().count(), 2 + c.methods.len());
     let head: Vec<&str> = text.lines().next().unwrap().split_whitespace().collect();
@@ -237,6 +237,6 @@ fn the_leading_paired_tests_are_against_the_baseline_and_the_best_script_without
     let against: Vec<&str> = key.iter().map(|t| t.b.as_str()).collect();
     assert_eq!(against, ["scripted baseline", "closed-loop script"]);
     assert_eq!(fairgrasp_types::learned_vs_scripts(&c).unwrap().len(), 3);
-    let text = compare::key_paired_text(&c).unwrap();
+    let text = comparison_table::key_paired_text(&c).unwrap();
     assert!(!text.contains("oracle"), "{text}");
 }

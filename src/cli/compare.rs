@@ -13,8 +13,8 @@ use fairgrasp_evaluate::compare::{
     run_comparison,
 };
 use fairgrasp_policy::shipped;
-use fairgrasp_report::compare;
 use fairgrasp_report::comparison_folder::write_comparison_folder;
+use fairgrasp_report::comparison_table;
 use fairgrasp_report::{Existing, StagedFolder};
 use fairgrasp_types::ArmSimulation;
 
@@ -176,8 +176,8 @@ fn print_summary(
     comparison: &fairgrasp_types::Comparison,
     written: &[String],
 ) -> anyhow::Result<()> {
-    print!("{}", compare::pivot_text(comparison));
-    let key = compare::key_paired_text(comparison)?;
+    print!("{}", comparison_table::pivot_text(comparison));
+    let key = comparison_table::key_paired_text(comparison)?;
     if !key.is_empty() {
         println!(
             "\nPaired tests (McNemar, exact, two-sided): each learned method vs the baseline and \
@@ -216,10 +216,10 @@ fn print_everything(
     comparison: &fairgrasp_types::Comparison,
     written: &[String],
 ) -> anyhow::Result<()> {
-    print!("{}", compare::pivot_text(comparison));
+    print!("{}", comparison_table::pivot_text(comparison));
     println!();
-    print!("{}", compare::text_table(comparison));
-    let paired = compare::paired_text(comparison)?;
+    print!("{}", comparison_table::text_table(comparison));
+    let paired = comparison_table::paired_text(comparison)?;
     if !paired.is_empty() {
         println!("\nPaired tests (McNemar, exact, two-sided), learned method vs script:");
         print!("{paired}");

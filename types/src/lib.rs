@@ -5,7 +5,7 @@
 //! - [`names`]: the typed names written into result files ([`Outcome`], [`ArmSimulation`]).
 //! - [`episode`]: the one record of a finished episode and how its outcome is decided.
 //! - [`eval`]: an evaluation report over episodes ([`EvalReport`], Wilson interval).
-//! - [`compare`]: a comparison of methods on presets (`compare.json`).
+//! - [`comparison`]: a comparison of methods on presets (`compare.json`).
 //! - [`paired`]: McNemar's exact test between two methods on the same scenarios.
 //! - [`trajectory`]: one recorded episode (written by the env, read by the report); [`body`]:
 //!   the robot's bodies and shapes in it, for 3D replays.
@@ -18,7 +18,7 @@
 
 pub mod body;
 pub mod checksum;
-pub mod compare;
+pub mod comparison;
 pub mod episode;
 pub mod eval;
 pub mod fs;
@@ -29,7 +29,7 @@ pub mod text;
 pub mod trajectory;
 pub mod work_queue;
 
-pub use compare::{Comparison, MethodResult, RecordedEpisode, SchemaError};
+pub use comparison::{Comparison, MethodResult, RecordedEpisode, SchemaError};
 pub use episode::{EpisodeFacts, EpisodeRecord};
 pub use eval::{EvalReport, wilson_interval};
 pub use fs::{read_bounded, read_text_bounded, write_atomic};

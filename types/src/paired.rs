@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::compare::{Comparison, MethodResult};
+use crate::comparison::{Comparison, MethodResult};
 use crate::names::Outcome;
 
 /// McNemar's exact two-sided p-value for `only_a` and `only_b` discordant pairs (1 without any).

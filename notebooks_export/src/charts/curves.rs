@@ -3,10 +3,11 @@
 
 use std::path::Path;
 
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::axis::Axis;
-use super::{draw_legend, finite_points, line_mark, min_max, series_color};
+use super::{Chart, draw_legend, finite_points, line_mark, min_max, series_color};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 use crate::runs::RunFolder;
@@ -31,114 +32,147 @@ const PANELS: [(&str, &str, &str); 6] = [
 /// Draws `path` with one line per run in each panel; the success panel also shows evaluation
 /// success (`eval_success_rate`) as dots, and dashed verticals mark curriculum stage changes.
 pub fn learning_curves(runs: &[RunFolder], path: &Path) -> Result<(), ReportError> {
-    let names: Vec<&str> = runs.iter().map(|r| r.name.as_str()).collect();
     render_png(path, SIZE, |root| {
         let (title, body) = root.split_vertically(70);
-        title
-            .draw(&Text::new(
-                format!("Learning curves: {}", names.join(", ")),
-                (16, 8),
-                (FONT, 26),
-            ))
-            .map_err(de)?;
-        title
-            .draw(&Text::new(
-                "thin: per PPO update · thick: moving average over 15 updates · dots: evaluation success on the run's \
-                 fixed scenario set · dashed: curriculum stage change",
-                (16, 44),
-                (FONT, 14).into_font().color(&RGBColor(90, 90, 90)),
-            ))
-            .map_err(de)?;
+        draw_title(&title, runs)?;
         let panels = body.split_evenly((2, 3));
-        // From 0 (or the first step, if negative) to the last step; one step wide at least.
-        let (x_lo, x_hi) = min_max(
-            runs.iter()
-                .flat_map(|r| r.metrics.column("timesteps").unwrap_or_default()),
-        );
-        let x_axis = if x_lo <= x_hi {
-            Axis::new(x_lo.min(0.0), x_hi.max(x_lo.min(0.0) + 1.0))
-        } else {
-            Axis::new(0.0, 1.0)
-        };
-        for ((column, caption, y_desc), area) in PANELS.iter().zip(&panels) {
-            let series: Vec<Vec<(f64, f64)>> = runs
-                .iter()
-                .map(|r| finite_points(r.metrics.series(column)))
-                .collect();
-            let eval: Vec<Vec<(f64, f64)>> = runs
-                .iter()
-                .map(|r| {
-                    if *column == "success_rate" {
-                        finite_points(r.metrics.series("eval_success_rate"))
-                    } else {
-                        Vec::new()
-                    }
-                })
-                .collect();
-            let y_axis = if *column == "success_rate" {
-                Axis::new(-0.03, 1.03)
-            } else {
-                Axis::fit(series.iter().flatten().map(|p| p.1), 0.08, 1e-3)
-            };
-            let (y_lo, y_hi) = y_axis.ends();
-            let mut chart = ChartBuilder::on(area)
-                .caption(*caption, (FONT, 18))
-                .margin(10)
-                .x_label_area_size(36)
-                .y_label_area_size(64)
-                .build_cartesian_2d(x_axis, y_axis)
-                .map_err(de)?;
-            chart
-                .configure_mesh()
-                .x_labels(5)
-                .y_labels(6)
-                .x_label_formatter(&|x| format_steps(*x))
-                .x_desc("environment steps")
-                .y_desc(*y_desc)
-                .label_style((FONT, 13))
-                .axis_desc_style((FONT, 14))
-                .light_line_style(WHITE.mix(0.0))
-                .draw()
-                .map_err(de)?;
-            for (i, run) in runs.iter().enumerate() {
-                let color = series_color(i);
-                for (x, _) in finite_points(run.metrics.stage_changes()) {
-                    chart
-                        .draw_series(DashedLineSeries::new(
-                            vec![(x, y_lo), (x, y_hi)],
-                            6,
-                            4,
-                            color.mix(0.7).stroke_width(1),
-                        ))
-                        .map_err(de)?;
-                }
-                // Raw values thin and light, a moving average on top: PPO metrics are noisy,
-                // and plotters' thick polylines spike at sharp turns.
-                chart
-                    .draw_series(LineSeries::new(
-                        series[i].clone(),
-                        color.mix(0.35).stroke_width(1),
-                    ))
-                    .map_err(de)?;
-                let line = chart
-                    .draw_series(LineSeries::new(
-                        moving_average(&series[i], SMOOTHING),
-                        color.stroke_width(2),
-                    ))
-                    .map_err(de)?;
-                if *column == "success_rate" {
-                    line.label(run.name.as_str()).legend(line_mark(color));
-                }
-                chart
-                    .draw_series(eval[i].iter().map(|p| Circle::new(*p, 4, color.filled())))
-                    .map_err(de)?;
-            }
-            if *column == "success_rate" {
-                draw_legend(&mut chart, SeriesLabelPosition::LowerRight, 13)?;
-            }
+        let x_axis = steps_axis(runs);
+        for (panel, area) in PANELS.iter().zip(&panels) {
+            draw_panel(area, *panel, runs, x_axis)?;
         }
         Ok(())
     })
+}
+
+/// The chart's title (the runs' names) and a line explaining the marks.
+fn draw_title(title: &DrawingArea<BitMapBackend, Shift>, runs: &[RunFolder]) -> Result<(), String> {
+    let names: Vec<&str> = runs.iter().map(|r| r.name.as_str()).collect();
+    title
+        .draw(&Text::new(
+            format!("Learning curves: {}", names.join(", ")),
+            (16, 8),
+            (FONT, 26),
+        ))
+        .map_err(de)?;
+    title
+        .draw(&Text::new(
+            "thin: per PPO update · thick: moving average over 15 updates · dots: evaluation success on the run's \
+             fixed scenario set · dashed: curriculum stage change",
+            (16, 44),
+            (FONT, 14).into_font().color(&RGBColor(90, 90, 90)),
+        ))
+        .map_err(de)?;
+    Ok(())
+}
+
+/// The shared x axis [environment steps]: from 0 (or the first step, if negative) to the last
+/// step of any run; one step wide at least, and 0–1 when no run has a step.
+fn steps_axis(runs: &[RunFolder]) -> Axis {
+    let (x_lo, x_hi) = min_max(
+        runs.iter()
+            .flat_map(|r| r.metrics.column("timesteps").unwrap_or_default()),
+    );
+    if x_lo <= x_hi {
+        Axis::new(x_lo.min(0.0), x_hi.max(x_lo.min(0.0) + 1.0))
+    } else {
+        Axis::new(0.0, 1.0)
+    }
+}
+
+/// One panel (`(column, caption, y_desc)` of [`PANELS`]): every run's metric against steps; the
+/// success panel adds evaluation dots and the legend.
+fn draw_panel(
+    area: &DrawingArea<BitMapBackend, Shift>,
+    (column, caption, y_desc): (&str, &str, &str),
+    runs: &[RunFolder],
+    x_axis: Axis,
+) -> Result<(), String> {
+    let is_success = column == "success_rate";
+    let series: Vec<Vec<(f64, f64)>> = runs
+        .iter()
+        .map(|r| finite_points(r.metrics.series(column)))
+        .collect();
+    let y_axis = if is_success {
+        Axis::new(-0.03, 1.03)
+    } else {
+        Axis::fit(series.iter().flatten().map(|p| p.1), 0.08, 1e-3)
+    };
+    let y_ends = y_axis.ends();
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, (FONT, 18))
+        .margin(10)
+        .x_label_area_size(36)
+        .y_label_area_size(64)
+        .build_cartesian_2d(x_axis, y_axis)
+        .map_err(de)?;
+    chart
+        .configure_mesh()
+        .x_labels(5)
+        .y_labels(6)
+        .x_label_formatter(&|x| format_steps(*x))
+        .x_desc("environment steps")
+        .y_desc(y_desc)
+        .label_style((FONT, 13))
+        .axis_desc_style((FONT, 14))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(de)?;
+    for (i, (run, points)) in runs.iter().zip(&series).enumerate() {
+        draw_run(&mut chart, run, series_color(i), points, y_ends, is_success)?;
+    }
+    if is_success {
+        draw_legend(&mut chart, SeriesLabelPosition::LowerRight, 13)?;
+    }
+    Ok(())
+}
+
+/// One run in a panel, in `color`: its stage changes as dashed verticals from `y_lo` to `y_hi`
+/// (the panel's y-axis ends), `points` raw (thin) and smoothed (thick); in the success panel
+/// (`is_success`) also its evaluation success as dots and its name in the legend.
+fn draw_run(
+    chart: &mut Chart<'_, '_>,
+    run: &RunFolder,
+    color: RGBColor,
+    points: &[(f64, f64)],
+    (y_lo, y_hi): (f64, f64),
+    is_success: bool,
+) -> Result<(), String> {
+    for (x, _) in finite_points(run.metrics.stage_changes()) {
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(x, y_lo), (x, y_hi)],
+                6,
+                4,
+                color.mix(0.7).stroke_width(1),
+            ))
+            .map_err(de)?;
+    }
+    // Raw values thin and light, a moving average on top: PPO metrics are noisy, and plotters'
+    // thick polylines spike at sharp turns.
+    chart
+        .draw_series(LineSeries::new(
+            points.to_vec(),
+            color.mix(0.35).stroke_width(1),
+        ))
+        .map_err(de)?;
+    let line = chart
+        .draw_series(LineSeries::new(
+            moving_average(points, SMOOTHING),
+            color.stroke_width(2),
+        ))
+        .map_err(de)?;
+    if is_success {
+        line.label(run.name.as_str()).legend(line_mark(color));
+    }
+    let eval = if is_success {
+        finite_points(run.metrics.series("eval_success_rate"))
+    } else {
+        Vec::new()
+    };
+    chart
+        .draw_series(eval.iter().map(|p| Circle::new(*p, 4, color.filled())))
+        .map_err(de)?;
+    Ok(())
 }
 
 /// Updates averaged by the smoothed line.

@@ -9,7 +9,7 @@ use fairgrasp_types::fs::slug;
 use fairgrasp_types::work_queue::run_in_order;
 
 use crate::charts::{episode, heatmap, replay, workspace};
-use crate::compare::Comparison;
+use crate::comparison_table::Comparison;
 use crate::error::ReportError;
 use crate::trajectory::Trajectory;
 

@@ -7,7 +7,7 @@ use std::path::Path;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::compare::Comparison;
+use crate::comparison_table::Comparison;
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 

@@ -7,7 +7,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::axis::Axis;
 use super::series_color;
-use crate::compare::Comparison;
+use crate::comparison_table::Comparison;
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 

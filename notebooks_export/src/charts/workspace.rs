@@ -6,7 +6,7 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use super::{draw_axes, equal_aspect, min_max, outcome_color, padded};
-use crate::compare::{Comparison, Outcome};
+use crate::comparison_table::{Comparison, Outcome};
 use crate::error::ReportError;
 use crate::raster::{FONT, de, render_png};
 

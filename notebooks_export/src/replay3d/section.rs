@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use crate::compare::Comparison;
+use crate::comparison_table::Comparison;
 use crate::document::Document;
 use crate::error::ReportError;
 use crate::replay3d::{ReplayEpisode, write_replay};

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use fairgrasp_report::compare::{
+use fairgrasp_report::comparison_table::{
     Comparison, EpisodeRecord, MethodResult, Outcome, RecordedEpisode, to_csv,
 };
 use fairgrasp_types::{ArmSimulation, EvalReport};
