@@ -65,7 +65,7 @@ fn draw_title(title: &DrawingArea<BitMapBackend, Shift>, runs: &[RunFolder]) -> 
     Ok(())
 }
 
-/// The shared x axis [environment steps]: from 0 (or the first step, if negative) to the last
+/// The shared x axis \[environment steps\]: from 0 (or the first step, if negative) to the last
 /// step of any run; one step wide at least, and 0–1 when no run has a step.
 fn steps_axis(runs: &[RunFolder]) -> Axis {
     let (x_lo, x_hi) = min_max(

@@ -44,7 +44,7 @@ pub fn episode_chart(t: &Trajectory, title: &str, path: &Path) -> Result<(), Rep
     })
 }
 
-/// The time axis [s] of the two time panels: from 0 (or the first time, if negative) to the
+/// The time axis \[s\] of the two time panels: from 0 (or the first time, if negative) to the
 /// last time, 1 ms long at least; 0–1 s when no time is finite.
 fn time_axis(time: &[f64]) -> Axis {
     let (t_first, t_last) = min_max(time.iter().copied());
@@ -55,7 +55,7 @@ fn time_axis(time: &[f64]) -> Axis {
     }
 }
 
-/// The six joint angles [deg] against `time` [s], one colour per joint.
+/// The six joint angles \[deg\] against `time` \[s\], one colour per joint.
 fn draw_joint_angles(
     area: &DrawingArea<BitMapBackend, Shift>,
     t: &Trajectory,
@@ -92,8 +92,8 @@ fn draw_joint_angles(
     draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)
 }
 
-/// The gripper opening between the pads and the cube's bottom above the table top, both [mm],
-/// against `time` [s].
+/// The gripper opening between the pads and the cube's bottom above the table top, both \[mm\],
+/// against `time` \[s\].
 fn draw_gripper_and_lift(
     area: &DrawingArea<BitMapBackend, Shift>,
     t: &Trajectory,
@@ -135,7 +135,7 @@ fn draw_gripper_and_lift(
 }
 
 /// The TCP and cube-centre paths in `base_link` against x, with `axis` (1: y, the top view;
-/// 2: z, the side view, which also shows the table) upward, at equal scale [m]; the cube's
+/// 2: z, the side view, which also shows the table) upward, at equal scale \[m\]; the cube's
 /// start is a shaded square, the TCP's start and end are dots.
 fn draw_paths(
     area: &DrawingArea<BitMapBackend, Shift>,
@@ -174,7 +174,7 @@ fn draw_paths(
     draw_legend(&mut chart, SeriesLabelPosition::UpperLeft, 12)
 }
 
-/// Equal-aspect axes [m] for a path view in `area`: they hold every TCP and cube point, and the
+/// Equal-aspect axes \[m\] for a path view in `area`: they hold every TCP and cube point, and the
 /// table top's height `table_z` when given (the side view).
 fn path_axes(
     area: &DrawingArea<BitMapBackend, Shift>,
@@ -193,7 +193,7 @@ fn path_axes(
     )
 }
 
-/// The cube's start: a shaded square `2 * half` [m] wide centred on the first cube point.
+/// The cube's start: a shaded square `2 * half` \[m\] wide centred on the first cube point.
 fn draw_cube_start(
     chart: &mut Chart<'_, '_>,
     cube: &[(f64, f64)],
