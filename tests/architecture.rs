@@ -622,3 +622,84 @@ fn super_inside_an_inline_module_is_the_file_itself_not_its_parent() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Whether `m` is in env's configuration layer: the `config` folder, or a scenario family's
+/// `settings.rs` (a family keeps its settings in its own folder, `scenario/<family>/`).
+fn in_config_layer(m: &[String]) -> bool {
+    matches!(m, [first, ..] if first == "config")
+        || matches!(m, [scenario, _, settings] if scenario == "scenario" && settings == "settings")
+}
+
+/// The imports that leave a layer: (from, to) for each file of the layer that imports a file
+/// outside it.
+fn imports_leaving(
+    graph: &BTreeMap<Vec<String>, BTreeSet<Vec<String>>>,
+    in_layer: fn(&[String]) -> bool,
+) -> Vec<String> {
+    graph
+        .iter()
+        .filter(|(from, _)| in_layer(from))
+        .flat_map(|(from, to)| {
+            to.iter()
+                .filter(|t| !in_layer(t))
+                .map(move |t| format!("{} imports {}", module_name(from), module_name(t)))
+        })
+        .collect()
+}
+
+#[test]
+fn env_config_with_the_families_settings_is_a_leaf_that_imports_no_behaviour() {
+    // Why a layer and not the folder alone: `EnvConfig` names each family's settings type, which
+    // lives in the family's folder, so `config` imports those `settings.rs` files and they import
+    // `config`'s checks. Neither may import the env's behaviour (cell, sim, robot, task, a
+    // family's draw or hook), so every other room can import the configuration.
+    let graph = import_graph(&repo().join("env").join("src"));
+    let settings = graph
+        .keys()
+        .filter(|m| in_config_layer(m) && m[0] == "scenario");
+    assert!(
+        settings.count() >= 5,
+        "the scenario families' settings.rs files were not found"
+    );
+    let leaving = imports_leaving(&graph, in_config_layer);
+    assert!(
+        leaving.is_empty(),
+        "the config layer imports behaviour:\n{}",
+        leaving.join("\n")
+    );
+}
+
+#[test]
+fn an_import_from_config_into_a_familys_behaviour_leaves_the_layer() {
+    let dir = scratch_crate(
+        "layer",
+        &[
+            ("lib.rs", "pub mod config;\npub mod scenario;\n"),
+            ("config/mod.rs", "pub mod env_config;\n"),
+            (
+                "config/env_config.rs",
+                "use crate::scenario::nudge::settings::Nudge;\npub struct EnvConfig;\n",
+            ),
+            ("scenario/mod.rs", "pub mod nudge;\n"),
+            (
+                "scenario/nudge/mod.rs",
+                "pub mod settings;\npub mod draw;\n",
+            ),
+            ("scenario/nudge/settings.rs", "pub struct Nudge;\n"),
+            ("scenario/nudge/draw.rs", "pub fn draw() {}\n"),
+        ],
+    );
+    let within = imports_leaving(&import_graph(&dir), in_config_layer);
+    std::fs::write(
+        dir.join("config/env_config.rs"),
+        "use crate::scenario::nudge::draw::draw;\npub struct EnvConfig;\n",
+    )
+    .unwrap();
+    let leaving = imports_leaving(&import_graph(&dir), in_config_layer);
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(within.is_empty(), "{within:?}");
+    assert_eq!(
+        leaving,
+        vec!["config::env_config imports scenario::nudge::draw".to_string()]
+    );
+}
