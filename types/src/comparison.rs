@@ -5,7 +5,7 @@ use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
-use crate::eval::EvalReport;
+use crate::eval_report::EvalReport;
 use crate::names::{ArmSimulation, Outcome};
 
 /// One method evaluated on one preset's scenario set.

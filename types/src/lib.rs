@@ -4,7 +4,7 @@
 //!
 //! - [`names`]: the typed names written into result files ([`Outcome`], [`ArmSimulation`]).
 //! - [`episode`]: the one record of a finished episode and how its outcome is decided.
-//! - [`eval`]: an evaluation report over episodes ([`EvalReport`], Wilson interval).
+//! - [`eval_report`]: an evaluation report over episodes ([`EvalReport`], Wilson interval).
 //! - [`comparison`]: a comparison of methods on presets (`compare.json`).
 //! - [`paired`]: McNemar's exact test between two methods on the same scenarios.
 //! - [`trajectory`]: one recorded episode (written by the env, read by the report); [`body`]:
@@ -20,7 +20,7 @@ pub mod body;
 pub mod checksum;
 pub mod comparison;
 pub mod episode;
-pub mod eval;
+pub mod eval_report;
 pub mod fs;
 pub mod names;
 pub mod output;
@@ -31,7 +31,7 @@ pub mod work_queue;
 
 pub use comparison::{Comparison, MethodResult, RecordedEpisode, SchemaError};
 pub use episode::{EpisodeFacts, EpisodeRecord};
-pub use eval::{EvalReport, wilson_interval};
+pub use eval_report::{EvalReport, wilson_interval};
 pub use fs::{read_bounded, read_text_bounded, write_atomic};
 pub use names::{ArmSimulation, Outcome, UnknownName};
 pub use paired::{
