@@ -8,8 +8,9 @@
 #   python/tests).
 #   The extension: with FAIRGRASP_NATIVE_LIB=path/to/lib_native.so (what `cargo test
 #   --workspace` builds; tests/python_package.rs passes it) the package is staged from python/
-#   with that library, so nothing is compiled again; without it, `maturin develop --profile dev`
-#   builds and installs the package into the venv. `pip install ./python` builds a release wheel.
+#   with that library into target/python-package-stage, put on PYTHONPATH, so nothing is compiled
+#   again; without it, `maturin develop --profile dev` builds and installs the package into the
+#   venv (both by scripts/stage-package.sh). `pip install ./python` builds a release wheel.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 venv="${FAIRGRASP_PY_VENV:-$root/target/python-package-venv}"
@@ -25,13 +26,9 @@ fi
 cd "$root"
 if [[ -n "${FAIRGRASP_NATIVE_LIB:-}" ]]; then
     stage="$root/target/python-package-stage"
-    rm -rf "$stage"
-    mkdir -p "$stage/fairgrasp"
-    cp python/fairgrasp/*.py "$stage/fairgrasp/"
-    cp "$FAIRGRASP_NATIVE_LIB" "$stage/fairgrasp/_native.abi3.so"
+    scripts/stage-package.sh "$venv" "$FAIRGRASP_NATIVE_LIB" "$stage"
     export PYTHONPATH="$stage${PYTHONPATH:+:$PYTHONPATH}"
 else
-    VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" "$venv/bin/maturin" develop --quiet --profile dev \
-        --manifest-path python/Cargo.toml >&2
+    scripts/stage-package.sh --quiet "$venv" "" >&2
 fi
 exec "$python" -m pytest -q -p no:cacheprovider "${FAIRGRASP_PY_TESTS:-python/tests}" "$@"

@@ -3,8 +3,8 @@
 # fairgrasp package into it; kept out of CI (torch from PyPI brings its CUDA libraries: several
 # GB). Run it again after rebuilding the extension: only the staging is redone.
 # Usage: python/examples/sb3_venv.sh [VENV]   (default: target/sb3-venv)
-#   The package is staged from python/ with the extension `cargo test --workspace` builds
-#   (target/debug/deps/lib_native.so) when it exists, else built by maturin.
+#   The package is staged (scripts/stage-package.sh) from python/ with the extension `cargo test
+#   --workspace` builds (target/debug/deps/lib_native.so) when it exists, else built by maturin.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 venv="${1:-$root/target/sb3-venv}"
@@ -14,14 +14,6 @@ if ! [[ -x "$venv/bin/python" ]] || ! "$venv/bin/python" -c "import torch, stabl
         "torch==2.15.0" "stable-baselines3==2.9.2" "maturin==1.16.0" "tomli==2.4.1; python_version < '3.11'"
 fi
 lib="$root/target/debug/deps/lib_native.so"
-site="$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
-if [[ -f "$lib" ]]; then
-    rm -rf "$site/fairgrasp"
-    mkdir -p "$site/fairgrasp"
-    cp "$root"/python/fairgrasp/*.py "$site/fairgrasp/"
-    cp "$lib" "$site/fairgrasp/_native.abi3.so"
-else
-    VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" "$venv/bin/maturin" develop --profile dev \
-        --manifest-path "$root/python/Cargo.toml"
-fi
+[[ -f "$lib" ]] || lib=""
+"$root/scripts/stage-package.sh" "$venv" "$lib"
 echo "venv ready: $venv/bin/python"
