@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs the Python package's pytest tests (python/tests) in a virtual environment of their own.
 # Usage: scripts/python-package-test.sh [PYTEST_ARGS...]
-#   venv: $FAIRGRASP_PY_VENV (default target/python-package-venv), created on first use from
-#   scripts/requirements-python-package.txt (needs python3 with venv and PyPI the first time).
+#   venv: $FAIRGRASP_PY_VENV (default target/python-package-venv), created on first use by
+#   scripts/python-env.sh from scripts/requirements-python-package.txt (needs python3 with venv
+#   and PyPI the first time).
 #   A suite with packages of its own sets FAIRGRASP_PY_REQUIREMENTS (a requirements file; give it
 #   its own FAIRGRASP_PY_VENV too) and FAIRGRASP_PY_TESTS (the folder pytest runs; default
 #   python/tests).
@@ -15,14 +16,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 venv="${FAIRGRASP_PY_VENV:-$root/target/python-package-venv}"
 requirements="${FAIRGRASP_PY_REQUIREMENTS:-$root/scripts/requirements-python-package.txt}"
-python="$venv/bin/python"
-stamp="$venv/.fairgrasp-requirements"
-if ! [[ -x "$python" && -f "$stamp" ]] || ! cmp -s "$stamp" "$requirements"; then
-    mkdir -p "$(dirname "$venv")"
-    python3 -m venv "$venv" >&2
-    "$python" -m pip install --quiet --disable-pip-version-check -r "$requirements" >&2
-    cp "$requirements" "$stamp"
-fi
+python="$("$root/scripts/python-env.sh" "$venv" "$requirements")"
 cd "$root"
 if [[ -n "${FAIRGRASP_NATIVE_LIB:-}" ]]; then
     stage="$root/target/python-package-stage"
