@@ -6,8 +6,10 @@
 //! A scenario family (an imperfection of a real cell, set in `[randomization]`) is a folder with
 //! its settings and their rules, its draw and its effect on the step or the observation:
 //! [`nudge`] (a push of the cube), [`camera_offset`] (a miscalibrated camera), [`wrist_camera`]
-//! (a camera on the wrist), [`perception_noise`] (an error on the observed cube). The place task's fixture and its contact conditions are drawn in
-//! [`fixture`] and turned in the grip by [`grip_tilt`].
+//! (a camera on the wrist), [`perception_noise`] (an error on the observed cube).
+//! The place task's fixture is a folder too, [`fixture`]: its pose and contact conditions drawn
+//! per scenario (its settings and their rules are `[task.place]`'s, in [`crate::config`]); the
+//! cube is turned in the grip by [`grip_tilt`].
 
 pub mod camera_offset;
 pub mod curriculum;
