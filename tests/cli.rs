@@ -249,7 +249,7 @@ fn an_unknown_preset_is_refused_with_the_choices() {
     let out = fairgrasp(&["baseline", "--preset", "easy", "--episodes", "1"]);
     assert_eq!(out.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("fixed, seed, wide, full, hard"), "{stderr}");
+    assert!(stderr.contains("fixed, sector, wide, full, hard"), "{stderr}");
 }
 
 #[test]
@@ -346,7 +346,7 @@ fn train_writes_a_run_folder_and_eval_reads_its_checkpoint() {
 
 #[test]
 fn scene_finds_no_collision_at_reset_and_flags_a_cube_spawned_inside_the_base() {
-    let (v, code) = json(&["scene", "--preset", "seed", "--seeds", "20", "--json"]);
+    let (v, code) = json(&["scene", "--preset", "sector", "--seeds", "20", "--json"]);
     assert_eq!(code, 0, "{v}");
     assert!(v["refused"].is_null());
     assert_eq!(v["bad_starts"].as_array().unwrap().len(), 0);

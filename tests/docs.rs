@@ -1,5 +1,5 @@
 //! The docs cite only what exists: every repository path written in backticks in the READMEs and
-//! `docs/*.md` (`env/src/task/reward/staged.rs`, `assets/configs/seed.toml`, `assets/policies/<name>/`)
+//! `docs/*.md` (`env/src/task/reward/staged.rs`, `assets/configs/sector.toml`, `assets/policies/<name>/`)
 //! and every relative link (with its `#anchor`, a heading of the target page) resolves. Files
 //! move; this test names the page and the stale path when they do. Also: the README stays two
 //! pages, shows the test command CI runs, and the docs index links every page.
@@ -286,7 +286,7 @@ fn every_path_and_link_in_the_docs_exists() {
 
 #[test]
 fn a_moved_file_and_a_broken_link_are_caught() {
-    let text = "Rewards in `env/src/reward.rs`, presets in `assets/configs/seed.toml`, \
+    let text = "Rewards in `env/src/reward.rs`, presets in `assets/configs/sector.toml`, \
                 policies in `assets/policies/<name>/`, the guide [here](GUIDE.md#2-the-scene-friction-mass-and-the-physics-step), \
                 a page [gone](nowhere.md), an anchor [gone](GUIDE.md#no-such-heading), \
                 output `runs/x/metrics.csv`, a phrase `fk/ik`.\n\

@@ -17,7 +17,7 @@ fn small_spec(config: EnvConfig) -> EnvBenchSpec {
 
 #[test]
 fn bench_env_steps_what_it_was_asked_and_its_rates_agree_with_its_times() {
-    let mut config = presets::load("seed").unwrap();
+    let mut config = presets::load("sector").unwrap();
     config.physics.substeps = 10;
     let called = std::cell::Cell::new(0);
     let r = bench_env(&small_spec(config), &|| called.set(called.get() + 1)).unwrap();

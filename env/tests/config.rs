@@ -17,9 +17,9 @@ fn defaults_are_the_seeds_numbers() {
     assert_eq!(c.arm.action_scale, 0.5);
     assert_eq!(
         (
-            c.task.seed_reward.success,
-            c.task.seed_reward.collision,
-            c.task.seed_reward.distance
+            c.task.distance.success,
+            c.task.distance.collision,
+            c.task.distance.distance
         ),
         (10.0, -1.0, -0.005)
     );
@@ -151,7 +151,7 @@ fn the_env_refuses_an_invalid_config_at_construction() {
 fn the_shipped_presets_equal_the_rust_presets() {
     let expected = [
         ("fixed", RandomizationConfig::default()),
-        ("seed", RandomizationConfig::seed_sector()),
+        ("sector", RandomizationConfig::sector()),
         ("wide", RandomizationConfig::wide_sector()),
         ("full", RandomizationConfig::full()),
         ("hard", RandomizationConfig::hard()),
@@ -169,14 +169,50 @@ fn the_shipped_presets_equal_the_rust_presets() {
     let err = fairgrasp_env::config::presets::load("easy")
         .unwrap_err()
         .to_string();
-    assert!(err.contains("fixed, seed, wide, full, hard"), "{err}");
+    assert!(err.contains("fixed, sector, wide, full, hard"), "{err}");
 }
 
 #[test]
-fn the_seed_rewards_weights_keep_their_task_keys_in_the_toml() {
+fn the_old_preset_name_loads_the_same_config_and_is_reported_as_renamed() {
+    use fairgrasp_env::config::presets::{self, RENAMED_PRESETS, current_name, rename_note};
+    assert_eq!(RENAMED_PRESETS, [("seed", "sector")]);
+    assert_eq!(current_name("seed"), ("sector", true));
+    assert_eq!(current_name("sector"), ("sector", false));
+    assert_eq!(current_name("cell.toml"), ("cell.toml", false));
+    assert_eq!(
+        presets::load("seed").unwrap(),
+        presets::load("sector").unwrap()
+    );
+    assert_eq!(
+        rename_note("seed").unwrap(),
+        "preset \"seed\" is now called \"sector\"; the old name still works for now"
+    );
+    assert_eq!(rename_note("sector"), None);
+    // Only the current name is listed.
+    assert!(presets::PRESETS.iter().all(|(n, _, _)| *n != "seed"));
+}
+
+#[test]
+fn a_config_naming_the_old_reward_seed_loads_as_the_distance_reward() {
+    use fairgrasp_env::config::RewardKind;
+    let old = EnvConfig::from_toml_str("[task]\nreward = \"seed\"\n").unwrap();
+    assert_eq!(old.task.reward, RewardKind::Distance);
+    let new = EnvConfig::from_toml_str("[task]\nreward = \"distance\"\n").unwrap();
+    assert_eq!(old, new);
+    assert_eq!(EnvConfig::default().task.reward, RewardKind::Distance);
+    // Written back with the current name.
+    assert!(
+        old.to_toml().contains("reward = \"distance\""),
+        "{}",
+        old.to_toml()
+    );
+}
+
+#[test]
+fn the_distance_rewards_weights_keep_their_task_keys_in_the_toml() {
     let text = "[task]\nsuccess_reward = 5.0\ncollision_reward = -2.0\ndistance_reward = -0.01\n";
     let c = EnvConfig::from_toml_str(text).unwrap();
-    let w = c.task.seed_reward;
+    let w = c.task.distance;
     assert_eq!((w.success, w.collision, w.distance), (5.0, -2.0, -0.01));
     let written = c.to_toml();
     assert!(written.contains("success_reward = 5.0"), "{written}");

@@ -46,7 +46,7 @@ fn driving_the_gripper_into_the_table_is_a_collision_that_names_the_pair() {
             let step = env.step(&common::toward(&env, target, -1.0)).unwrap();
             if step.terminated {
                 found = step.info.failure.clone();
-                assert_eq!(step.reward, env.config().task.seed_reward.collision);
+                assert_eq!(step.reward, env.config().task.distance.collision);
                 assert!(!step.truncated);
                 break;
             }

@@ -7,7 +7,7 @@ use fairgrasp_kinematics::ArmKind;
 
 #[test]
 fn the_seed_preset_starts_clean_with_the_cube_resting_on_the_table() {
-    let config = presets::load("seed").unwrap();
+    let config = presets::load("sector").unwrap();
     let d = diagnose_scene(&config, 3, 8).unwrap();
     assert!(!d.start_is_bad(), "{d:?}");
     assert!(d.refused.is_none() && d.bad_starts.is_empty(), "{d:?}");

@@ -70,7 +70,7 @@ fn a_press_onto_the_cube_is_stopped(arm: ArmSimulation) {
         }
         other => panic!("{arm:?}: expected a protective stop, got {other:?}"),
     }
-    assert_eq!(step.reward, TaskConfig::default().seed_reward.collision);
+    assert_eq!(step.reward, TaskConfig::default().distance.collision);
     assert!(sink < 0.002, "{arm:?}: sank {:.2} mm first", sink * 1e3);
 
     // Without the stop the same descent drives the cube into the table.
@@ -125,7 +125,7 @@ fn a_protective_stop_is_never_a_success_even_when_lifted_and_held() {
     let j = judge_protective_stop(&lifted_and_held, None, stop.clone(), &cfg);
     assert!(!j.success && j.terminated);
     assert_eq!(j.failure, Some(stop.clone()));
-    assert_eq!(j.reward, cfg.seed_reward.collision);
+    assert_eq!(j.reward, cfg.distance.collision);
 
     // A stop whose state is also a collision is reported as the collision, still terminated
     // even when collisions do not end episodes.

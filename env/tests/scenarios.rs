@@ -39,9 +39,9 @@ fn graspable_fraction(randomization: RandomizationConfig, base_rpy: [f64; 3]) ->
 }
 
 #[test]
-fn every_position_of_the_seed_sector_admits_a_top_down_grasp_within_limits() {
+fn every_position_of_the_sector_admits_a_top_down_grasp_within_limits() {
     assert_eq!(
-        graspable_fraction(RandomizationConfig::seed_sector(), [0.0; 3]),
+        graspable_fraction(RandomizationConfig::sector(), [0.0; 3]),
         1.0
     );
 }
@@ -58,8 +58,8 @@ fn every_position_of_the_wide_sector_admits_a_top_down_grasp_within_limits() {
 const TILTED_YAWED: [f64; 3] = [0.0, 0.1745, std::f64::consts::FRAC_PI_2];
 
 #[test]
-fn most_of_the_seed_sector_stays_graspable_from_a_tilted_yawed_base() {
-    let f = graspable_fraction(RandomizationConfig::seed_sector(), TILTED_YAWED);
+fn most_of_the_sector_stays_graspable_from_a_tilted_yawed_base() {
+    let f = graspable_fraction(RandomizationConfig::sector(), TILTED_YAWED);
     eprintln!("graspable from the tilted base: {f}");
     assert!(f >= 0.95, "{f}");
 }
@@ -68,7 +68,7 @@ fn most_of_the_seed_sector_stays_graspable_from_a_tilted_yawed_base() {
 fn scenarios_from_a_tilted_base_rest_flat_on_the_table_and_grasp_along_gravity() {
     for rpy in [TILTED_YAWED, [-0.2, 0.15, -2.0], [0.25, 0.0, 0.0]] {
         let mut cfg = EnvConfig {
-            randomization: RandomizationConfig::seed_sector(),
+            randomization: RandomizationConfig::sector(),
             ..EnvConfig::default()
         };
         cfg.arm.base_rpy = rpy;
@@ -128,7 +128,7 @@ fn a_base_tilted_past_15_degrees_is_refused_naming_the_field() {
 #[test]
 fn a_mount_with_no_graspable_workspace_is_refused_with_a_message_that_says_so() {
     let mut cfg = EnvConfig {
-        randomization: RandomizationConfig::seed_sector(),
+        randomization: RandomizationConfig::sector(),
         ..EnvConfig::default()
     };
     cfg.arm.base_xyz[2] = cfg.scene.table_height + 1.2; // 1.2 m above the table top
@@ -166,7 +166,7 @@ fn a_scenario_set_is_identical_for_the_same_seed_and_differs_for_another() {
 #[test]
 fn reset_to_a_scenario_puts_the_cube_where_it_says_resting_on_the_table() {
     let mut cfg = EnvConfig {
-        randomization: RandomizationConfig::seed_sector(),
+        randomization: RandomizationConfig::sector(),
         ..EnvConfig::default()
     };
     cfg.arm.base_rpy = [0.0, 0.0, 0.7]; // a yawed, level base: positions are in its frame

@@ -26,7 +26,7 @@ fn toward(env: &GraspEnv, target: [f64; 3], grip: f64) -> Action {
 
 #[test]
 fn tcp_actions_move_the_gripper_straight_to_a_point_and_keep_it_pointing_down() {
-    let mut env = tcp_env(RewardKind::Seed);
+    let mut env = tcp_env(RewardKind::Distance);
     env.reset(0).unwrap();
     let start = env.tcp_in_base().xyz();
     let target = [start[0] + 0.08, start[1] - 0.10, start[2] - 0.05];
@@ -52,7 +52,7 @@ fn tcp_actions_move_the_gripper_straight_to_a_point_and_keep_it_pointing_down() 
 
 #[test]
 fn a_yaw_action_turns_the_gripper_about_the_vertical() {
-    let mut env = tcp_env(RewardKind::Seed);
+    let mut env = tcp_env(RewardKind::Distance);
     env.reset(0).unwrap();
     let yaw = |env: &GraspEnv| {
         let x = env.tcp_in_base().iso.rotation * nalgebra::Vector3::x();
@@ -89,7 +89,7 @@ fn the_staged_reward_grows_as_the_gripper_nears_the_cube() {
 /// yaw, descend with the gripper open, close, lift.
 #[test]
 fn a_scripted_task_space_grasp_lifts_the_cube() {
-    let mut config: EnvConfig = fairgrasp_env::config::presets::load("seed").unwrap();
+    let mut config: EnvConfig = fairgrasp_env::config::presets::load("sector").unwrap();
     config.arm.action_space = ActionSpace::Tcp;
     let mut env = GraspEnv::new(config).unwrap();
     let mut successes = 0;

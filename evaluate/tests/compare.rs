@@ -43,7 +43,7 @@ fn shipped_residual() -> Vec<LearnedPolicy> {
 fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its_evaluation() {
     let learned = shipped_residual();
     let (episodes_done, started) = (AtomicUsize::new(0), Mutex::new(Vec::new()));
-    let out = run_comparison(&spec(&["fixed", "seed"], 3), &learned, &|e| match e {
+    let out = run_comparison(&spec(&["fixed", "sector"], 3), &learned, &|e| match e {
         CompareEvent::Episode { .. } => {
             episodes_done.fetch_add(1, Ordering::Relaxed);
         }
@@ -58,9 +58,9 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
     let mut methods: Vec<&str> = SCRIPTS.to_vec();
     methods.push(agent_name);
     assert_eq!(c.methods, methods);
-    assert_eq!(c.presets, vec!["fixed", "seed"]);
+    assert_eq!(c.presets, vec!["fixed", "sector"]);
     assert_eq!(episodes_done.load(Ordering::Relaxed), 2 * methods.len() * 3);
-    let expected: Vec<String> = ["fixed", "seed"]
+    let expected: Vec<String> = ["fixed", "sector"]
         .iter()
         .flat_map(|p| methods.iter().map(move |m| format!("{p}/{m}")))
         .collect();
@@ -94,7 +94,7 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
     // The recorded scenario: the first where the baseline and the learned policy end
     // differently, else 0; one recording per method.
     let [base, agent] =
-        [0, SCRIPTS.len()].map(|i| &c.get(&c.methods[i], "seed").unwrap().report.results);
+        [0, SCRIPTS.len()].map(|i| &c.get(&c.methods[i], "sector").unwrap().report.results);
     let k = (0..3)
         .find(|&i| base[i].outcome != agent[i].outcome)
         .unwrap_or(0);
@@ -107,8 +107,8 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
     };
     for (i, rec) in c.recorded.iter().enumerate() {
         let traj = trajectory_of(rec);
-        let evaluated = &c.get(&c.methods[i], "seed").unwrap().report.results[k];
-        assert_eq!((rec.preset.as_str(), rec.episode), ("seed", k));
+        let evaluated = &c.get(&c.methods[i], "sector").unwrap().report.results[k];
+        assert_eq!((rec.preset.as_str(), rec.episode), ("sector", k));
         assert_eq!(rec.outcome, evaluated.outcome, "{}", rec.method);
         assert_eq!(
             traj.trajectory.rows.len(),
@@ -167,7 +167,7 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
 #[test]
 fn bad_requests_are_refused_before_any_episode_runs() {
     let never = |_: CompareEvent<'_>| panic!("nothing may run for a refused request");
-    let e = run_comparison(&spec(&["fixed", "seed", "fixed"], 2), &[], &never).unwrap_err();
+    let e = run_comparison(&spec(&["fixed", "sector", "fixed"], 2), &[], &never).unwrap_err();
     assert!(matches!(e, CompareError::Request(_)));
     assert_eq!(e.to_string(), "--preset fixed is given twice");
     let mut out_of_range = spec(&["fixed"], 2);
@@ -210,7 +210,7 @@ fn the_squeezing_residual_beats_the_oracle_script_on_heavy_slippery_cubes_in_a_c
 fn the_shared_episode_queue_gives_each_method_its_own_evaluation_whatever_the_threads() {
     let learned = shipped_residual();
     let run = |threads: usize| {
-        let mut s = spec(&["seed", "nudged"], 7);
+        let mut s = spec(&["sector", "nudged"], 7);
         s.threads = threads;
         s.replay_episodes = 0;
         let events = Mutex::new(Vec::new());
@@ -282,12 +282,12 @@ fn a_place_comparison_runs_the_place_scripts_and_refuses_a_lift_preset_beside_th
     let seated = &c.get("place script", "place").unwrap().report;
     assert_eq!(seated.successes, 4, "{:?}", seated.outcomes);
     assert!(c.replay.iter().any(|r| r.preset == "place_fixture_error"));
-    let mixed = run_comparison(&spec(&["place", "seed"], 2), &[], &|_| {});
+    let mixed = run_comparison(&spec(&["place", "sector"], 2), &[], &|_| {});
     let message = mixed
         .expect_err("a place and a lift preset together")
         .to_string();
     assert!(
-        message.contains("place") && message.contains("seed"),
+        message.contains("place") && message.contains("sector"),
         "{message}"
     );
 }

@@ -61,7 +61,7 @@ fn export_and_play(
 
 #[test]
 fn exported_successful_grasps_of_a_script_still_succeed_when_played_back() {
-    let (exported, replayed, lag, step) = export_and_play("seed", "open_loop", 24, 11, 0.008);
+    let (exported, replayed, lag, step) = export_and_play("sector", "open_loop", 24, 11, 0.008);
     assert!(
         exported >= 20,
         "only {exported} of 24 episodes succeeded before export"

@@ -49,7 +49,7 @@ fn a_method_is_a_script_a_shipped_policy_a_checkpoint_or_a_run_folder() {
 #[test]
 fn on_a_place_preset_only_the_open_loop_script_is_a_script() {
     let place = fairgrasp_env::config::presets::load("place").unwrap();
-    let lift = fairgrasp_env::config::presets::load("seed").unwrap();
+    let lift = fairgrasp_env::config::presets::load("sector").unwrap();
     let closed = Method::resolve("closed_loop").unwrap();
     let e = closed.check_task(&place).unwrap_err().to_string();
     assert!(e.contains("closed_loop") && e.contains("open_loop"), "{e}");

@@ -36,7 +36,7 @@ fn report_from_a_comparison_and_a_run_passes_nbformat_validation() {
     let written = build_report(&[dir.join("cmp")], &out, Existing::Refuse).unwrap();
     for f in [
         "success_rate.png",
-        "workspace_seed.png",
+        "workspace_sector.png",
         "workspace_hard.png",
         "learning_curves.png",
         "episode_scripted_baseline_hard_ep0.png",

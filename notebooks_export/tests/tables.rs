@@ -80,10 +80,10 @@ fn csv_json_and_text_table_agree() {
 
 #[test]
 fn inconsistent_comparisons_are_refused() {
-    let r = method_result("baseline", "seed", 10, 7, 0);
+    let r = method_result("baseline", "sector", 10, 7, 0);
     let c = Comparison {
         command: String::new(),
-        presets: vec!["seed".into()],
+        presets: vec!["sector".into()],
         methods: vec!["baseline".into()],
         preset_configs: Default::default(),
         run_folders: vec![],
@@ -215,17 +215,17 @@ fn the_pivot_tables_numbers_are_compare_csvs() {
 #[test]
 fn the_leading_paired_tests_are_against_the_baseline_and_the_best_script_without_the_oracle() {
     let n = 40;
-    let mut learned = method_result("residual PPO: r", "seed", n, 30, 1);
+    let mut learned = method_result("residual PPO: r", "sector", n, 30, 1);
     learned.policy = Some("r/checkpoint".into());
     let results = vec![
-        method_result("scripted baseline", "seed", n, 20, 2),
-        method_result("closed-loop script", "seed", n, 35, 3),
-        method_result("oracle script", "seed", n, 40, 4),
+        method_result("scripted baseline", "sector", n, 20, 2),
+        method_result("closed-loop script", "sector", n, 35, 3),
+        method_result("oracle script", "sector", n, 40, 4),
         learned,
     ];
     let c = Comparison {
         command: "test".into(),
-        presets: vec!["seed".into()],
+        presets: vec!["sector".into()],
         methods: results.iter().map(|r| r.method.clone()).collect(),
         preset_configs: Default::default(),
         run_folders: vec![],

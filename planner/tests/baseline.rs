@@ -19,8 +19,8 @@ fn evaluate(config: &EnvConfig, seed: u64, n: usize) -> EvalReport {
 }
 
 #[test]
-fn baseline_succeeds_on_at_least_95_percent_of_the_fixed_and_seed_presets() {
-    for preset in ["fixed", "seed"] {
+fn baseline_succeeds_on_at_least_95_percent_of_the_fixed_and_sector_presets() {
+    for preset in ["fixed", "sector"] {
         let config = presets::load(preset).unwrap();
         let report = evaluate(&config, 1, 100);
         eprintln!(
@@ -69,7 +69,7 @@ fn an_unreachable_object_is_an_ik_failure_not_a_panic() {
 
 #[test]
 fn planned_trajectories_stay_within_the_fr3_velocity_and_acceleration_limits() {
-    let config = presets::load("seed").unwrap();
+    let config = presets::load("sector").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
     let scenarios = scenario_set(&config, 3, 10).unwrap();
     let model = env.model().clone();

@@ -1,6 +1,6 @@
 //! Running the four scripts in lockstep (one simulation while their actions agree, what
 //! `fairgrasp compare` does) gives every script the episode it gets alone, record for record:
-//! on `seed`, where three of them agree on every scenario, and on `wrist_camera` and `nudged`,
+//! on `sector`, where three of them agree on every scenario, and on `wrist_camera` and `nudged`,
 //! where they part on most (those that part are simulated again, in lockstep among themselves:
 //! on `nudged` the oracle follows the closed-loop script).
 
@@ -48,10 +48,10 @@ fn lockstep_equals_alone(preset: &str, episodes: usize) -> usize {
 
 #[test]
 fn scripts_in_lockstep_get_the_episodes_they_get_alone() {
-    // `seed`: no imperfection; the closed-loop script and the oracle send the open-loop
+    // `sector`: no imperfection; the closed-loop script and the oracle send the open-loop
     // script's actions on every scenario, the calibrated script (planning on its own estimate
     // of the camera) does not.
-    assert_eq!(lockstep_equals_alone("seed", 6), 2 * 6);
+    assert_eq!(lockstep_equals_alone("sector", 6), 2 * 6);
     // `wrist_camera` and `nudged`: most followers part from the open-loop script (the
     // comparison's rows differ on most scenarios), so the runs alone are what is compared.
     let parted = lockstep_equals_alone("wrist_camera", 6) + lockstep_equals_alone("nudged", 6);

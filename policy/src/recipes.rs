@@ -29,8 +29,8 @@ pub const SHIPPED: [(&str, &str); 13] = [
         include_str!("../../assets/experiments/pure_joint_full.toml"),
     ),
     (
-        "pure_tcp_seedreward_full",
-        include_str!("../../assets/experiments/pure_tcp_seedreward_full.toml"),
+        "pure_tcp_distancereward_full",
+        include_str!("../../assets/experiments/pure_tcp_distancereward_full.toml"),
     ),
     (
         "residual_generalist",
@@ -137,9 +137,9 @@ mod tests {
     fn overrides_merge_remove_and_refuse_misspelt_keys() {
         let (body, what) = text("pure_full").unwrap();
         let overrides: toml::Table =
-            toml::from_str("preset = \"seed\"\nenv = { task = { max_steps = 50 } }").unwrap();
+            toml::from_str("preset = \"sector\"\nenv = { task = { max_steps = 50 } }").unwrap();
         let r = Recipe::with_overrides(&body, &what, &overrides, &[]).unwrap();
-        assert_eq!(r.preset, "seed");
+        assert_eq!(r.preset, "sector");
         let env = r.env_configs(EnvFor::Training).unwrap().remove(0);
         assert_eq!(env.task.max_steps, 50);
         // The recipe's other [env.task] settings stay.
@@ -148,7 +148,7 @@ mod tests {
             Recipe::with_overrides(&body, &what, &toml::Table::new(), &["env".into()]).unwrap();
         assert_eq!(plain.env, None);
         assert!(plain.curriculum.is_some());
-        let bad: toml::Table = toml::from_str("preet = \"seed\"").unwrap();
+        let bad: toml::Table = toml::from_str("preet = \"sector\"").unwrap();
         let e = Recipe::with_overrides(&body, &what, &bad, &[])
             .unwrap_err()
             .to_string();

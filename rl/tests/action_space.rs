@@ -59,7 +59,7 @@ fn the_shipped_pure_policy_acts_the_same_through_an_env_configured_for_its_task_
         (meta.agent.mode, meta.agent.action_space),
         (Mode::Pure, ActionSpace::Tcp)
     );
-    let joint_config = presets::load("seed").unwrap();
+    let joint_config = presets::load("sector").unwrap();
     let tcp_config = meta.agent.env_for(&joint_config);
     assert_eq!(
         (
@@ -113,7 +113,7 @@ fn env_settings_of_a_training_config_apply_to_training_only() {
     assert_eq!(train.task.staged.success, 5.0);
     // Everything not overridden is the preset's, and evaluation uses the preset as it is.
     assert_eq!(train.randomization, eval.randomization);
-    assert_eq!(eval.task.reward, RewardKind::Seed);
+    assert_eq!(eval.task.reward, RewardKind::Distance);
     assert_eq!(c.agent.action_space, ActionSpace::Tcp);
     assert_eq!(c.agent.mode, Mode::Pure);
 }

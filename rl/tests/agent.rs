@@ -32,7 +32,7 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
 
 #[test]
 fn a_fresh_residual_agent_acts_exactly_like_the_baseline() {
-    let config = presets::load("seed").unwrap();
+    let config = presets::load("sector").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
     let scenario = scenario_set(&config, 4, 1).unwrap()[0];
     let (meta, model) = fresh_meta(AgentConfig::default());
@@ -78,7 +78,7 @@ fn a_checkpoint_round_trip_gives_identical_actions() {
     };
     assert_eq!(loaded_meta.version, checkpoint::CHECKPOINT_VERSION);
     assert_eq!(without_checksum, meta);
-    let config = presets::load("seed").unwrap();
+    let config = presets::load("sector").unwrap();
     let mut env = GraspEnv::new(config.clone()).unwrap();
     let (obs, _) = env.reset(1).unwrap();
     let mut a = agent_policy(&meta, &model, &config);

@@ -8,7 +8,7 @@ use fairgrasp_rl::run::train::TRAINING_SEEDS;
 
 #[test]
 fn training_and_evaluation_scenario_seeds_are_disjoint() {
-    let config = presets::load("seed").unwrap();
+    let config = presets::load("sector").unwrap();
     for set_seed in [0, 1, 5, 1_000_000, 1_000_000_000] {
         let set = scenario_set(&config, set_seed, 300).unwrap();
         assert!(

@@ -110,7 +110,7 @@ fn a_task_residual_trains_and_its_checkpoint_reloads() {
 
 #[test]
 fn input_names_match_the_input_and_a_mask_prefix_must_name_some() {
-    let lift = presets::load("seed").unwrap();
+    let lift = presets::load("sector").unwrap();
     let place = presets::load("place").unwrap();
     for agent in [
         task_residual(),

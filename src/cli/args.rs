@@ -195,6 +195,23 @@ pub fn scenario_index(text: &str) -> Result<usize, String> {
     whole_number_in(text, 0..=u64::from(MAX_EPISODES) - 1).map(|n| n as usize)
 }
 
+/// The current name of the preset `name` (a renamed preset's old name gives the new one, with
+/// a one-line note on stderr); any other name or `.toml` path as it is.
+pub fn preset_name(name: &str) -> String {
+    if let Some(note) = fairgrasp_env::config::presets::rename_note(name) {
+        eprintln!("note: {note}");
+    }
+    fairgrasp_env::config::presets::current_name(name)
+        .0
+        .to_string()
+}
+
+/// Parses a `--preset` (clap value parser): [`preset_name`], so every output carries the
+/// current name.
+pub fn preset(text: &str) -> Result<String, String> {
+    Ok(preset_name(text))
+}
+
 /// Parses a seed, 0–[`MAX_SEED`] (clap value parser).
 pub fn seed(text: &str) -> Result<u64, String> {
     whole_number_in(text, 0..=MAX_SEED)

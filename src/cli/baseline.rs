@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
-use fairgrasp_env::config::presets::{self, PRESETS};
+use fairgrasp_env::config::presets::{self, PRESETS, RENAMED_PRESETS};
 use fairgrasp_env::episode::{EvalReport, Policy, evaluate_seeded};
 use fairgrasp_env::{EnvConfig, TaskKind};
 use fairgrasp_planner::{
@@ -20,13 +20,21 @@ fn preset_help() -> String {
         .iter()
         .map(|(n, _, d)| format!("{n} ({d})"))
         .collect();
-    format!("Preset name or a .toml file: {}", names.join("; "))
+    let renamed: Vec<String> = RENAMED_PRESETS
+        .iter()
+        .map(|(old, new)| format!("{old} is the old name of {new}"))
+        .collect();
+    format!(
+        "Preset name or a .toml file: {} ({}, still accepted)",
+        names.join("; "),
+        renamed.join(", ")
+    )
 }
 
 /// The scenario set a policy is evaluated on, and how the result is shown.
 #[derive(Args, Debug)]
 pub struct ScenarioArgs {
-    #[arg(long, default_value = "seed", help = preset_help())]
+    #[arg(long, default_value = "sector", value_parser = crate::cli::args::preset, help = preset_help())]
     pub preset: String,
     /// Episodes (scenarios) to run, 1–1000000.
     #[arg(long, default_value_t = 100, value_parser = crate::cli::args::episode_count)]

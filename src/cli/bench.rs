@@ -38,7 +38,7 @@ pub struct PpoBenchArgs {
     iterations: u32,
     /// Preset or env config (.toml) of the training phase (e.g. one with `[physics]
     /// free_space = false` to time always-simulated training).
-    #[arg(long, default_value = "hard")]
+    #[arg(long, default_value = "hard", value_parser = super::args::preset)]
     preset: String,
     /// Print one JSON object instead of text.
     #[arg(long)]
@@ -61,7 +61,7 @@ pub struct EnvBenchArgs {
     steps: u32,
     /// Preset or env config (.toml) to bench. Default: the default scene with the cube's
     /// position and yaw randomised.
-    #[arg(long)]
+    #[arg(long, value_parser = super::args::preset)]
     preset: Option<String>,
     /// Resets timed for each of soft and hard reset, 1–100000.
     #[arg(long, default_value_t = 50, value_parser = |t: &str| whole_number_in(t, 1..=100_000).map(|n| n as u32))]

@@ -23,9 +23,9 @@ use super::baseline::preset_config;
 #[derive(Args, Debug)]
 pub struct CompareArgs {
     /// Presets (or .toml env configs) to compare on; repeat the flag for several.
-    /// Default: seed, full, hard, the four scenario families (miscalibrated,
+    /// Default: sector, full, hard, the four scenario families (miscalibrated,
     /// miscalibrated_b, nudged, wrist_camera) and the contact family (heavy_slippery).
-    #[arg(long = "preset", value_name = "NAME")]
+    #[arg(long = "preset", value_name = "NAME", value_parser = super::args::preset)]
     presets: Vec<String>,
     /// Episodes (scenarios) per preset, 1–1000000; every method gets the same ones.
     #[arg(long, default_value_t = 100, value_parser = super::args::episode_count)]

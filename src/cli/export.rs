@@ -29,8 +29,8 @@ use super::baseline::preset_config;
 #[derive(Args, Debug)]
 pub struct EpisodeArgs {
     /// Preset name or a .toml env config (e.g. the one `fairgrasp calibrate points --out` wrote)
-    /// [default: seed; playback: the file's].
-    #[arg(long)]
+    /// [default: sector; playback: the file's].
+    #[arg(long, value_parser = super::args::preset)]
     pub preset: Option<String>,
     /// Index of the scenario in the preset's seeded set, 0–999999 (the episode `compare --seed
     /// S` calls N) [default: 0; playback: the file's].
@@ -117,7 +117,7 @@ impl Place {
     }
 }
 
-/// The cell and scenario a [`Place`] names, with defaults (`seed`, episode 0, set 0).
+/// The cell and scenario a [`Place`] names, with defaults (`sector`, episode 0, set 0).
 pub struct Chosen {
     pub preset: String,
     pub episode: usize,
@@ -129,7 +129,8 @@ pub struct Chosen {
 
 /// Resolves the preset, the mount and the scenario of `p`.
 pub fn choose(p: &Place) -> anyhow::Result<Chosen> {
-    let preset = p.preset.clone().unwrap_or_else(|| "seed".into());
+    // A playback's file may name a preset by an old name: the current one is shown.
+    let preset = super::args::preset_name(p.preset.as_deref().unwrap_or("sector"));
     let (episode, seed) = (p.episode.unwrap_or(0), p.seed.unwrap_or(0));
     let mut config = preset_config(&preset, ArmSimulation::Servo)
         .with_context(|| format!("preset `{preset}`"))?;

@@ -28,7 +28,7 @@ pub struct ReplayArgs {
     #[arg(long = "policy", value_name = "P", required = true)]
     policies: Vec<String>,
     /// Preset name or a .toml env config.
-    #[arg(long, default_value = "seed")]
+    #[arg(long, default_value = "sector", value_parser = super::args::preset)]
     preset: String,
     /// Index of the scenario in the preset's seeded set (the same scenario `fairgrasp compare
     /// --seed S` calls episode N), 0–999999.

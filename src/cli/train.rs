@@ -90,6 +90,11 @@ mod trainer {
         });
         let mut config =
             TrainConfig::from_toml_file_in(&a.config, a.resume.then_some(run_dir.as_path()))?;
+        for old in fairgrasp_policy::recipe::read::old_preset_names_in(&a.config) {
+            if let Some(note) = fairgrasp_env::config::presets::rename_note(&old) {
+                eprintln!("note: {}: {note}", a.config.display());
+            }
+        }
         if let Some(s) = a.seed {
             config.seed = s;
         }

@@ -236,13 +236,13 @@ mod tests {
     /// A compare.json as fairgrasp wrote it before this crate existed (flat results, string
     /// outcomes), cut to one result of two episodes.
     const FLAT: &str = r#"{
-      "command": "fairgrasp compare --episodes 2", "presets": ["seed"],
-      "methods": ["scripted baseline"], "preset_configs": {"seed": "[physics]\n"},
+      "command": "fairgrasp compare --episodes 2", "presets": ["sector"],
+      "methods": ["scripted baseline"], "preset_configs": {"sector": "[physics]\n"},
       "run_folders": [],
-      "recorded": [{"method": "scripted baseline", "preset": "seed", "episode": 1,
+      "recorded": [{"method": "scripted baseline", "preset": "sector", "episode": 1,
                     "outcome": "collision", "trajectory": "episodes/x.json"}],
       "results": [{
-        "method": "scripted baseline", "preset": "seed", "arm": "servo", "seed": 0,
+        "method": "scripted baseline", "preset": "sector", "arm": "servo", "seed": 0,
         "episodes": 2, "successes": 1, "success_rate": 0.5, "ci_low": 0.09, "ci_high": 0.91,
         "collision_rate": 0.5, "mean_steps_to_success": 61.0, "mean_return": 4.5,
         "outcomes": {"success": 1, "collision": 1}, "policy": null,

@@ -264,7 +264,7 @@ pub struct RandomizationConfig {
 }
 
 impl Default for RandomizationConfig {
-    /// Nothing randomised; the sector is the `seed` preset's, ready to switch on.
+    /// Nothing randomised; the sector is the `sector` preset's, ready to switch on.
     fn default() -> Self {
         Self {
             position: false,
@@ -288,7 +288,7 @@ impl RandomizationConfig {
     /// yaw. The seed's own 0.15–0.25 m is too close to the FR3's base: there a top-down grasp
     /// folds the elbow until wrist 1 meets the upper arm (only 4 % of 10 000 samples are
     /// collision-free), while every sample from 0.25 m out is (a test checks 10 000).
-    pub fn seed_sector() -> Self {
+    pub fn sector() -> Self {
         Self {
             position: true,
             yaw: true,
@@ -302,7 +302,7 @@ impl RandomizationConfig {
         Self {
             radius: [0.25, 0.45],
             angle: [-0.75 * std::f64::consts::PI, 0.75 * std::f64::consts::PI],
-            ..Self::seed_sector()
+            ..Self::sector()
         }
     }
 

@@ -1,8 +1,12 @@
-//! Named configurations: `fixed`, `seed`, `wide`, `full`, `hard` and the scenario families
+//! Named configurations: `fixed`, `sector`, `wide`, `full`, `hard` and the scenario families
 //! `miscalibrated`, `miscalibrated_b`, `wrist_camera`, `nudged` (`env/src/scenario/<family>/`)
 //! the contact family `heavy_slippery` and the place task's `place`, `place_grasp_error`,
 //! `place_fixture_error` and `place_tilted`, shipped as TOML files in
 //! `assets/configs/` and built into the binary, so `--preset NAME` works from any folder.
+//!
+//! A preset that was renamed keeps its old name as an alias ([`RENAMED_PRESETS`]): every
+//! reader resolves it with [`current_name`], and the front ends tell the user with
+//! [`rename_note`].
 
 use crate::config::EnvConfig;
 use crate::config::validate::ConfigError;
@@ -15,9 +19,9 @@ pub const PRESETS: [(&str, &str, &str); 14] = [
         "nothing randomised: the cube 0.35 m in front of the base",
     ),
     (
-        "seed",
-        include_str!("../../../assets/configs/seed.toml"),
-        "the seed recipe's sector moved out to r 0.25–0.35 m, ±90°, and yaw",
+        "sector",
+        include_str!("../../../assets/configs/sector.toml"),
+        "the cube anywhere in a sector in front of the base (r 0.25–0.35 m, ±90°) with any yaw",
     ),
     (
         "wide",
@@ -81,11 +85,58 @@ pub const PRESETS: [(&str, &str, &str); 14] = [
     ),
 ];
 
-/// The preset `name`, or the TOML file at `name` if it ends in `.toml`.
+/// Presets that were renamed, as (old name, current name). The old names are still accepted
+/// everywhere a preset is named (with a note, [`rename_note`]) and resolve to the current one.
+pub const RENAMED_PRESETS: [(&str, &str); 1] = [("seed", "sector")];
+
+/// The current name of the preset `name` and whether `name` is an old one
+/// ([`RENAMED_PRESETS`]); any other name (a current one, a `.toml` path, an unknown name)
+/// comes back as it is.
+pub fn current_name(name: &str) -> (&str, bool) {
+    match RENAMED_PRESETS.iter().find(|(old, _)| *old == name) {
+        Some((_, new)) => (new, true),
+        None => (name, false),
+    }
+}
+
+/// The one line telling the user that `name` is an old preset name, or None if it is not one:
+/// `preset "seed" is now called "sector"; the old name still works for now`.
+pub fn rename_note(name: &str) -> Option<String> {
+    let (new, renamed) = current_name(name);
+    renamed.then(|| {
+        format!("preset \"{name}\" is now called \"{new}\"; the old name still works for now")
+    })
+}
+
+/// Serde's reader of a preset name (`deserialize_with`): an old name is read as the current
+/// one, so a file written with the old name loads and is written back with the new.
+pub fn deserialize_name<'de, D>(d: D) -> Result<String, D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    let name = <String as serde::Deserialize>::deserialize(d)?;
+    Ok(current_name(&name).0.to_string())
+}
+
+/// [`deserialize_name`] for a list of preset names.
+pub fn deserialize_names<'de, D>(d: D) -> Result<Vec<String>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    let names = <Vec<String> as serde::Deserialize>::deserialize(d)?;
+    Ok(names
+        .iter()
+        .map(|n| current_name(n).0.to_string())
+        .collect())
+}
+
+/// The preset `name` (an old name, [`RENAMED_PRESETS`], loads its current preset), or the TOML
+/// file at `name` if it ends in `.toml`.
 pub fn load(name: &str) -> Result<EnvConfig, ConfigError> {
     if name.ends_with(".toml") {
         return EnvConfig::from_toml_file(name);
     }
+    let (name, _) = current_name(name);
     match PRESETS.iter().find(|(n, _, _)| *n == name) {
         Some((n, text, _)) => EnvConfig::from_toml_str(text).map_err(|e| ConfigError::File {
             path: format!("assets/configs/{n}.toml"),

@@ -1,4 +1,4 @@
-//! The rewards' weights, one table each, plain data: the seed reward's ([`SeedReward`], `[task]`'s
+//! The rewards' weights, one table each, plain data: the distance reward's ([`DistanceReward`], `[task]`'s
 //! `success_reward`, `collision_reward`, `distance_reward`) and the staged reward's
 //! ([`StagedReward`], `[task.staged]`). The rewards themselves are computed in
 //! `env/src/task/reward/`.
@@ -8,10 +8,10 @@ use serde::{Deserialize, Serialize};
 use crate::config::check::check;
 use crate::config::error::ConfigError;
 
-/// Weights of the seed reward (`task.reward = "seed"`): paid `success` on success, `collision`
-/// on a collision or protective stop, else `distance` per metre still to go.
+/// Weights of the distance reward (`task.reward = "distance"`): paid `success` on success,
+/// `collision` on a collision or protective stop, else `distance` per metre still to go.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SeedReward {
+pub struct DistanceReward {
     /// Reward on success (`task.success_reward`).
     pub success: f64,
     /// Reward on a collision or protective stop (`task.collision_reward`, negative).
@@ -20,7 +20,7 @@ pub struct SeedReward {
     pub distance: f64,
 }
 
-impl Default for SeedReward {
+impl Default for DistanceReward {
     fn default() -> Self {
         Self {
             success: 10.0,

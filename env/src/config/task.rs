@@ -1,15 +1,15 @@
 //! The task's settings (`[task]`): which task, its time limit and success height, how a
 //! collision ends an episode, the protective stop, and which reward it pays with that reward's
-//! weights (one table each, [`SeedReward`] and [`StagedReward`]).
+//! weights (one table each, [`DistanceReward`] and [`StagedReward`]).
 //!
-//! The TOML keeps the seed reward's weights as `[task]`'s own keys (`success_reward`,
+//! The TOML keeps the distance reward's weights as `[task]`'s own keys (`success_reward`,
 //! `collision_reward`, `distance_reward`), as every shipped file writes them; [`TaskToml`] is
 //! that shape, and [`TaskConfig`] is read and written through it.
 
 use serde::{Deserialize, Serialize};
 
 use crate::config::place::{PlaceConfig, TaskKind};
-use crate::config::reward::{SeedReward, StagedReward};
+use crate::config::reward::{DistanceReward, StagedReward};
 
 /// The task, its success, reward and time limit.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -49,9 +49,9 @@ pub struct TaskConfig {
     /// Normal baseline grasps peak at 26 N (`full`) and 27 N (`hard`): the fingers' closing
     /// impact on the cube. See README, "Protective stop".
     pub protective_stop_force: f64,
-    /// Weights of the seed reward (used when `reward = "seed"`; in the TOML `[task]`'s
+    /// Weights of the distance reward (used when `reward = "distance"`; in the TOML `[task]`'s
     /// `success_reward`, `collision_reward` and `distance_reward`).
-    pub seed_reward: SeedReward,
+    pub distance: DistanceReward,
     /// Weights of the staged reward (used when `reward = "staged"`; `[task.staged]`).
     pub staged: StagedReward,
 }
@@ -60,11 +60,13 @@ pub struct TaskConfig {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum RewardKind {
-    /// The seed recipe's: `success_reward` on success, `collision_reward` on a collision, else
-    /// `distance_reward ·` the distance still to go ([`mod@crate::task::reward::seed`], weights
-    /// [`SeedReward`]).
+    /// `"distance"` (the seed recipe's reward): `success_reward` on success, `collision_reward`
+    /// on a collision, else `distance_reward ·` the distance still to go
+    /// ([`mod@crate::task::reward::distance`], weights [`DistanceReward`]). Files written with
+    /// its old name `"seed"` still load as it.
     #[default]
-    Seed,
+    #[serde(alias = "seed")]
+    Distance,
     /// Reach, grasp, lift shaping gated on the grasp, success; bounded per step
     /// ([`mod@crate::task::reward::staged`], weights in `[task.staged]`).
     Staged,
@@ -83,15 +85,15 @@ impl Default for TaskConfig {
             terminate_on_collision: true,
             collision_voids_success: false,
             terminate_on_self_collision: false,
-            reward: RewardKind::Seed,
+            reward: RewardKind::Distance,
             protective_stop_force: DEFAULT_PROTECTIVE_STOP_FORCE,
-            seed_reward: SeedReward::default(),
+            distance: DistanceReward::default(),
             staged: StagedReward::default(),
         }
     }
 }
 
-/// `[task]` as the TOML writes it: [`TaskConfig`] with the seed reward's weights as keys of
+/// `[task]` as the TOML writes it: [`TaskConfig`] with the distance reward's weights as keys of
 /// their own, in the order every shipped file and run folder has them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -102,11 +104,11 @@ pub struct TaskToml {
     pub place: PlaceConfig,
     pub max_steps: usize,
     pub lift_height: f64,
-    /// [`SeedReward::success`].
+    /// [`DistanceReward::success`].
     pub success_reward: f64,
-    /// [`SeedReward::collision`].
+    /// [`DistanceReward::collision`].
     pub collision_reward: f64,
-    /// [`SeedReward::distance`].
+    /// [`DistanceReward::distance`].
     pub distance_reward: f64,
     pub terminate_on_collision: bool,
     pub collision_voids_success: bool,
@@ -142,7 +144,7 @@ impl From<TaskToml> for TaskConfig {
             terminate_on_self_collision: t.terminate_on_self_collision,
             reward: t.reward,
             protective_stop_force: t.protective_stop_force,
-            seed_reward: SeedReward {
+            distance: DistanceReward {
                 success: t.success_reward,
                 collision: t.collision_reward,
                 distance: t.distance_reward,
@@ -159,9 +161,9 @@ impl From<TaskConfig> for TaskToml {
             place: t.place,
             max_steps: t.max_steps,
             lift_height: t.lift_height,
-            success_reward: t.seed_reward.success,
-            collision_reward: t.seed_reward.collision,
-            distance_reward: t.seed_reward.distance,
+            success_reward: t.distance.success,
+            collision_reward: t.distance.collision,
+            distance_reward: t.distance.distance,
             terminate_on_collision: t.terminate_on_collision,
             collision_voids_success: t.collision_voids_success,
             terminate_on_self_collision: t.terminate_on_self_collision,

@@ -16,5 +16,5 @@ pub mod state;
 pub mod tasks;
 
 pub use judge::*;
-pub use reward::{reward, seed_reward};
+pub use reward::{distance_reward, reward};
 pub use state::*;

@@ -90,10 +90,11 @@ impl CompareSpec {
     }
 }
 
-/// The presets `fairgrasp compare` compares on by default: the seed recipe's (`seed`), the
-/// full randomisation, the hard one, the four scenario families and the contact family.
+/// The presets `fairgrasp compare` compares on by default: the sector in front of the base
+/// (`sector`), the full randomisation, the hard one, the four scenario families and the
+/// contact family.
 pub const DEFAULT_PRESETS: [&str; 8] = [
-    "seed",
+    "sector",
     "full",
     "hard",
     "miscalibrated",

@@ -154,7 +154,7 @@ pub fn trajectory_json(steps: usize) -> serde_json::Value {
 
 /// Writes a comparison folder (compare.json, compare.csv, one recorded episode) into `dir`.
 pub fn write_comparison(dir: &Path, run_folders: Vec<String>) -> Comparison {
-    let presets = vec!["seed".to_string(), "hard".to_string()];
+    let presets = vec!["sector".to_string(), "hard".to_string()];
     let methods = vec![
         "scripted baseline".to_string(),
         "residual PPO: test".to_string(),

@@ -31,6 +31,32 @@ pub enum RecipeError {
     Invalid(String),
 }
 
+/// The old preset names ([`fairgrasp_env::config::presets::RENAMED_PRESETS`]) the recipe file
+/// at `path` gives as its `preset` or in its `mix`, for a front end to note: the recipe loads
+/// them as the current names. Empty if the file cannot be read or parsed (its loader says why).
+pub fn old_preset_names_in(path: &Path) -> Vec<String> {
+    let Ok(text) =
+        fairgrasp_types::fs::read_text_bounded(path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
+    else {
+        return Vec::new();
+    };
+    let Ok(table) = toml::from_str::<toml::Table>(&text) else {
+        return Vec::new();
+    };
+    let preset = table.get("preset").into_iter();
+    let mix = table
+        .get("mix")
+        .and_then(toml::Value::as_array)
+        .into_iter()
+        .flatten();
+    preset
+        .chain(mix)
+        .filter_map(toml::Value::as_str)
+        .filter(|name| fairgrasp_env::config::presets::current_name(name).1)
+        .map(String::from)
+        .collect()
+}
+
 impl Recipe {
     /// Reads and checks a TOML file.
     pub fn from_toml_file(path: &Path) -> Result<Self, RecipeError> {

@@ -2,6 +2,7 @@
 //! `config.toml` write them, and the env configurations it trains and is evaluated on (read
 //! and checked in [`crate::recipe::read`]).
 
+use fairgrasp_env::config::presets;
 use fairgrasp_env::scenario::curriculum::CurriculumConfig;
 use fairgrasp_env::{ArmSimulation, EnvConfig};
 use serde::{Deserialize, Serialize};
@@ -17,12 +18,17 @@ use crate::recipe::ppo::PpoConfig;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Recipe {
-    /// Environment preset (`fixed`, `seed`, `wide`, `full`, `hard`) or a .toml file.
+    /// Environment preset (`fixed`, `sector`, `wide`, `full`, `hard`, …) or a .toml file; an
+    /// old preset name is read as its current one ([`presets::RENAMED_PRESETS`]).
+    #[serde(deserialize_with = "presets::deserialize_name")]
     pub preset: String,
     /// Presets trained on besides `preset`, for one policy of several families (a generalist):
     /// the envs take `preset`, `mix[0]`, `mix[1]`, … in turn, and the run's evaluations split
     /// their episodes over all of them in the same order. Empty (the default): `preset` only.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(
+        skip_serializing_if = "Vec::is_empty",
+        deserialize_with = "presets::deserialize_names"
+    )]
     pub mix: Vec<String>,
     /// Arm simulation.
     pub arm: ArmSimulation,

@@ -1,0 +1,21 @@
+//! The distance reward (`task.reward = "distance"`, the default; the seed recipe's reward,
+//! rescaled): sparse on success and collision, dense on the distance the task still has to go.
+//! Its weights are [`DistanceReward`] (`[task]`'s `success_reward`, `collision_reward`,
+//! `distance_reward`).
+
+pub use crate::config::reward::DistanceReward;
+use crate::task::state::TaskState;
+use crate::task::tasks::distance_to_go;
+
+/// The distance reward of a step that ended in `s`: `w.success` on success, `w.collision` on a
+/// collision, else `w.distance ·` the distance still to go \[m\] ([`distance_to_go`]:
+/// `|TCP − object|`, plus for the place task the cube's distance from its seat in the pocket).
+pub fn distance_reward(s: &TaskState, success: bool, collision: bool, w: &DistanceReward) -> f64 {
+    if success {
+        w.success
+    } else if collision {
+        w.collision
+    } else {
+        w.distance * distance_to_go(s)
+    }
+}
