@@ -61,7 +61,7 @@ fn the_replay_draws_moves_switches_and_stays_offline_in_chromium() {
     let html = dir.join("replay.html");
     let out = Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
         .args(["replay", "--policy", "open_loop", "--policy", "oracle"])
-        .args(["--preset", "seed", "--episode", "1", "--out"])
+        .args(["--preset", "sector", "--episode", "1", "--out"])
         .arg(&html)
         .output()
         .unwrap();

@@ -12,7 +12,7 @@ use super::baseline::preset_config;
 #[derive(Args, Debug)]
 pub struct SceneArgs {
     /// Preset name or env config (.toml).
-    #[arg(long, default_value = "seed")]
+    #[arg(long, default_value = "sector", value_parser = super::args::preset)]
     preset: String,
     /// Arm simulation.
     #[arg(long, value_enum, default_value = "servo")]
