@@ -1,7 +1,7 @@
 """The Python layer's cost, measured side by side in one run (a benchmark, never a test): one
 `FairGraspEnv` stepped from Python against the same steps of the Rust `GraspEnv` in a Rust loop
 (same process, same build, same actions and seeds), and the native vector env's throughput
-against one env's. Random actions on `seed` from the home pose, so almost every step is a
+against one env's. Random actions on `sector` from the home pose, so almost every step is a
 free-space step (the share that ran physics is printed); then the open-loop script's own
 episodes (the residual recipe's env with zero corrections: approach, close, lift), one env and
 8 envs on 2 threads. Each measurement runs ROUNDS times,
@@ -30,12 +30,12 @@ actions = np.random.default_rng(0).uniform(-1, 1, (steps, 7))
 
 
 def rust_single():
-    wall, simulated = _native.bench_rust_env("seed", actions, 0)
+    wall, simulated = _native.bench_rust_env("sector", actions, 0)
     return steps / wall, simulated
 
 
 def python_single():
-    env = fairgrasp.FairGraspEnv(preset="seed")
+    env = fairgrasp.FairGraspEnv(preset="sector")
     seed = 0
     env.reset(seed=seed)
     w0 = time.perf_counter()
@@ -48,7 +48,7 @@ def python_single():
 
 
 def python_vector(n, threads):
-    env = fairgrasp.VectorEnv(num_envs=n, preset="seed", threads=threads, seed=0)
+    env = fairgrasp.VectorEnv(num_envs=n, preset="sector", threads=threads, seed=0)
     env.reset()
     batch = actions[: (steps // n) * n].reshape(-1, n, 7)
     w0 = time.perf_counter()
@@ -59,8 +59,8 @@ def python_vector(n, threads):
 
 def scripted_single(n_steps):
     """The open-loop script's own episodes (approach, close, lift: contact-rich steps): the
-    residual recipe's env on `seed` with zero corrections, one env from Python."""
-    env = fairgrasp.make("residual_miscalibrated", preset="seed", evaluation=True)
+    residual recipe's env on `sector` with zero corrections, one env from Python."""
+    env = fairgrasp.make("residual_miscalibrated", preset="sector", evaluation=True)
     zero = np.zeros(7)
     seed = 0
     env.reset(seed=seed)
@@ -75,7 +75,7 @@ def scripted_single(n_steps):
 
 def scripted_vector(n, threads, n_steps):
     """The same episodes, `n` envs of the native vector env on `threads` threads."""
-    env = fairgrasp.make_vec("residual_miscalibrated", num_envs=n, threads=threads, preset="seed",
+    env = fairgrasp.make_vec("residual_miscalibrated", num_envs=n, threads=threads, preset="sector",
                              evaluation=True)
     env.reset()
     zero = np.zeros((n, 7))
@@ -88,7 +88,7 @@ def scripted_vector(n, threads, n_steps):
 
 def rust_vector(n, threads):
     batch = actions[: (steps // n) * n].reshape(-1, n, 7)
-    return batch.shape[0] * n / _native.bench_rust_vec("seed", threads, batch, 0)
+    return batch.shape[0] * n / _native.bench_rust_vec("sector", threads, batch, 0)
 
 
 def peer():

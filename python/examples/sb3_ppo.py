@@ -1,6 +1,6 @@
 """Stable-Baselines3 PPO on FairGrasp (needs `pip install stable-baselines3`, which brings torch).
 
-    python python/examples/sb3_ppo.py --preset seed --timesteps 200000
+    python python/examples/sb3_ppo.py --preset sector --timesteps 200000
 """
 
 import argparse
@@ -10,7 +10,7 @@ from stable_baselines3 import PPO
 from fairgrasp.sb3 import FairGraspVecEnv
 
 parser = argparse.ArgumentParser()
-parser.add_argument("--preset", default="seed")
+parser.add_argument("--preset", default="sector")
 parser.add_argument("--timesteps", type=int, default=200_000)
 parser.add_argument("--envs", type=int, default=8)
 args = parser.parse_args()

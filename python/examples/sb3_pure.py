@@ -2,7 +2,7 @@
 `FairGraspVecEnv(8, recipe="pure_full")` (task-space action, binary gripper, staged reward,
 100-step episodes, the Rust curriculum shared by the 8 envs), observations normalised as
 `norm_obs` does (SB3's VecNormalize, rewards left alone), and every `--eval-every` steps a
-deterministic evaluation on held-out scenarios of `fixed` and `seed` (the preset as it is, the
+deterministic evaluation on held-out scenarios of `fixed` and `sector` (the preset as it is, the
 env evaluations use). Prints one line per evaluation and writes them to `--log` (JSON lines).
 
     python/examples/sb3_venv.sh
@@ -69,7 +69,7 @@ class Progress(BaseCallback):
             "load_avg": os.getloadavg()[0],
         }
         act = policy_act(self.model, env)
-        for preset in ("fixed", "seed"):
+        for preset in ("fixed", "sector"):
             r = fairgrasp.evaluate(act, preset, args.eval_episodes, args.eval_seed, recipe=args.recipe)
             row[preset] = {"successes": r["successes"], "episodes": r["episodes"], "outcomes": r["outcomes"]}
             row[preset + "_text"] = fmt(r)

@@ -3,6 +3,7 @@
 import numpy as np
 
 from . import _native
+from .presets import current_preset
 
 
 class Baseline:
@@ -11,7 +12,7 @@ class Baseline:
     observation, so its episodes can part from the script's own (``play``) by rounding."""
 
     def __init__(self, preset="full", arm="servo", config_toml=None):
-        self._native = _native.Baseline(preset, arm, config_toml)
+        self._native = _native.Baseline(current_preset(preset), arm, config_toml)
 
     def reset(self, seed=0):
         self._native.reset(int(seed))

@@ -17,6 +17,7 @@ the notebook, replays of the Rust methods), written whole or not at all.
 import json
 
 from . import _native
+from .presets import current_preset
 from .policy import evaluate
 
 
@@ -44,7 +45,7 @@ def compare(policies=None, presets=None, episodes=100, seed=0, out="report", *, 
 
     A policy that raises or returns a bad action raises ``fairgrasp.PolicyError`` naming it, the
     preset and the step, and nothing is written to ``out``."""
-    presets = list(presets) if presets is not None else _native.default_compare_presets()
+    presets = [current_preset(p) for p in presets] if presets is not None else _native.default_compare_presets()
     policies = dict(policies or {})
     out = str(out)
     parsed = {name: _method(value) for name, value in policies.items()}  # before any file is touched

@@ -8,6 +8,7 @@ import numpy as np
 from gymnasium.utils import EzPickle
 
 from . import _native
+from .presets import current_preset
 
 
 def _box(space_json, dtype=np.float32):
@@ -23,7 +24,9 @@ def native_args(preset, arm, config_toml, recipe, evaluation, overrides):
     Without a recipe: ``preset`` (default ``"full"``) and ``arm`` (default ``"servo"``), and no
     other keyword. With one: ``preset`` and ``arm`` are overrides like the others (default: the
     recipe's), ``config_toml`` is refused, and ``evaluation=True`` drops the recipe's
-    training-only ``[env]`` settings and its curriculum (the env its evaluations use)."""
+    training-only ``[env]`` settings and its curriculum (the env its evaluations use). A renamed
+    preset's old name gives its current one, with a ``DeprecationWarning``."""
+    preset = current_preset(preset)
     if recipe is None:
         if overrides or evaluation:
             names = ", ".join(sorted(overrides)) or "evaluation"
@@ -76,6 +79,7 @@ class FairGraspEnv(gym.Env, EzPickle):
     metadata = {"render_modes": ["rgb_array"], "render_fps": 10}
 
     def __init__(self, preset=None, arm=None, config_toml=None, render_mode=None, recipe=None, evaluation=False, **overrides):
+        preset = current_preset(preset)
         EzPickle.__init__(
             self, preset=preset, arm=arm, config_toml=config_toml, render_mode=render_mode,
             recipe=recipe, evaluation=evaluation, **overrides,

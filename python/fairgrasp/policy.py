@@ -21,6 +21,7 @@ import numpy as np
 
 from . import _native
 from .env import FairGraspEnv
+from .presets import current_preset
 from .recipes import make
 
 
@@ -55,7 +56,7 @@ class RustPolicy:
         actions = self._native.predict_batch(np.ascontiguousarray(obs.reshape(1, -1) if single else obs))
         return (actions[0] if single else actions), state
 
-    def make_env(self, preset="seed", arm="servo", render_mode=None):
+    def make_env(self, preset="sector", arm="servo", render_mode=None):
         """The env this policy acts in, as ``fairgrasp eval`` evaluates it: the preset as it is
         (no curriculum, no training overrides), seen through the policy's agent."""
         recipe = "pure_full" if self.agent.get("mode") == "pure" else "residual_miscalibrated"
@@ -120,7 +121,7 @@ def _env_for(policy, preset, arm, recipe, agent):
     return FairGraspEnv(preset=preset, arm=arm)
 
 
-def evaluate(policy, preset="seed", episodes=100, seed=0, *, arm="servo", recipe=None, agent=None,
+def evaluate(policy, preset="sector", episodes=100, seed=0, *, arm="servo", recipe=None, agent=None,
              name=None, vec_normalize=FROM_MODEL):
     """Plays ``episodes`` scenarios of ``preset`` (the list ``fairgrasp eval --seed seed`` plays)
     with ``policy`` and returns a dict: ``success_rate``, ``successes``, ``episodes``, the 95 %
@@ -135,6 +136,7 @@ def evaluate(policy, preset="seed", episodes=100, seed=0, *, arm="servo", recipe
     A policy that raises, or returns a wrong shape or a non-finite action, raises
     ``PolicyError`` naming the policy, the preset, the scenario and the step."""
     label = name or getattr(policy, "name", None) or type(policy).__name__
+    preset = current_preset(preset)
     act = _actor(policy, vec_normalize)
     env = _env_for(policy, preset, arm, recipe, agent)
     shape = env.action_space.shape

@@ -6,7 +6,7 @@ envs, as ``fairgrasp train`` shares it).
     env = fairgrasp.make("pure_full")                      # = gym.make("FairGrasp-Recipe-PureFull-v0")
     env = fairgrasp.make("residual_miscalibrated", preset="nudged")
     env = fairgrasp.make("pure_full", env={"task": {"max_steps": 50}}, curriculum=None)
-    env = fairgrasp.make("pure_full", preset="seed", evaluation=True)   # the env evaluations use
+    env = fairgrasp.make("pure_full", preset="sector", evaluation=True)   # the env evaluations use
 
 Overrides: ``preset``, ``arm``, ``agent``, ``curriculum``, ``env`` (``recipe_keys()``), laid over
 the recipe as tables (nested dicts merge key by key), ``None`` drops a key; a misspelt key is

@@ -8,11 +8,14 @@
   100 %, docs/python.md); the place presets' correct the force-guided search;
 - one id per shipped training recipe, ``FairGrasp-Recipe-<Recipe>-v0`` (e.g.
   ``FairGrasp-Recipe-PureFull-v0``: the env ``assets/experiments/pure_full.toml`` trains on;
-  the joint-space residuals' recipes say so: ``FairGrasp-Recipe-JointResidualNudged-v0``)."""
+  the joint-space residuals' recipes say so: ``FairGrasp-Recipe-JointResidualNudged-v0``).
+
+A renamed preset's old ids (``FairGrasp-Seed-v0``, ``FairGrasp-Residual-Seed-v0``) stay
+registered for now: they make the current preset's env, with a ``DeprecationWarning``."""
 
 import gymnasium as gym
 
-from ._native import preset_names, recipe_names, task_residual_recipe
+from ._native import preset_names, recipe_names, renamed_presets, task_residual_recipe
 
 
 def _camel(name):
@@ -43,6 +46,11 @@ def register_all():
         (residual_id(p), {"recipe": task_residual_recipe(p), "preset": p}) for p in preset_names()
     ]
     ids += [(recipe_id(r), {"recipe": r}) for r in recipe_names()]
+    for old, new in renamed_presets():
+        ids += [
+            (env_id(old), {"preset": old}),
+            (residual_id(old), {"recipe": task_residual_recipe(new), "preset": old}),
+        ]
     for name, kwargs in ids:
         if name in registered:
             continue

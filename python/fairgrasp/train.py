@@ -18,6 +18,7 @@ import os
 import sys
 
 from . import _native
+from .presets import current_preset
 
 
 def _bar(p):
@@ -41,6 +42,10 @@ def train(config, run_dir, *, resume=False, force=False, progress=None, **overri
             "`train` (maturin develop --features train)"
         )
     callback = _bar if progress is True else progress
+    if "preset" in overrides:
+        overrides["preset"] = current_preset(overrides["preset"])
+    if "mix" in overrides and overrides["mix"] is not None:
+        overrides["mix"] = [current_preset(p) for p in overrides["mix"]]
     overrides_json = json.dumps(overrides) if overrides else None
     report = _native.train(str(config), os.fspath(run_dir), overrides_json, bool(resume), callback,
                             bool(force))

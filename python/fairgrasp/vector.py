@@ -18,6 +18,7 @@ import numpy as np
 
 from . import _native
 from .env import _box, native_args
+from .presets import current_preset
 
 
 def _autoreset_metadata():
@@ -44,6 +45,7 @@ class VectorEnv(gym.vector.VectorEnv):
             )
         if render_mode is not None:
             raise ValueError("the vector env does not render: use FairGraspEnv(render_mode='rgb_array')")
+        preset = current_preset(preset)
         self._args = dict(preset=preset, arm=arm, threads=threads, config_toml=config_toml, recipe=recipe,
                           evaluation=evaluation, **overrides)
         self._native_args = native_args(preset, arm, config_toml, recipe, evaluation, overrides)

@@ -37,6 +37,23 @@ fn preset_names() -> Vec<&'static str> {
         .collect()
 }
 
+/// The renamed presets as (old name, current name); the old names are still accepted.
+#[pyfunction]
+fn renamed_presets() -> Vec<(&'static str, &'static str)> {
+    fairgrasp_env::config::presets::RENAMED_PRESETS.to_vec()
+}
+
+/// The current name of the preset `name` and, if `name` is a renamed preset's old name, the
+/// note saying so (`fairgrasp.presets.current_preset` warns with it); any other name as it is.
+#[pyfunction]
+fn current_preset_name(name: &str) -> (String, Option<String>) {
+    let (current, _) = fairgrasp_env::config::presets::current_name(name);
+    (
+        current.to_string(),
+        fairgrasp_env::config::presets::rename_note(name),
+    )
+}
+
 /// Values per action (as exported to Python).
 pub const ACT_DIM: usize = fairgrasp_env::env::spaces::ACT_DIM;
 
@@ -46,6 +63,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<env::Baseline>()?;
     m.add_class::<vector::VecEnv>()?;
     m.add_function(wrap_pyfunction!(preset_names, m)?)?;
+    m.add_function(wrap_pyfunction!(current_preset_name, m)?)?;
+    m.add_function(wrap_pyfunction!(renamed_presets, m)?)?;
     m.add_function(wrap_pyfunction!(setup::recipe_names, m)?)?;
     m.add_function(wrap_pyfunction!(setup::recipe_keys, m)?)?;
     m.add_function(wrap_pyfunction!(setup::task_residual_recipe, m)?)?;

@@ -19,7 +19,7 @@ import fairgrasp.rerun as fr
 
 @pytest.fixture(scope="module")
 def episode(tmp_path_factory):
-    """`fairgrasp replay --json` of open_loop and oracle on the seed preset's scenario 0."""
+    """`fairgrasp replay --json` of open_loop and oracle on the sector preset's scenario 0."""
     out = tmp_path_factory.mktemp("replay") / "episode.json"
     binary = os.environ["FAIRGRASP_BIN"]
     subprocess.run([binary, "replay", "--policy", "open_loop", "--policy", "oracle",

@@ -39,16 +39,16 @@ def test_a_bad_policy_or_name_is_refused_and_nothing_is_written(tmp_path):
     def broken(obs):
         raise RuntimeError("sensor unplugged")
 
-    with pytest.raises(fairgrasp.PolicyError, match="policy 'broken one' on preset 'seed'.*sensor unplugged"):
-        fairgrasp.compare(policies={"broken one": broken}, presets=["seed"], episodes=3, out=out,
+    with pytest.raises(fairgrasp.PolicyError, match="policy 'broken one' on preset 'sector'.*sensor unplugged"):
+        fairgrasp.compare(policies={"broken one": broken}, presets=["sector"], episodes=3, out=out,
                           shipped=False)
     assert not out.exists()
     with pytest.raises(ValueError, match="already taken"):
-        fairgrasp.compare(policies={"oracle script": lambda obs: np.zeros(7)}, presets=["seed"],
+        fairgrasp.compare(policies={"oracle script": lambda obs: np.zeros(7)}, presets=["sector"],
                           episodes=3, out=out, shipped=False)
     assert not out.exists() and not list(tmp_path.iterdir())
     # The thread count follows the CLI's rule (1–256), checked before any policy runs.
     with pytest.raises(ValueError, match="threads = 0: 1–256"):
-        fairgrasp.compare(policies={"broken one": broken}, presets=["seed"], episodes=3, out=out,
+        fairgrasp.compare(policies={"broken one": broken}, presets=["sector"], episodes=3, out=out,
                           shipped=False, threads=0)
     assert not out.exists()

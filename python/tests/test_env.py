@@ -63,7 +63,7 @@ def test_the_same_seed_and_actions_give_the_same_episode():
     ],
 )
 def test_a_bad_action_raises_value_error_naming_it(action, message):
-    env = fairgrasp.FairGraspEnv(preset="seed")
+    env = fairgrasp.FairGraspEnv(preset="sector")
     env.reset(seed=0)
     with pytest.raises(ValueError, match=message):
         env.step(action)
@@ -105,13 +105,13 @@ def test_an_episode_ends_with_an_outcome_in_its_info():
 
 
 def test_render_returns_the_replay_view_as_rgb():
-    env = fairgrasp.FairGraspEnv(preset="seed", render_mode="rgb_array")
+    env = fairgrasp.FairGraspEnv(preset="sector", render_mode="rgb_array")
     env.reset(seed=2)
     env.step(np.full(7, 0.3))
     frame = env.render()
     assert frame.shape == (500, 960, 3) and frame.dtype == np.uint8
     assert (frame < 200).any(), "nothing drawn"
-    assert fairgrasp.FairGraspEnv(preset="seed").render() is None
+    assert fairgrasp.FairGraspEnv(preset="sector").render() is None
 
 
 def test_each_preset_has_a_task_space_residual_id_named_for_what_it_corrects():

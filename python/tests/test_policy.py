@@ -42,7 +42,7 @@ def test_a_policy_loads_from_a_checkpoint_or_run_folder_and_predicts_like_sb3():
 
 
 def test_evaluate_takes_a_callable_and_names_a_bad_policy():
-    result = fairgrasp.evaluate(lambda obs: np.zeros(7), "seed", episodes=3, seed=0, name="still")
+    result = fairgrasp.evaluate(lambda obs: np.zeros(7), "sector", episodes=3, seed=0, name="still")
     assert result["episodes"] == 3 and result["successes"] == 0
     assert sum(result["outcomes"].values()) == 3
 
@@ -54,8 +54,8 @@ def test_evaluate_takes_a_callable_and_names_a_bad_policy():
         (lambda obs: np.zeros(3), "shape (3,)"),
         (lambda obs: np.full(7, np.nan), "is not finite"),
     ]:
-        with pytest.raises(fairgrasp.PolicyError, match="preset 'seed', episode 0") as e:
-            fairgrasp.evaluate(policy, "seed", episodes=2, seed=0, name="bad")
+        with pytest.raises(fairgrasp.PolicyError, match="preset 'sector', episode 0") as e:
+            fairgrasp.evaluate(policy, "sector", episodes=2, seed=0, name="bad")
         assert words in str(e.value) and "policy 'bad'" in str(e.value) and "step 0" in str(e.value)
 
 
@@ -84,25 +84,25 @@ class _Shift:
 
 
 def test_an_sb3_model_sees_observations_through_its_vec_normalize_or_is_refused(tmp_path):
-    first = fairgrasp._native.scenario_seeds("seed", 3, 1, "servo")[0]
-    raw = fairgrasp.FairGraspEnv(preset="seed").reset(seed=first)[0]
+    first = fairgrasp._native.scenario_seeds("sector", 3, 1, "servo")[0]
+    raw = fairgrasp.FairGraspEnv(preset="sector").reset(seed=first)[0]
     # The model's own statistics (trained behind VecNormalize, its env attached).
     own = _FakeSb3(env=object(), normalizer=_Shift())
-    fairgrasp.evaluate(own, "seed", episodes=1, seed=3)
+    fairgrasp.evaluate(own, "sector", episodes=1, seed=3)
     np.testing.assert_allclose(own.seen[0], raw - 1000.0)
     # Statistics given for a model loaded without its env.
     given = _FakeSb3()
-    fairgrasp.evaluate(given, "seed", episodes=1, seed=3, vec_normalize=_Shift())
+    fairgrasp.evaluate(given, "sector", episodes=1, seed=3, vec_normalize=_Shift())
     np.testing.assert_allclose(given.seen[0], raw - 1000.0)
     # A model loaded without its env: refused, unless told it had no VecNormalize.
     with pytest.raises(ValueError, match="VecNormalize"):
-        fairgrasp.evaluate(_FakeSb3(), "seed", episodes=1, seed=3)
+        fairgrasp.evaluate(_FakeSb3(), "sector", episodes=1, seed=3)
     plain = _FakeSb3()
-    fairgrasp.evaluate(plain, "seed", episodes=1, seed=3, vec_normalize=None)
+    fairgrasp.evaluate(plain, "sector", episodes=1, seed=3, vec_normalize=None)
     np.testing.assert_array_equal(plain.seen[0], raw)
     # compare() takes the dict's vec_normalize; a misspelt key is named, and nothing is written.
     out = tmp_path / "report"
     with pytest.raises(ValueError, match="vec_normalize"):
-        fairgrasp.compare(policies={"m": {"policy": plain, "vec_normalise": None}}, presets=["seed"],
+        fairgrasp.compare(policies={"m": {"policy": plain, "vec_normalise": None}}, presets=["sector"],
                           episodes=1, out=out)
     assert not out.exists()

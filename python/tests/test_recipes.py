@@ -120,7 +120,7 @@ def test_pure_full_plays_100_step_episodes_with_the_staged_reward():
     for _ in range(len(rewards)):
         plain_rewards.append(plain.step(hold)[1])
     assert tr and not te and info["episode_record"]["steps"] == 100 == len(rewards)
-    # The staged reward pays for approaching; the seed reward (the preset's) is −0.005/m.
+    # The staged reward pays for approaching; the distance reward (the preset's) is −0.005/m.
     assert rewards != plain_rewards
     assert info["curriculum_stage"] == 0
 
@@ -140,7 +140,7 @@ def play_script(env, seed):
 
 
 def test_the_curriculum_advances_on_the_envs_episodes_and_widens_the_sampling():
-    env = fairgrasp.make("residual_miscalibrated", preset="seed", curriculum={"window": 2, "threshold": 0.5})
+    env = fairgrasp.make("residual_miscalibrated", preset="sector", curriculum={"window": 2, "threshold": 0.5})
     assert env.curriculum_stage == (0, "fixed")
     # Stage 0 (fixed): every seed puts the cube in the same place.
     assert len({scenario_xy(env, s) for s in range(4)}) == 1
@@ -153,7 +153,7 @@ def test_the_curriculum_advances_on_the_envs_episodes_and_widens_the_sampling():
 
 
 def test_a_vector_env_shares_one_curriculum():
-    vec = fairgrasp.make_vec("residual_miscalibrated", num_envs=2, preset="seed", seed=4,
+    vec = fairgrasp.make_vec("residual_miscalibrated", num_envs=2, preset="sector", seed=4,
                              curriculum={"window": 2, "threshold": 0.5})
     obs, info = vec.reset()
     assert obs.shape == (2, fairgrasp.OBS_DIM + 19)
@@ -172,27 +172,27 @@ def test_a_vector_env_shares_one_curriculum():
 
 def test_misspelt_overrides_are_refused_with_the_valid_keys():
     with pytest.raises(ValueError, match="unknown override `presett`.*preset, arm, agent, curriculum, env"):
-        fairgrasp.make("pure_full", presett="seed")
+        fairgrasp.make("pure_full", presett="sector")
     with pytest.raises(ValueError, match="pure_full.*residual_miscalibrated"):
         fairgrasp.make("pure_fll")
     with pytest.raises(ValueError, match="threshold"):
         fairgrasp.make("pure_full", curriculum={"threshhold": 0.5})
     with pytest.raises(ValueError, match="unknown keyword"):
-        fairgrasp.FairGraspEnv(preset="seed", curriculum=None)
+        fairgrasp.FairGraspEnv(preset="sector", curriculum=None)
     with pytest.raises(ValueError, match="action_space must stay"):
         fairgrasp.make("pure_full", env={"arm": {"action_space": "tcp"}})
 
 
 def test_overrides_merge_and_drop():
-    env = fairgrasp.make("pure_full", preset="seed", env={"task": {"max_steps": 40}}, curriculum=None)
+    env = fairgrasp.make("pure_full", preset="sector", env={"task": {"max_steps": 40}}, curriculum=None)
     config = tomllib.loads(env.unwrapped._native.config_toml())
     assert env.max_steps == 40 and config["task"]["reward"] == "staged"
     assert env.curriculum_stage is None
     _, info = env.reset(seed=1)
     assert "curriculum_stage" not in info
-    evaluation = fairgrasp.make("pure_full", preset="seed", evaluation=True)
+    evaluation = fairgrasp.make("pure_full", preset="sector", evaluation=True)
     config = tomllib.loads(evaluation._native.config_toml())
-    assert config["task"]["reward"] == preset_file("seed").get("task", {}).get("reward", "seed")
+    assert config["task"]["reward"] == preset_file("sector").get("task", {}).get("reward", "distance")
     assert config["arm"]["action_space"] == "tcp" and evaluation.curriculum_stage is None
 
 

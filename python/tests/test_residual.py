@@ -124,7 +124,7 @@ def test_the_residual_vector_env_equals_single_envs():
 
 def test_the_joint_residual_is_only_an_override_and_a_zero_policy_is_the_baseline():
     assert not hasattr(fairgrasp, "ResidualWrapper")
-    env = fairgrasp.make("residual_miscalibrated", preset="seed", agent={"action_space": "joint"})
+    env = fairgrasp.make("residual_miscalibrated", preset="sector", agent={"action_space": "joint"})
     assert env.observation_space.shape == (fairgrasp.OBS_DIM + 7,)
     assert env.unwrapped.obs_names[-1] == "baseline_action_6"
     seeds = list(range(100, 110))

@@ -12,7 +12,7 @@ import pytest
 
 import fairgrasp
 
-TINY = dict(preset="seed", total_timesteps=1024, n_envs=2, threads=1, eval_every=2, eval_episodes=4, seed=3)
+TINY = dict(preset="sector", total_timesteps=1024, n_envs=2, threads=1, eval_every=2, eval_episodes=4, seed=3)
 
 
 @pytest.fixture
@@ -75,7 +75,7 @@ def test_a_resume_from_another_folder_trains_on_the_runs_copy_of_its_preset(tmp,
     os.makedirs(started)
     os.makedirs(elsewhere)
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    shutil.copy(os.path.join(root, "assets", "configs", "seed.toml"), os.path.join(started, "cell.toml"))
+    shutil.copy(os.path.join(root, "assets", "configs", "sector.toml"), os.path.join(started, "cell.toml"))
     run = os.path.join(tmp, "run")
     tiny = dict(TINY, preset="cell.toml", total_timesteps=512)
     monkeypatch.chdir(started)

@@ -51,19 +51,19 @@ def test_the_vector_env_equals_n_single_envs():
 
 
 def test_make_vec_uses_the_native_vector_env():
-    envs = gym.make_vec("FairGrasp-Seed-v0", num_envs=4, vectorization_mode="vector_entry_point")
+    envs = gym.make_vec("FairGrasp-Sector-v0", num_envs=4, vectorization_mode="vector_entry_point")
     assert isinstance(envs, fairgrasp.VectorEnv)
     obs, _ = envs.reset(seed=1)
     assert obs.shape == (4, fairgrasp.OBS_DIM)
     obs, r, te, tr, _ = envs.step(np.zeros((4, 7)))
     assert r.shape == (4,) and te.dtype == bool
-    again = gym.make_vec("FairGrasp-Seed-v0", num_envs=4, vectorization_mode="vector_entry_point")
+    again = gym.make_vec("FairGrasp-Sector-v0", num_envs=4, vectorization_mode="vector_entry_point")
     obs2, _ = again.reset(seed=1)
     assert np.array_equal(obs2, envs.reset(seed=1)[0])
 
 
 def test_bad_vector_actions_raise_value_error_naming_env_and_index():
-    vec = fairgrasp.VectorEnv(num_envs=2, preset="seed")
+    vec = fairgrasp.VectorEnv(num_envs=2, preset="sector")
     vec.reset(seed=0)
     bad = np.zeros((2, 7))
     bad[1, 4] = np.nan
