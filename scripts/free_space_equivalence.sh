@@ -11,7 +11,7 @@ seed=${3:-0}
 here=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for preset in fixed seed wide full hard; do
+for preset in fixed sector wide full hard; do
   "$bin" baseline --preset "$preset" --episodes "$episodes" --seed "$seed" --json \
     >"$tmp/$preset.on.json"
   { cat "$here/assets/configs/$preset.toml"; printf '\n[physics]\nfree_space = false\n'; } \
@@ -39,7 +39,7 @@ def mcnemar_exact(b, c):
 
 print("| preset | free space on | off (always simulate) | same outcome | on only / off only | McNemar p |")
 print("|---|---|---|---|---|---|")
-for preset in ["fixed", "seed", "wide", "full", "hard"]:
+for preset in ["fixed", "sector", "wide", "full", "hard"]:
     on = json.load(open(f"{tmp}/{preset}.on.json"))["results"]
     off = json.load(open(f"{tmp}/{preset}.off.json"))["results"]
     assert [r["seed"] for r in on] == [r["seed"] for r in off]
