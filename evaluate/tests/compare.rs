@@ -7,10 +7,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use fairgrasp_env::config::presets;
 use fairgrasp_evaluate::compare::{
-    CompareError, CompareEvent, ComparePreset, CompareSpec, LearnedPolicy, SCRIPTS, run_comparison,
+    CompareError, CompareEvent, CompareOutput, ComparePreset, CompareSpec, LearnedPolicy,
+    RecordedTrajectory, SCRIPTS, run_comparison,
 };
 use fairgrasp_policy::shipped::ShippedPolicy;
-use fairgrasp_types::ArmSimulation;
+use fairgrasp_types::{ArmSimulation, Comparison, MethodResult, RecordedEpisode};
 
 fn preset(name: &str) -> ComparePreset {
     ComparePreset {
@@ -39,8 +40,19 @@ fn shipped_residual() -> Vec<LearnedPolicy> {
     LearnedPolicy::load_all(&[dir]).unwrap()
 }
 
-#[test]
-fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its_evaluation() {
+/// The learned policy's method name in the comparison of [`shipped_residual`].
+const AGENT: &str = "residual PPO: residual_hard";
+
+/// Every method's name in the comparison: the scripts, then the learned policy.
+fn methods() -> Vec<&'static str> {
+    let mut methods: Vec<&str> = SCRIPTS.to_vec();
+    methods.push(AGENT);
+    methods
+}
+
+/// The comparison on `fixed` and `sector`, 3 episodes each, with the episodes it reported done
+/// and the `preset/method` of each method it said it started, in order.
+fn compare_fixed_and_sector() -> (CompareOutput, usize, Vec<String>) {
     let learned = shipped_residual();
     let (episodes_done, started) = (AtomicUsize::new(0), Mutex::new(Vec::new()));
     let out = run_comparison(&spec(&["fixed", "sector"], 3), &learned, &|e| match e {
@@ -53,25 +65,40 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
         CompareEvent::MethodDone { .. } | CompareEvent::Recording { .. } => {}
     })
     .unwrap();
-    let c = &out.comparison;
-    let agent_name = "residual PPO: residual_hard";
-    let mut methods: Vec<&str> = SCRIPTS.to_vec();
-    methods.push(agent_name);
-    assert_eq!(c.methods, methods);
-    assert_eq!(c.presets, vec!["fixed", "sector"]);
-    assert_eq!(episodes_done.load(Ordering::Relaxed), 2 * methods.len() * 3);
-    let expected: Vec<String> = ["fixed", "sector"]
+    (
+        out,
+        episodes_done.into_inner(),
+        started.into_inner().unwrap(),
+    )
+}
+
+/// The first of the 3 scenarios of `preset` where the baseline and the learned policy end
+/// differently, else 0: the scenario the comparison records.
+fn first_differing_scenario(c: &Comparison, preset: &str) -> usize {
+    let [base, agent] =
+        [0, SCRIPTS.len()].map(|i| &c.get(&c.methods[i], preset).unwrap().report.results);
+    (0..3)
+        .find(|&i| base[i].outcome != agent[i].outcome)
+        .unwrap_or(0)
+}
+
+/// The trajectory `rec` names among the comparison's episodes.
+fn trajectory_of<'a>(out: &'a CompareOutput, rec: &RecordedEpisode) -> &'a RecordedTrajectory {
+    out.episodes
         .iter()
-        .flat_map(|p| methods.iter().map(move |m| format!("{p}/{m}")))
-        .collect();
-    assert_eq!(*started.lock().unwrap(), expected);
-    assert_eq!(c.results.len(), 2 * methods.len());
+        .find(|t| rec.trajectory == format!("episodes/{}.json.gz", t.stem))
+        .unwrap_or_else(|| panic!("no trajectory for {}", rec.trajectory))
+}
+
+/// Every method of every preset met the same scenarios (seeds and cube positions), the scripts
+/// without a policy, the learned one with its run folder.
+fn assert_the_same_scenarios_for_every_method(c: &Comparison) {
     for p in &c.presets {
         for script in SCRIPTS {
             assert!(c.get(script, p).unwrap().policy.is_none(), "{script}");
         }
         let [a, b] = [0, SCRIPTS.len()].map(|i| c.get(&c.methods[i], p).unwrap());
-        let seeds = |r: &fairgrasp_types::MethodResult| {
+        let seeds = |r: &MethodResult| {
             r.report
                 .results
                 .iter()
@@ -90,23 +117,16 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
         "{:?}",
         c.run_folders
     );
+}
 
-    // The recorded scenario: the first where the baseline and the learned policy end
-    // differently, else 0; one recording per method.
-    let [base, agent] =
-        [0, SCRIPTS.len()].map(|i| &c.get(&c.methods[i], "sector").unwrap().report.results);
-    let k = (0..3)
-        .find(|&i| base[i].outcome != agent[i].outcome)
-        .unwrap_or(0);
-    assert_eq!(c.recorded.len(), methods.len());
-    let trajectory_of = |rec: &fairgrasp_types::RecordedEpisode| {
-        out.episodes
-            .iter()
-            .find(|t| rec.trajectory == format!("episodes/{}.json.gz", t.stem))
-            .unwrap_or_else(|| panic!("no trajectory for {}", rec.trajectory))
-    };
+/// One recording per method, of `sector`'s first scenario where the baseline and the learned
+/// policy differ, each with its evaluation's outcome and step count.
+fn assert_the_recorded_episodes_reproduce_their_evaluation(out: &CompareOutput) {
+    let c = &out.comparison;
+    let k = first_differing_scenario(c, "sector");
+    assert_eq!(c.recorded.len(), methods().len());
     for (i, rec) in c.recorded.iter().enumerate() {
-        let traj = trajectory_of(rec);
+        let traj = trajectory_of(out, rec);
         let evaluated = &c.get(&c.methods[i], "sector").unwrap().report.results[k];
         assert_eq!((rec.preset.as_str(), rec.episode), ("sector", k));
         assert_eq!(rec.outcome, evaluated.outcome, "{}", rec.method);
@@ -118,36 +138,44 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
         );
         assert_eq!(traj.trajectory.outcome, Some(evaluated.outcome));
     }
-    // The replay: every method on scenarios 0 and 1 of every preset (and that preset's first
-    // scenario where the baseline and the learned policy differ), each replaying its evaluation.
+}
+
+/// The replay: every method on scenarios 0 and 1 of every preset (and that preset's first
+/// scenario where the baseline and the learned policy differ), each replaying its evaluation.
+fn assert_the_replay_reproduces_every_evaluation(out: &CompareOutput) {
+    let c = &out.comparison;
     let mut replayed = 0;
     for p in &c.presets {
-        let [base, agent] =
-            [0, SCRIPTS.len()].map(|i| &c.get(&c.methods[i], p).unwrap().report.results);
-        let k = (0..3)
-            .find(|&i| base[i].outcome != agent[i].outcome)
-            .unwrap_or(0);
-        let picked = if k < 2 { 2 } else { 3 };
+        let picked = if first_differing_scenario(c, p) < 2 {
+            2
+        } else {
+            3
+        };
         let here = c.replay.iter().filter(|r| &r.preset == p).count();
-        assert_eq!(here, methods.len() * picked, "{p}");
+        assert_eq!(here, methods().len() * picked, "{p}");
         replayed += here;
     }
     assert_eq!(c.replay.len(), replayed);
     assert_eq!(out.episodes.len(), c.replay.len());
     for rec in &c.replay {
         let evaluated = &c.get(&rec.method, &rec.preset).unwrap().report.results[rec.episode];
-        let traj = &trajectory_of(rec).trajectory;
+        let traj = &trajectory_of(out, rec).trajectory;
         assert_eq!(rec.outcome, evaluated.outcome, "{}", rec.trajectory);
         assert_eq!(traj.rows.len(), evaluated.steps + 1, "{}", rec.trajectory);
         assert_eq!(traj.scene.bodies.len(), traj.rows[0].bodies.len());
     }
     assert!(c.recorded.iter().all(|r| c.replay.contains(r)));
+}
+
+/// Saved, every recorded episode is a file, and (for a spreadsheet) also a CSV; the replay's
+/// other episodes are saved compact only.
+fn assert_the_saved_episodes_are_there(out: &CompareOutput) {
+    let c = &out.comparison;
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rl-compare-episodes");
     std::fs::remove_dir_all(&dir).ok();
     out.save_episodes(&dir).unwrap();
     for rec in &c.recorded {
         assert!(dir.join(&rec.trajectory).is_file(), "{}", rec.trajectory);
-        // The charts' episodes also as CSV, for a spreadsheet; the replay's only compact.
         let csv = rec.trajectory.replace(".json.gz", ".csv");
         assert!(dir.join(&csv).is_file(), "{csv}");
     }
@@ -162,6 +190,26 @@ fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its
         })
         .count();
     assert_eq!(csvs, c.recorded.len());
+}
+
+#[test]
+fn every_method_meets_the_same_scenarios_and_the_recorded_episode_reproduces_its_evaluation() {
+    let (out, episodes_done, started) = compare_fixed_and_sector();
+    let c = &out.comparison;
+    let methods = methods();
+    assert_eq!(c.methods, methods);
+    assert_eq!(c.presets, vec!["fixed", "sector"]);
+    assert_eq!(episodes_done, 2 * methods.len() * 3);
+    let expected: Vec<String> = ["fixed", "sector"]
+        .iter()
+        .flat_map(|p| methods.iter().map(move |m| format!("{p}/{m}")))
+        .collect();
+    assert_eq!(started, expected);
+    assert_eq!(c.results.len(), 2 * methods.len());
+    assert_the_same_scenarios_for_every_method(c);
+    assert_the_recorded_episodes_reproduce_their_evaluation(&out);
+    assert_the_replay_reproduces_every_evaluation(&out);
+    assert_the_saved_episodes_are_there(&out);
 }
 
 #[test]
