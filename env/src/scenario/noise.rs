@@ -1,5 +1,7 @@
-//! The one Gaussian draw every scenario error is made of.
+//! The draws scenarios are made of: the one Gaussian draw every scenario error is made of, and
+//! a point uniform over a sector of the table (the cube's and the fixture's positions).
 
+use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
@@ -10,4 +12,15 @@ pub fn gauss(rng: &mut ChaCha8Rng, sigma: f64) -> f64 {
         Ok(normal) if sigma > 0.0 => normal.sample(rng),
         _ => 0.0,
     }
+}
+
+/// A point \[m\] uniform over the area of the sector `radius` \[m\] × `angle` \[rad\] about the
+/// base's z axis, in the table frame: radius ~ sqrt(U(r0², r1²)), then angle ~ U(a0, a1) (two
+/// draws from `rng`, in that order).
+pub fn uniform_in_sector(rng: &mut ChaCha8Rng, radius: [f64; 2], angle: [f64; 2]) -> [f64; 2] {
+    let r = rng
+        .random_range(radius[0].powi(2)..=radius[1].powi(2))
+        .sqrt();
+    let a = rng.random_range(angle[0]..=angle[1]);
+    [r * a.cos(), r * a.sin()]
 }

@@ -12,7 +12,7 @@ use crate::cell::mount::Mount;
 use crate::config::{EnvConfig, TaskKind};
 use crate::scenario::fixture::{FixturePose, draw_fixture};
 use crate::scenario::graspable::top_down_grasp;
-use crate::scenario::noise::gauss;
+use crate::scenario::noise::{gauss, uniform_in_sector};
 use crate::scenario::nudge::draw_nudge;
 use crate::scenario::perception_noise::draw_perception_errors;
 use fairgrasp_kinematics::ArmModel;
@@ -193,12 +193,7 @@ impl Scenario {
 fn draw_start(config: &EnvConfig, model: &ArmModel, seed: u64, rng: &mut ChaCha8Rng) -> Scenario {
     let r = &config.randomization;
     let object_xy = if r.position {
-        // Uniform over the sector's area: radius ~ sqrt(U(r0², r1²)).
-        let rad = rng
-            .random_range(r.radius[0].powi(2)..=r.radius[1].powi(2))
-            .sqrt();
-        let angle = rng.random_range(r.angle[0]..=r.angle[1]);
-        [rad * angle.cos(), rad * angle.sin()]
+        uniform_in_sector(rng, r.radius, r.angle)
     } else {
         config.scene.cube_xy
     };
