@@ -532,6 +532,10 @@ def sweep(recipe, out, *, seeds=(0,), grid=None, fixed=None, binary=None, cpus_p
             ended = _read_json(os.path.join(folder, "stopped.json"))
             if ended:
                 reason += f"; its training was ended (exit status {ended['exit']}) after {ended['after_s']} s"
+            else:
+                # Ray ended the trial's process before its `finally` wrote stopped.json: the
+                # training got SIGTERM from the kernel (PR_SET_PDEATHSIG); its exit status is lost.
+                reason += f"; {ENDED_WITH_ITS_TRIAL}"
         elif info:
             status, reason = info["status"], info["reason"]
         else:
@@ -569,6 +573,10 @@ def sweep(recipe, out, *, seeds=(0,), grid=None, fixed=None, binary=None, cpus_p
     _write_atomic(os.path.join(out, "sweep.json"), json.dumps(table, indent=1))
     _write_atomic(os.path.join(out, "sweep.md"), format_table(table))
     return table
+
+
+#: The reason's ending for a stopped trial whose training's exit was not recorded.
+ENDED_WITH_ITS_TRIAL = "its training was ended with its trial's process (exit status not recorded)"
 
 
 def _alive_child(pid, binary):

@@ -103,8 +103,11 @@ def test_each_trial_completed_or_was_stopped_by_asha_with_its_reason(sweep):
             stop = stops[t["trial"]]
             assert stop["evaluations"] == t["evaluations"] < UPDATES // EVAL_EVERY
             assert stop["eval_success"] == t["last_success"] < stop["rung"]["cutoff"]
-            # Its training was ended by SIGTERM before it finished.
-            assert "its training was ended (exit status -15)" in t["reason"], t["reason"]
+            # Its training was ended by SIGTERM before it finished: by the trial, which records
+            # the exit status, or (when Ray ends the trial's process first) by the kernel's
+            # death signal, unrecorded; either way it is not left running (asserted above).
+            assert ("its training was ended (exit status -15)" in t["reason"]
+                    or t["reason"].endswith(ft.ENDED_WITH_ITS_TRIAL)), t["reason"]
             assert t["final"] is None
             rows, _ = eval_column(t["run_dir"])
             assert len(rows) < UPDATES
