@@ -4,7 +4,7 @@ use fairgrasp_kinematics::fairino::FR3_ZERO_FLANGE_XYZ;
 use serde_json::Value;
 
 mod common;
-use common::fairgrasp;
+use common::{fairgrasp, tiny_recipe, train};
 
 fn json(args: &[&str]) -> (Value, i32) {
     let out = fairgrasp(args);
@@ -249,7 +249,10 @@ fn an_unknown_preset_is_refused_with_the_choices() {
     let out = fairgrasp(&["baseline", "--preset", "easy", "--episodes", "1"]);
     assert_eq!(out.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("fixed, sector, wide, full, hard"), "{stderr}");
+    assert!(
+        stderr.contains("fixed, sector, wide, full, hard"),
+        "{stderr}"
+    );
 }
 
 #[test]
@@ -283,21 +286,8 @@ fn train_writes_a_run_folder_and_eval_reads_its_checkpoint() {
     let dir = std::env::temp_dir().join(format!("fairgrasp-cli-train-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let config = dir.join("tiny.toml");
-    std::fs::write(
-        &config,
-        "preset = \"fixed\"\ntotal_timesteps = 64\nn_envs = 2\nthreads = 1\neval_every = 2\neval_episodes = 2\n\
-         [ppo]\nn_steps = 16\nbatch_size = 16\nn_epochs = 1\n",
-    )
-    .unwrap();
-    let run = dir.join("run");
-    let out = fairgrasp(&[
-        "train",
-        "--config",
-        config.to_str().unwrap(),
-        "--run-dir",
-        run.to_str().unwrap(),
-    ]);
+    let (config, run) = tiny_recipe(&dir, "fixed", 64);
+    let out = train(&config, &run);
     assert_eq!(
         out.status.code(),
         Some(0),

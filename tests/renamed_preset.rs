@@ -5,7 +5,7 @@
 use serde_json::Value;
 
 mod common;
-use common::{fairgrasp, stderr, stdout};
+use common::{fairgrasp, stderr, stdout, tiny_recipe, train};
 
 const NOTE: &str =
     "note: preset \"seed\" is now called \"sector\"; the old name still works for now";
@@ -85,21 +85,8 @@ fn the_preset_list_names_sector_and_the_old_name_once() {
 #[test]
 fn a_recipe_with_the_old_name_trains_noting_it_and_saves_the_current_one() {
     let dir = scratch("train");
-    let config = dir.join("tiny.toml");
-    std::fs::write(
-        &config,
-        "preset = \"seed\"\ntotal_timesteps = 32\nn_envs = 2\nthreads = 1\neval_every = 2\neval_episodes = 2\n\
-         [ppo]\nn_steps = 16\nbatch_size = 16\nn_epochs = 1\n",
-    )
-    .unwrap();
-    let run = dir.join("run");
-    let out = fairgrasp(&[
-        "train",
-        "--config",
-        config.to_str().unwrap(),
-        "--run-dir",
-        run.to_str().unwrap(),
-    ]);
+    let (config, run) = tiny_recipe(&dir, "seed", 32);
+    let out = train(&config, &run);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let note = format!(
         "note: {}: preset \"seed\" is now called \"sector\"; the old name still works for now",

@@ -3,7 +3,7 @@
 //! function one file does not call is not dead code there.
 #![allow(dead_code)]
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// The `fairgrasp` binary as a command, run in the repository root (set another folder with
@@ -26,6 +26,33 @@ pub fn fairgrasp_in(dir: &Path, args: &[&str]) -> Output {
         .args(args)
         .output()
         .expect("the binary runs")
+}
+
+/// Writes a training recipe on `preset` that trains in seconds (`total_timesteps` env steps, 2
+/// envs on 1 thread, updates of 16 steps, an evaluation of 2 episodes every 2 updates) to
+/// `DIR/tiny.toml`, and returns its path and the run folder `DIR/run` to train it into.
+pub fn tiny_recipe(dir: &Path, preset: &str, total_timesteps: u32) -> (PathBuf, PathBuf) {
+    let config = dir.join("tiny.toml");
+    std::fs::write(
+        &config,
+        format!(
+            "preset = \"{preset}\"\ntotal_timesteps = {total_timesteps}\nn_envs = 2\nthreads = 1\n\
+             eval_every = 2\neval_episodes = 2\n[ppo]\nn_steps = 16\nbatch_size = 16\nn_epochs = 1\n"
+        ),
+    )
+    .unwrap();
+    (config, dir.join("run"))
+}
+
+/// Runs `fairgrasp train --config CONFIG --run-dir RUN` and waits for it.
+pub fn train(config: &Path, run: &Path) -> Output {
+    fairgrasp(&[
+        "train",
+        "--config",
+        config.to_str().unwrap(),
+        "--run-dir",
+        run.to_str().unwrap(),
+    ])
 }
 
 /// What a run printed to stderr, as text.
