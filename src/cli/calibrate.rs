@@ -8,7 +8,8 @@ use anyhow::{Context, bail};
 use clap::{Args, Subcommand};
 use fairgrasp_env::EnvConfig;
 use fairgrasp_kinematics::calibrate::{
-    HandEyeOptions, HandEyeSample, PointFitOptions, PointPair, fit_eye_to_hand, fit_points,
+    HandEyeOptions, HandEyeSample, PointFit, PointFitOptions, PointPair, fit_eye_to_hand,
+    fit_points,
 };
 use fairgrasp_kinematics::{ArmModel, Pose};
 use serde_json::json;
@@ -139,23 +140,13 @@ fn check_tcp_source(table: &Table, tcp: &[&str]) -> anyhow::Result<&'static str>
 }
 
 fn points(a: &PointsArgs) -> anyhow::Result<ExitCode> {
-    let mut allowed = vec!["world_x", "world_y", "world_z"];
-    allowed.extend(TCP_XYZ.iter().chain(&JOINTS));
-    let table = Table::read(&a.file, &allowed)?;
-    let world = ["world_x", "world_y", "world_z"];
-    if !table.has_all(&world) {
-        bail!(
-            "{}: the columns world_x, world_y and world_z are needed",
-            table.path
-        );
-    }
-    let source = check_tcp_source(&table, &TCP_XYZ)?;
+    let (table, source) = read_touches(&a.file)?;
     let model = a.model.model();
     let pairs: Vec<PointPair> = table
         .rows
         .iter()
         .map(|r| PointPair {
-            world: table.values(r, world),
+            world: table.values(r, WORLD_XYZ),
             base: tcp_pose(&table, r, &model, false).xyz(),
         })
         .collect();
@@ -164,23 +155,7 @@ fn points(a: &PointsArgs) -> anyhow::Result<ExitCode> {
         ..PointFitOptions::default()
     };
     let fit = fit_points(&pairs, &opts).with_context(|| table.path.clone())?;
-    let mount = fit.base_in_world;
-    let up = mount.transform_vector([0.0, 0.0, 1.0]);
-    let tilt = up[2].clamp(-1.0, 1.0).acos();
-    let fragment = format!(
-        "# The arm's mount, calibrated by `fairgrasp calibrate points` from {} ({} points, RMS {:.2} mm).\n\
-         # Use this file as `--preset FILE`, or copy the [arm] table into your env config.\n\
-         [arm]\nbase_xyz = [{:.6}, {:.6}, {:.6}]\nbase_rpy = [{:.6}, {:.6}, {:.6}]\n",
-        table.path,
-        pairs.len(),
-        fit.rms * 1e3,
-        mount.xyz()[0],
-        mount.xyz()[1],
-        mount.xyz()[2],
-        mount.rpy()[0],
-        mount.rpy()[1],
-        mount.rpy()[2],
-    );
+    let fragment = mount_fragment(&table.path, pairs.len(), &fit);
     // The env decides what a mount may be (tilt, height); ask it rather than repeat its rules.
     let env_check = EnvConfig::from_toml_str(&fragment)
         .err()
@@ -194,64 +169,158 @@ fn points(a: &PointsArgs) -> anyhow::Result<ExitCode> {
         }
         write_new(out, &fragment)?;
     }
+    let report = PointsReport {
+        table: &table,
+        source,
+        pairs: &pairs,
+        fit: &fit,
+        fragment: &fragment,
+        env_check: env_check.as_deref(),
+        out: a.out.as_deref(),
+    };
     if a.json {
-        print_json(&json!({
+        print_json(&report.to_json());
+    } else {
+        report.print();
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The world point's columns of a touch table.
+const WORLD_XYZ: [&str; 3] = ["world_x", "world_y", "world_z"];
+
+/// Reads the touch table `file` (world points and the TCP, measured or from joint readings),
+/// refusing one without the world columns or without exactly one TCP source. Returns the table
+/// and how its TCP is known.
+fn read_touches(file: &std::path::Path) -> anyhow::Result<(Table, &'static str)> {
+    let mut allowed = WORLD_XYZ.to_vec();
+    allowed.extend(TCP_XYZ.iter().chain(&JOINTS));
+    let table = Table::read(file, &allowed)?;
+    if !table.has_all(&WORLD_XYZ) {
+        bail!(
+            "{}: the columns world_x, world_y and world_z are needed",
+            table.path
+        );
+    }
+    let source = check_tcp_source(&table, &TCP_XYZ)?;
+    Ok((table, source))
+}
+
+/// The mount as an env config file: a comment naming its source (`path`, `points` touches, the
+/// RMS \[mm\]) and the \[arm\] table's base_xyz \[m\] and base_rpy \[rad\].
+fn mount_fragment(path: &str, points: usize, fit: &PointFit) -> String {
+    let mount = fit.base_in_world;
+    format!(
+        "# The arm's mount, calibrated by `fairgrasp calibrate points` from {} ({} points, RMS {:.2} mm).\n\
+         # Use this file as `--preset FILE`, or copy the [arm] table into your env config.\n\
+         [arm]\nbase_xyz = [{:.6}, {:.6}, {:.6}]\nbase_rpy = [{:.6}, {:.6}, {:.6}]\n",
+        path,
+        points,
+        fit.rms * 1e3,
+        mount.xyz()[0],
+        mount.xyz()[1],
+        mount.xyz()[2],
+        mount.rpy()[0],
+        mount.rpy()[1],
+        mount.rpy()[2],
+    )
+}
+
+/// What `calibrate points` found, for printing as text or JSON.
+struct PointsReport<'a> {
+    table: &'a Table,
+    /// How the TCP was known (measured, or FK of joint readings).
+    source: &'static str,
+    pairs: &'a [PointPair],
+    fit: &'a PointFit,
+    /// The env config text of the mount ([`mount_fragment`]).
+    fragment: &'a str,
+    /// Why the env refuses the mount, if it does.
+    env_check: Option<&'a str>,
+    /// Where the fragment was written (--out).
+    out: Option<&'a std::path::Path>,
+}
+
+impl PointsReport<'_> {
+    /// The angle between the base's z axis and the world's \[rad\].
+    fn tilt(&self) -> f64 {
+        let up = self.fit.base_in_world.transform_vector([0.0, 0.0, 1.0]);
+        up[2].clamp(-1.0, 1.0).acos()
+    }
+
+    /// The fit as one JSON object (`--json`).
+    fn to_json(&self) -> serde_json::Value {
+        let fit = self.fit;
+        json!({
             "method": "Kabsch closed form, then Gauss–Newton least squares",
-            "file": table.path, "tcp": source, "points": pairs.len(),
-            "base_in_world": mount.record(), "tilt_rad": tilt,
+            "file": self.table.path, "tcp": self.source, "points": self.pairs.len(),
+            "base_in_world": fit.base_in_world.record(), "tilt_rad": self.tilt(),
             "residuals_m": fit.residuals, "rms_m": fit.rms,
             "closed_form_rms_m": fit.closed_form_rms, "iterations": fit.iterations,
             "scale": fit.scale, "spread_m": fit.spread, "warnings": fit.warnings,
-            "env_refuses": env_check, "out": a.out.as_ref().map(|p| p.display().to_string()),
-        }));
-        return Ok(ExitCode::SUCCESS);
+            "env_refuses": self.env_check, "out": self.out.map(|p| p.display().to_string()),
+        })
     }
-    println!(
-        "world ↔ base_link from {} touched points ({}; {source}):",
-        pairs.len(),
-        table.path
-    );
-    println!("  row  line  world point [m]                  residual");
-    for (i, ((p, r), row)) in pairs
-        .iter()
-        .zip(&fit.residuals)
-        .zip(&table.rows)
-        .enumerate()
-    {
+
+    /// Prints every point's residual \[mm\], the RMS, the mount, warnings and the fragment.
+    fn print(&self) {
+        let (table, fit) = (self.table, self.fit);
         println!(
-            "  {:>3}  {:>4}  {}  {:6.2} mm",
-            i + 1,
-            row.line,
-            fmt3(p.world),
-            r * 1e3
+            "world ↔ base_link from {} touched points ({}; {}):",
+            self.pairs.len(),
+            table.path,
+            self.source
         );
+        println!("  row  line  world point [m]                  residual");
+        for (i, ((p, r), row)) in self
+            .pairs
+            .iter()
+            .zip(&fit.residuals)
+            .zip(&table.rows)
+            .enumerate()
+        {
+            println!(
+                "  {:>3}  {:>4}  {}  {:6.2} mm",
+                i + 1,
+                row.line,
+                fmt3(p.world),
+                r * 1e3
+            );
+        }
+        self.print_mount();
+        println!("\nFor the env config:\n");
+        print!("{}", self.fragment);
+        if let Some(out) = self.out {
+            println!("\nwritten to {}", out.display());
+        }
     }
-    println!(
-        "  RMS {:.2} mm (closed form {:.2} mm; Gauss–Newton steps that lowered it: {}); scale {:.4}; spread off the best line {:.0} mm",
-        fit.rms * 1e3,
-        fit.closed_form_rms * 1e3,
-        fit.iterations,
-        fit.scale,
-        fit.spread[1] * 1e3
-    );
-    println!(
-        "base_link in the world: xyz {} m, rpy {} deg (tilt from upright {:.2}°)",
-        fmt3(mount.xyz()),
-        fmt3(mount.rpy().map(f64::to_degrees)),
-        tilt.to_degrees()
-    );
-    for w in &fit.warnings {
-        println!("warning: {w}");
+
+    /// The fit's quality (RMS \[mm\], steps, scale, spread), the mount (xyz \[m\], rpy and
+    /// tilt \[deg\]) and any warnings, the env's refusal among them.
+    fn print_mount(&self) {
+        let fit = self.fit;
+        let mount = fit.base_in_world;
+        println!(
+            "  RMS {:.2} mm (closed form {:.2} mm; Gauss–Newton steps that lowered it: {}); scale {:.4}; spread off the best line {:.0} mm",
+            fit.rms * 1e3,
+            fit.closed_form_rms * 1e3,
+            fit.iterations,
+            fit.scale,
+            fit.spread[1] * 1e3
+        );
+        println!(
+            "base_link in the world: xyz {} m, rpy {} deg (tilt from upright {:.2}°)",
+            fmt3(mount.xyz()),
+            fmt3(mount.rpy().map(f64::to_degrees)),
+            self.tilt().to_degrees()
+        );
+        for w in &fit.warnings {
+            println!("warning: {w}");
+        }
+        if let Some(why) = self.env_check {
+            println!("warning: the env refuses this mount: {why}");
+        }
     }
-    if let Some(why) = &env_check {
-        println!("warning: the env refuses this mount: {why}");
-    }
-    println!("\nFor the env config:\n");
-    print!("{fragment}");
-    if let Some(out) = &a.out {
-        println!("\nwritten to {}", out.display());
-    }
-    Ok(ExitCode::SUCCESS)
 }
 
 /// Writes `text` to a new file `path` (atomically); an existing path is refused, never replaced.
