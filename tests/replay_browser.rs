@@ -59,10 +59,23 @@ fn the_replay_draws_moves_switches_and_stays_offline_in_chromium() {
     std::fs::remove_dir_all(&dir).ok();
     std::fs::create_dir_all(&dir).unwrap();
     let html = dir.join("replay.html");
+    write_two_method_replay(&html);
+    let shot = dir.join("replay.png");
+    let seen = open_in_browser(&web, &browser, &html, &shot);
+    assert_page_drew_without_errors(&seen, &shot);
+    assert_the_end_moment_differs_from_the_start(&seen);
+    assert_selectors_switch_the_episode(&seen);
+    assert_no_network_request(&seen);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `fairgrasp replay` of the open-loop script and the oracle on one `sector` scenario into
+/// `html`, under 2 MB.
+fn write_two_method_replay(html: &Path) {
     let out = Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
         .args(["replay", "--policy", "open_loop", "--policy", "oracle"])
         .args(["--preset", "sector", "--episode", "1", "--out"])
-        .arg(&html)
+        .arg(html)
         .output()
         .unwrap();
     assert!(
@@ -70,16 +83,19 @@ fn the_replay_draws_moves_switches_and_stays_offline_in_chromium() {
         "fairgrasp replay failed:\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let size = std::fs::metadata(&html).unwrap().len();
+    let size = std::fs::metadata(html).unwrap().len();
     assert!(size < 2_000_000, "a two-episode replay is {size} bytes");
+}
 
-    let shot = dir.join("replay.png");
+/// Runs the browser script (`web/test/replay-browser.mjs`) on `html` in `browser`, with a
+/// screenshot to `shot`, and returns what it printed (JSON).
+fn open_in_browser(web: &Path, browser: &Path, html: &Path, shot: &Path) -> Value {
     let run = Command::new("node")
         .arg(web.join("test/replay-browser.mjs"))
-        .arg(&browser)
-        .arg(&html)
-        .arg(&shot)
-        .current_dir(&web)
+        .arg(browser)
+        .arg(html)
+        .arg(shot)
+        .current_dir(web)
         .output()
         .expect("node runs the browser script");
     let stdout = String::from_utf8_lossy(&run.stdout);
@@ -88,22 +104,26 @@ fn the_replay_draws_moves_switches_and_stays_offline_in_chromium() {
         "the browser script failed:\n{stdout}\n{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    let seen: Value =
-        serde_json::from_str(stdout.trim()).unwrap_or_else(|e| panic!("{e}: {stdout}"));
+    serde_json::from_str(stdout.trim()).unwrap_or_else(|e| panic!("{e}: {stdout}"))
+}
+
+/// The page loaded both episodes without errors and is not blank: many colours, much of the
+/// canvas not background; the screenshot `shot` was written.
+fn assert_page_drew_without_errors(seen: &Value, shot: &Path) {
     assert!(seen["failure"].is_null(), "{}", seen["failure"]);
     assert_eq!(seen["errors"], serde_json::json!([]), "page errors");
     assert_eq!(seen["ready"], true);
     assert_eq!(seen["count"], 2);
-
-    // Not blank: many colours, much of the canvas not background.
-    let start = &seen["start"];
-    let pixels = &start["pixels"];
+    let pixels = &seen["start"]["pixels"];
     assert!(pixels["colours"].as_u64().unwrap() > 200, "{pixels}");
     assert!(pixels["notBackground"].as_f64().unwrap() > 0.1, "{pixels}");
-    assert!(Path::new(&shot).is_file());
+    assert!(shot.is_file());
+}
 
-    // Two moments: the fragment opened the end; the TCP and the image moved, the outcome shows.
-    let end = &seen["end"];
+/// Two moments: the fragment opened the end; the TCP (more than 5 cm) and the image moved, the
+/// outcome shows.
+fn assert_the_end_moment_differs_from_the_start(seen: &Value) {
+    let (start, end) = (&seen["start"], &seen["end"]);
     assert_eq!(start["state"]["time"], 0.0);
     assert_eq!(end["state"]["time"], start["state"]["duration"]);
     let moved = distance(&start["state"]["tcp"], &end["state"]["tcp"]);
@@ -112,7 +132,7 @@ fn the_replay_draws_moves_switches_and_stays_offline_in_chromium() {
         "the TCP moved {moved} m between the two moments"
     );
     assert_ne!(
-        pixels["hash"], end["pixels"]["hash"],
+        start["pixels"]["hash"], end["pixels"]["hash"],
         "the same image at both moments"
     );
     assert!(
@@ -129,9 +149,12 @@ fn the_replay_draws_moves_switches_and_stays_offline_in_chromium() {
             .unwrap()
             .starts_with("#episode=0&t=")
     );
+}
 
-    // The selector switched to the other method: another label, another image.
-    let switched = &seen["switched"];
+/// The selector switched to the other method (another label, another image), the second
+/// selector put the first method beside it on the same scenario, and playing advanced time.
+fn assert_selectors_switch_the_episode(seen: &Value) {
+    let (start, switched) = (&seen["start"], &seen["switched"]);
     assert_eq!(switched["state"]["episode"], 1);
     assert_ne!(switched["state"]["label"], start["state"]["label"]);
     assert!(
@@ -140,15 +163,16 @@ fn the_replay_draws_moves_switches_and_stays_offline_in_chromium() {
             .unwrap()
             .contains("oracle script")
     );
-    assert_ne!(switched["pixels"]["hash"], pixels["hash"]);
-    // Side by side with the first method on the same scenario.
+    assert_ne!(switched["pixels"]["hash"], start["pixels"]["hash"]);
     assert_eq!(seen["sideBySide"]["partner"], 0, "{}", seen["sideBySide"]);
     assert!(
         seen["played"].as_f64().unwrap() > 0.0,
         "playing did not advance"
     );
+}
 
-    // No network: the only request is the page's own file.
+/// No network: the only request is the page's own file (blob: and data: URLs aside).
+fn assert_no_network_request(seen: &Value) {
     let url = seen["url"].as_str().unwrap();
     let requests = seen["requests"].as_array().unwrap();
     assert!(!requests.is_empty());
@@ -159,5 +183,4 @@ fn the_replay_draws_moves_switches_and_stays_offline_in_chromium() {
             "the page requested {r}"
         );
     }
-    std::fs::remove_dir_all(&dir).ok();
 }

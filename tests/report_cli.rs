@@ -48,7 +48,19 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
         serde_json::from_str(&std::fs::read_to_string(out_dir.join("compare.json")).unwrap())
             .unwrap();
     let results = json["results"].as_array().unwrap();
-    // The three scripts, then every shipped policy, on two presets.
+    let methods = assert_scripts_then_policies(&json, results);
+    assert_paired_tests_count_discordant_pairs(&stdout, results, &methods);
+    assert_csv_and_printed_table_agree_with_json(&out_dir, &stdout, results);
+    assert_every_method_saw_the_same_scenarios(results);
+    assert_recorded_episodes_replay_their_evaluation(&json, results);
+    assert_folder_holds_every_chart(&out_dir, methods.len());
+    assert_report_redraws_the_same_chart(&dir, &out_dir);
+    assert_plot_draws_episodes_outside_report_folders(&dir, &out_dir);
+}
+
+/// compare.json's methods: the five scripts, then every shipped policy (two at least), each on
+/// both presets. Returns the method names in order.
+fn assert_scripts_then_policies<'a>(json: &'a Value, results: &[Value]) -> Vec<&'a str> {
     let methods: Vec<&str> = json["methods"]
         .as_array()
         .unwrap()
@@ -69,30 +81,39 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
     assert!(learned >= 2, "{methods:?}");
     assert_eq!(methods.len(), 5 + learned);
     assert_eq!(results.len(), 2 * methods.len());
-    // The paired tests: every learned method against every script on each preset, with the
-    // discordant counts of the two result lists.
+    methods
+}
+
+/// Whether each episode of `method` on `preset` succeeded, in episode order.
+fn outcome_list(results: &[Value], method: &str, preset: &str) -> Vec<bool> {
+    let r = results
+        .iter()
+        .find(|r| r["method"] == method && r["preset"] == preset)
+        .unwrap();
+    r["results"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["outcome"] == "success")
+        .collect()
+}
+
+/// The printed paired tests: every learned method against every script on each preset, with
+/// the discordant counts of the two result lists, and no other rows.
+fn assert_paired_tests_count_discordant_pairs(stdout: &str, results: &[Value], methods: &[&str]) {
     let paired: Vec<&str> = stdout
         .lines()
         .skip_while(|l| !l.starts_with("Paired tests"))
         .take_while(|l| !l.is_empty())
         .collect();
-    let outcome_list = |method: &str, preset: &str| -> Vec<bool> {
-        let r = results
-            .iter()
-            .find(|r| r["method"] == method && r["preset"] == preset)
-            .unwrap();
-        r["results"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|e| e["outcome"] == "success")
-            .collect()
-    };
     let mut pairs = 0;
     for preset in ["fixed", "hard"] {
         for l in &methods[5..] {
             for s in &methods[..5] {
-                let (a, b) = (outcome_list(l, preset), outcome_list(s, preset));
+                let (a, b) = (
+                    outcome_list(results, l, preset),
+                    outcome_list(results, s, preset),
+                );
                 let only_a = a.iter().zip(&b).filter(|(x, y)| **x && !**y).count();
                 let only_b = a.iter().zip(&b).filter(|(x, y)| !**x && **y).count();
                 let line = paired
@@ -110,7 +131,11 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
         }
     }
     assert_eq!(paired.len(), 3 + pairs, "{stdout}");
+}
 
+/// compare.csv has one row per result with compare.json's method, preset, rate and successes;
+/// the printed table shows the same rate, interval and collision rate, rounded.
+fn assert_csv_and_printed_table_agree_with_json(out_dir: &Path, stdout: &str, results: &[Value]) {
     let csv = std::fs::read_to_string(out_dir.join("compare.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
@@ -127,7 +152,6 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
             col("successes").parse::<u64>().unwrap(),
             r["successes"].as_u64().unwrap()
         );
-        // The printed table shows the same rate, interval and collision rate, rounded.
         let line = stdout
             .lines()
             .find(|l| l.starts_with(preset) && l.contains(method))
@@ -143,7 +167,10 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
             "{line}"
         );
     }
-    // Every method saw the identical scenarios: same seeds and cube positions per preset.
+}
+
+/// Every method saw the identical scenarios: same seeds and cube positions per preset.
+fn assert_every_method_saw_the_same_scenarios(results: &[Value]) {
     for preset in ["fixed", "hard"] {
         let sets: Vec<Vec<(u64, String)>> = results
             .iter()
@@ -162,7 +189,10 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
             "{preset}: scenarios differ"
         );
     }
-    // The recorded episode replays its evaluation exactly: same outcome for every method.
+}
+
+/// The recorded episode replays its evaluation exactly: same outcome for every method.
+fn assert_recorded_episodes_replay_their_evaluation(json: &Value, results: &[Value]) {
     for rec in json["recorded"].as_array().unwrap() {
         let k = rec["episode"].as_u64().unwrap() as usize;
         let r = results
@@ -171,7 +201,12 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
             .unwrap();
         assert_eq!(r["results"][k]["outcome"], rec["outcome"], "{rec}");
     }
-    let names: Vec<String> = std::fs::read_dir(&out_dir)
+}
+
+/// The report folder holds the charts and documents, one recorded episode (chart and replay)
+/// per method of the `method_count`, and no temporary file.
+fn assert_folder_holds_every_chart(out_dir: &Path, method_count: usize) {
+    let names: Vec<String> = std::fs::read_dir(out_dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
@@ -188,18 +223,19 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
             "{expected} missing: {names:?}"
         );
     }
-    // One recorded episode (chart and replay) per method.
     assert_eq!(
         names.iter().filter(|n| n.starts_with("episode_")).count(),
-        methods.len()
+        method_count
     );
     assert_eq!(
         names.iter().filter(|n| n.ends_with(".gif")).count(),
-        methods.len()
+        method_count
     );
     assert!(!names.iter().any(|n| n.contains(".tmp")), "{names:?}");
+}
 
-    // `report` redraws the same report from the folder alone.
+/// `report` redraws the same report from the folder alone.
+fn assert_report_redraws_the_same_chart(dir: &Path, out_dir: &Path) {
     let again = dir.join("again");
     ok(&fairgrasp(&[
         "report",
@@ -212,9 +248,12 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
         std::fs::read(out_dir.join("success_rate.png")).unwrap(),
         "the same data must give the same chart"
     );
+}
 
-    // `plot` draws a recorded episode next to its file, but never inside a report folder
-    // (whose files only compare and report write).
+/// `plot` draws a recorded episode next to its file, but never inside a report folder (whose
+/// files only compare and report write); a compare episode (gzipped JSON) is drawn under its
+/// name without `.json.gz`.
+fn assert_plot_draws_episodes_outside_report_folders(dir: &Path, out_dir: &Path) {
     let recorded = std::fs::read_dir(out_dir.join("episodes"))
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -223,7 +262,6 @@ fn compare_writes_agreeing_table_csv_json_and_every_chart() {
     let refused = fairgrasp(&["plot", recorded.to_str().unwrap()]);
     assert_eq!(refused.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&refused.stderr).contains("inside the report folder"));
-    // A compare episode (gzipped JSON) is drawn under its name without `.json.gz`.
     let episode = dir.join("episode_0005.json.gz");
     std::fs::copy(&recorded, &episode).unwrap();
     ok(&fairgrasp(&["plot", episode.to_str().unwrap()]));

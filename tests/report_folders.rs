@@ -194,32 +194,46 @@ fn an_unwritable_parent_is_reported_before_any_episode_runs() {
 #[test]
 fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
     let dir = scratch("compare");
-    let compare = |extra: &[&str]| {
-        let mut args = vec![
-            "compare",
-            "--preset",
-            "fixed",
-            "--episodes",
-            "1",
-            "--threads",
-            "2",
-            "--out",
-            "cmp",
-        ];
-        args.extend(extra);
-        fairgrasp_in(&dir, &args)
-    };
-    ok(&compare(&[]));
+    ok(&compare_into_cmp(&dir, &[]));
     let first = snapshot(&dir.join("cmp"));
+    assert_a_second_compare_and_a_report_over_it_are_refused(&dir, &first);
+    let episode = assert_a_still_past_the_end_is_refused(&dir, &first);
+    assert_plot_and_force_keep_the_report_and_an_added_file(&dir, &first, &episode);
+    assert_a_killed_compare_leaves_the_folder_whole(&dir, &first);
+    assert_force_replaces_the_folder_as_compare_wrote_it(&dir);
+}
 
-    // Again without --force, and a report over its own input: refused, nothing touched.
-    let stderr = refused(&compare(&[]));
+/// `fairgrasp compare` of one `fixed` episode on two threads into `dir/cmp`, with `extra`
+/// arguments.
+fn compare_into_cmp(dir: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "compare",
+        "--preset",
+        "fixed",
+        "--episodes",
+        "1",
+        "--threads",
+        "2",
+        "--out",
+        "cmp",
+    ];
+    args.extend(extra);
+    fairgrasp_in(dir, &args)
+}
+
+/// Again without --force, and a report over its own input: refused, nothing touched (`first`
+/// is the folder's snapshot).
+fn assert_a_second_compare_and_a_report_over_it_are_refused(
+    dir: &Path,
+    first: &[(PathBuf, Vec<u8>)],
+) {
+    let stderr = refused(&compare_into_cmp(dir, &[]));
     assert!(
         stderr.contains("cmp: already holds") && stderr.contains("--force"),
         "{stderr}"
     );
     let stderr = refused(&fairgrasp_in(
-        &dir,
+        dir,
         &["report", "cmp", "--out", "cmp", "--force"],
     ));
     assert!(
@@ -227,14 +241,17 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
         "{stderr}"
     );
     assert_eq!(snapshot(&dir.join("cmp")), first);
+}
 
-    // A still past the episode's end is refused before anything is drawn.
+/// A still past the episode's end is refused before anything is drawn. Returns the recorded
+/// episode's path relative to `dir`.
+fn assert_a_still_past_the_end_is_refused(dir: &Path, first: &[(PathBuf, Vec<u8>)]) -> String {
     let episode = names(&dir.join("cmp/episodes"))
         .into_iter()
         .find(|n| n.ends_with(".json.gz"))
         .unwrap();
     let episode = format!("cmp/episodes/{episode}");
-    let stderr = refused(&fairgrasp_in(&dir, &["plot", &episode, "--still", "5000"]));
+    let stderr = refused(&fairgrasp_in(dir, &["plot", &episode, "--still", "5000"]));
     assert!(
         stderr.contains("--still 5000") && stderr.contains("recorded steps, numbered 0–"),
         "{stderr}"
@@ -244,10 +261,17 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
         first,
         "plot drew despite the refusal"
     );
+    episode
+}
 
-    // plot never draws into a report folder; a file put there by other means is one --force
-    // would lose: named, kept.
-    let stderr = refused(&fairgrasp_in(&dir, &["plot", &episode, "--still", "3"]));
+/// plot never draws into a report folder; a file put there by other means is one --force
+/// would lose: named, kept. The added file is removed again afterwards.
+fn assert_plot_and_force_keep_the_report_and_an_added_file(
+    dir: &Path,
+    first: &[(PathBuf, Vec<u8>)],
+    episode: &str,
+) {
+    let stderr = refused(&fairgrasp_in(dir, &["plot", episode, "--still", "3"]));
     assert!(stderr.contains("inside the report folder"), "{stderr}");
     assert_eq!(
         snapshot(&dir.join("cmp")),
@@ -256,18 +280,20 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
     );
     let added = dir.join(episode.replace(".json.gz", "_step3.png"));
     std::fs::write(&added, b"a still copied in by hand").unwrap();
-    let stderr = refused(&compare(&["--force"]));
+    let stderr = refused(&compare_into_cmp(dir, &["--force"]));
     assert!(stderr.contains("_step3.png (added since"), "{stderr}");
     assert!(added.is_file());
-
-    // A kill while the episodes run leaves the folder as it was (and the staging folder,
-    // named after the process, visible next to it).
     std::fs::remove_file(&added).unwrap();
+}
+
+/// A kill while the episodes run leaves the folder as it was (and the staging folder, named
+/// after the process, visible next to it; removed here).
+fn assert_a_killed_compare_leaves_the_folder_whole(dir: &Path, first: &[(PathBuf, Vec<u8>)]) {
     assert_eq!(snapshot(&dir.join("cmp")), first);
     let mut child = command()
         .args(["compare", "--preset", "fixed", "--episodes", "400"])
         .args(["--threads", "1", "--out", "cmp", "--force"])
-        .current_dir(&dir)
+        .current_dir(dir)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
         .spawn()
@@ -288,15 +314,13 @@ fn compare_keeps_its_folder_until_forced_and_a_kill_leaves_it_whole() {
         "a killed run changed the folder"
     );
     std::fs::remove_dir_all(&staging).unwrap();
+}
 
-    // With --force and the folder as compare wrote it: replaced.
-    let table = ok(&compare(&["--force", "--seed", "7"]));
+/// With --force and the folder as compare wrote it: replaced, nothing else left in `dir`.
+fn assert_force_replaces_the_folder_as_compare_wrote_it(dir: &Path) {
+    let table = ok(&compare_into_cmp(dir, &["--force", "--seed", "7"]));
     assert!(table.contains("Written to cmp"), "{table}");
     let json = std::fs::read_to_string(dir.join("cmp/compare.json")).unwrap();
     assert!(json.contains("--seed 7"), "not the new comparison");
-    assert_eq!(
-        names(&dir),
-        ["cmp"],
-        "staging or the old folder left behind"
-    );
+    assert_eq!(names(dir), ["cmp"], "staging or the old folder left behind");
 }

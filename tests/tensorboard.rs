@@ -76,8 +76,29 @@ fn tensorboard_reads_every_metrics_cell_once_also_across_a_kill_and_a_resume() {
         "{}",
         String::from_utf8_lossy(&resumed.stderr)
     );
-    // The live progress: lines on stderr with the stage, success, steps/s and time left.
-    let stderr = String::from_utf8_lossy(&resumed.stderr);
+    assert_progress_lines(&String::from_utf8_lossy(&resumed.stderr));
+    let read = read_with_tensorboard(&run);
+    assert_two_event_files_and_the_config(&read, &run);
+    let (header, expected) = metrics_cells(&run);
+    assert_every_cell_once_with_its_value(&read, &expected);
+    for column in [
+        "success_rate",
+        "entropy",
+        "approx_kl",
+        "learning_rate",
+        "stage",
+        "steps_per_second",
+        "eval_success_rate",
+    ] {
+        assert!(header.contains(&column.to_string()), "{column}");
+    }
+    assert_dashboard_shows_every_row(&read);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The live progress: lines on `stderr` with the stage, success, steps/s and time left, one of
+/// them with the evaluation.
+fn assert_progress_lines(stderr: &str) {
     let line = stderr
         .lines()
         .find(|l| l.starts_with("train: "))
@@ -91,10 +112,14 @@ fn tensorboard_reads_every_metrics_cell_once_also_across_a_kill_and_a_resume() {
             .any(|l| l.starts_with("train: ") && l.contains("eval ")),
         "no progress line with the evaluation:\n{stderr}"
     );
+}
 
+/// What `scripts/read-tensorboard.py` read from `run`'s event files (JSON: files, texts,
+/// scalars, shown).
+fn read_with_tensorboard(run: &Path) -> Value {
     let out = Command::new(python_with_tensorboard())
         .arg(repo().join("scripts/read-tensorboard.py"))
-        .arg(&run)
+        .arg(run)
         .output()
         .unwrap();
     assert!(
@@ -102,9 +127,12 @@ fn tensorboard_reads_every_metrics_cell_once_also_across_a_kill_and_a_resume() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let read: Value = serde_json::from_slice(&out.stdout).unwrap();
+    serde_json::from_slice(&out.stdout).unwrap()
+}
 
-    // Two files (the killed invocation's and the resume's), each opening with its version.
+/// Two files (the killed invocation's and the resume's), each opening with its version; the
+/// config as text, the TOML of `run`'s config.toml inside.
+fn assert_two_event_files_and_the_config(read: &Value, run: &Path) {
     let files = read["files"].as_array().unwrap();
     assert_eq!(files.len(), 2, "{files:?}");
     for f in files {
@@ -116,7 +144,6 @@ fn tensorboard_reads_every_metrics_cell_once_also_across_a_kill_and_a_resume() {
                 .starts_with("events.out.tfevents.")
         );
     }
-    // The config as text, the TOML of config.toml inside.
     let saved = std::fs::read_to_string(run.join("config.toml")).unwrap();
     let texts = read["texts"].as_array().unwrap();
     assert!(!texts.is_empty());
@@ -124,8 +151,11 @@ fn tensorboard_reads_every_metrics_cell_once_also_across_a_kill_and_a_resume() {
         assert_eq!(t[0], "config/config.toml");
         assert!(t[2].as_str().unwrap().contains(saved.trim()), "{t}");
     }
+}
 
-    // Every non-empty cell of metrics.csv, once, at the row's timestep, with its value.
+/// `run`'s metrics.csv: its header, and every non-empty cell by (TensorBoard tag, the row's
+/// timestep); the four rows' tags end in their column's name.
+fn metrics_cells(run: &Path) -> (Vec<String>, HashMap<(String, i64), f64>) {
     let metrics = std::fs::read_to_string(run.join("metrics.csv")).unwrap();
     let mut lines = metrics.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
@@ -146,6 +176,12 @@ fn tensorboard_reads_every_metrics_cell_once_also_across_a_kill_and_a_resume() {
         }
     }
     assert_eq!(rows, 4);
+    (header.iter().map(|h| h.to_string()).collect(), expected)
+}
+
+/// Every non-empty cell of metrics.csv (`expected`), once, at the row's timestep, with its value
+/// (as f32, TensorBoard's precision).
+fn assert_every_cell_once_with_its_value(read: &Value, expected: &HashMap<(String, i64), f64>) {
     let scalars = read["scalars"].as_array().unwrap();
     let mut seen = HashSet::new();
     for s in scalars {
@@ -161,18 +197,11 @@ fn tensorboard_reads_every_metrics_cell_once_also_across_a_kill_and_a_resume() {
         );
     }
     assert_eq!(seen.len(), expected.len(), "cells of metrics.csv missing");
-    for column in [
-        "success_rate",
-        "entropy",
-        "approx_kl",
-        "learning_rate",
-        "stage",
-        "steps_per_second",
-        "eval_success_rate",
-    ] {
-        assert!(header.contains(&column), "{column}");
-    }
-    // What TensorBoard's dashboard shows: every row's step for every always-present column.
+}
+
+/// What TensorBoard's dashboard shows: every row's step for every always-present column, and
+/// the two evaluations.
+fn assert_dashboard_shows_every_row(read: &Value) {
     let shown = read["shown"].as_object().unwrap();
     let steps: Vec<i64> = shown["episodes/success_rate"]
         .as_array()
@@ -182,5 +211,4 @@ fn tensorboard_reads_every_metrics_cell_once_also_across_a_kill_and_a_resume() {
         .collect();
     assert_eq!(steps, vec![32, 64, 96, 128]);
     assert_eq!(shown["eval/eval_success_rate"].as_array().unwrap().len(), 2);
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -21,6 +21,7 @@ use fairgrasp_types::write_atomic;
 use crate::agent::grasp_agent::ACT_DIM;
 use crate::agent::grasp_env::GraspVecEnv;
 use crate::ppo::model::ActorCritic;
+use crate::ppo::teacher::Kickstart;
 use crate::ppo::{Ppo, UpdateStats};
 use crate::run::checkpoint::{self, CheckpointMeta};
 pub use crate::run::config::TrainConfig;
@@ -252,6 +253,42 @@ pub fn train_with(
         }
         None => None,
     };
+    let (lock, start) = claim_run_folder(run_dir, options)?;
+    let resume = start == Start::Resume;
+    let config = &resume::with_env_snapshot(config, run_dir, resume)?;
+    if resume {
+        resume::check_config(run_dir, config, options.accept_config_changes)?;
+    }
+    let mut run = open_run(config, run_dir, resume, lock, kickstart)?;
+    if !resume {
+        run.save_latest()?;
+    }
+    let out_of_time = |start: &Instant| {
+        config
+            .max_wall_time_s
+            .is_some_and(|t| start.elapsed().as_secs_f64() >= t)
+    };
+    while run.meta.timesteps < config.total_timesteps && !out_of_time(&run.start) {
+        let update = run.saved_updates + 1;
+        run.update(report).map_err(|e| TrainError::Update {
+            update,
+            last_good: run.saved_updates,
+            cause: Box::new(e),
+        })?;
+    }
+    match run.last_report {
+        Some(r) => Ok(r),
+        None => evaluate_model(config, &run.meta, &run.ppo.model, config.eval_episodes),
+    }
+}
+
+/// Takes `run_dir` for this run: decides how to start (resume, fresh, or fresh after moving an
+/// earlier run aside, per `options`) and holds the folder's lock. Returns the lock and the
+/// decision, made again under the lock.
+fn claim_run_folder(
+    run_dir: &Path,
+    options: ResumeOptions,
+) -> Result<(RunLock, Start), TrainError> {
     let flags = StartFlags {
         resume: options.resume,
         force: options.force,
@@ -276,11 +313,19 @@ pub fn train_with(
             run_dir.display()
         );
     }
-    let resume = start == Start::Resume;
-    let config = &resume::with_env_snapshot(config, run_dir, resume)?;
-    if resume {
-        resume::check_config(run_dir, config, options.accept_config_changes)?;
-    }
+    Ok((lock, start))
+}
+
+/// Sets up the run in the claimed `run_dir`: its network (fresh, or `latest` when `resume`),
+/// TensorBoard log, training envs, PPO (with the optimiser's state when resuming, and the
+/// `kickstart` teachers) and curriculum at the saved stage.
+fn open_run<'a>(
+    config: &'a TrainConfig,
+    run_dir: &Path,
+    resume: bool,
+    lock: RunLock,
+    kickstart: Option<Kickstart>,
+) -> Result<Run<'a>, TrainError> {
     std::fs::create_dir_all(run_dir.join("checkpoints")).map_err(io(run_dir))?;
     let device = Device::flex().autodiff();
     let mixture = config
@@ -297,20 +342,12 @@ pub fn train_with(
         .map_err(fairgrasp_env::EnvError::from)?;
     scenario_set(env_config, config.seed, 1)
         .map_err(|e| TrainError::Config(format!("preset {}: {e}", config.preset)))?;
-    // Training scenarios live in the upper half of the seed space; evaluation scenario sets
-    // (`scenario_set`, seeds `s · 1 000 003 + i`) stay in the lower half for any set seed below
-    // 9 · 10¹², so no evaluation ever replays a training scenario.
-    let episode_seed = TRAINING_SEEDS
-        | config
-            .seed
-            .wrapping_mul(7_919)
-            .wrapping_add(meta.updates * 1_000);
     let env = GraspVecEnv::mixed(
         &mixture,
         config.agent.clone(),
         config.n_envs,
         config.threads,
-        episode_seed,
+        training_episode_seed(config.seed, meta.updates),
     )?;
     let mut ppo = Ppo::new(
         config.ppo.clone(),
@@ -323,7 +360,7 @@ pub fn train_with(
         ppo.optimizer = checkpoint::load_optimizer(&dir, ppo.optimizer)?;
     }
     ppo.kickstart = kickstart;
-    let mut run = Run {
+    Ok(Run {
         config,
         run_dir: run_dir.to_path_buf(),
         curriculum: config.curriculum.clone().map(|c| {
@@ -348,25 +385,14 @@ pub fn train_with(
         ppo,
         env,
         _lock: lock,
-    };
-    if !resume {
-        run.save_latest()?;
-    }
-    let out_of_time = |start: &Instant| {
-        config
-            .max_wall_time_s
-            .is_some_and(|t| start.elapsed().as_secs_f64() >= t)
-    };
-    while run.meta.timesteps < config.total_timesteps && !out_of_time(&run.start) {
-        let update = run.saved_updates + 1;
-        run.update(report).map_err(|e| TrainError::Update {
-            update,
-            last_good: run.saved_updates,
-            cause: Box::new(e),
-        })?;
-    }
-    match run.last_report {
-        Some(r) => Ok(r),
-        None => evaluate_model(config, &run.meta, &run.ppo.model, config.eval_episodes),
-    }
+    })
+}
+
+/// The first episode seed of the training envs after `updates` updates of a run seeded `seed`.
+///
+/// Training scenarios live in the upper half of the seed space ([`TRAINING_SEEDS`]); evaluation
+/// scenario sets (`scenario_set`, seeds `s · 1 000 003 + i`) stay in the lower half for any set
+/// seed below 9 · 10¹², so no evaluation ever replays a training scenario.
+fn training_episode_seed(seed: u64, updates: u64) -> u64 {
+    TRAINING_SEEDS | seed.wrapping_mul(7_919).wrapping_add(updates * 1_000)
 }
