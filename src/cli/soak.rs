@@ -20,7 +20,7 @@ pub struct SoakArgs {
     #[arg(long, default_value_t = 1_000_000, value_parser = |t: &str| super::args::whole_number_in(t, 1..=1_000_000_000))]
     steps: u64,
     /// Presets to soak (default: every shipped preset).
-    #[arg(long = "preset", value_name = "NAME")]
+    #[arg(long = "preset", value_name = "NAME", value_parser = super::args::preset)]
     presets: Vec<String>,
     /// Seed of the random actions and the scenarios, 0–9007199254740991 (2⁵³ − 1).
     #[arg(long, default_value_t = 0, value_parser = super::args::seed)]
