@@ -295,7 +295,7 @@ impl EnvConfig {
                 && t.reward == crate::config::RewardKind::Staged),
             "task.reward",
             "staged",
-            "the staged reward is the lift task's (reach, grasp, lift): with task.kind = \"place\" use \"seed\"",
+            "the staged reward is the lift task's (reach, grasp, lift): with task.kind = \"place\" use \"distance\"",
         )?;
         Ok(())
     }

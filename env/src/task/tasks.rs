@@ -16,7 +16,7 @@ pub fn is_success(s: &TaskState, cfg: &TaskConfig) -> bool {
     }
 }
 
-/// How far the task still has to go \[m\] (what the seed reward's distance term pays for): the
+/// How far the task still has to go \[m\] (what the distance reward pays for): the
 /// TCP to the cube (lift, [`lift::distance_to_go`]), plus the cube to its seat in the pocket
 /// (place, [`place::distance_to_go`]).
 pub fn distance_to_go(s: &TaskState) -> f64 {

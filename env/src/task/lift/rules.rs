@@ -10,8 +10,8 @@ pub fn is_lifted(s: &TaskState, cfg: &TaskConfig) -> bool {
     lifted && s.pad_contact[0] && s.pad_contact[1] && tcp_object_distance(s) < 0.03
 }
 
-/// How far the task still has to go \[m\]: the TCP to the cube's centre (what the seed reward's
-/// distance term pays for in this task).
+/// How far the task still has to go \[m\]: the TCP to the cube's centre (what the
+/// distance reward pays for in this task).
 pub fn distance_to_go(s: &TaskState) -> f64 {
     tcp_object_distance(s)
 }
