@@ -623,11 +623,13 @@ fn super_inside_an_inline_module_is_the_file_itself_not_its_parent() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// Whether `m` is in env's configuration layer: the `config` folder, or a scenario family's
-/// `settings.rs` (a family keeps its settings in its own folder, `scenario/<family>/`).
+/// Whether `m` is in env's configuration layer: the `config` folder, or a task's or a scenario
+/// family's `settings.rs` (each keeps its settings in its own folder, `task/<task>/`,
+/// `scenario/<family>/`).
 fn in_config_layer(m: &[String]) -> bool {
     matches!(m, [first, ..] if first == "config")
-        || matches!(m, [scenario, _, settings] if scenario == "scenario" && settings == "settings")
+        || matches!(m, [room, _, settings]
+            if (room == "scenario" || room == "task") && settings == "settings")
 }
 
 /// The imports that leave a layer: (from, to) for each file of the layer that imports a file
@@ -648,18 +650,25 @@ fn imports_leaving(
 }
 
 #[test]
-fn env_config_with_the_families_settings_is_a_leaf_that_imports_no_behaviour() {
-    // Why a layer and not the folder alone: `EnvConfig` names each family's settings type, which
-    // lives in the family's folder, so `config` imports those `settings.rs` files and they import
-    // `config`'s checks. Neither may import the env's behaviour (cell, sim, robot, task, a
-    // family's draw or hook), so every other room can import the configuration.
+fn env_config_with_the_tasks_and_families_settings_is_a_leaf_that_imports_no_behaviour() {
+    // Why a layer and not the folder alone: `EnvConfig` names each task's and family's settings
+    // type, which lives in its folder, so `config` imports those `settings.rs` files and they
+    // import `config`'s checks. Neither may import the env's behaviour (cell, sim, robot, a
+    // task's rules, a family's draw or hook), so every other room can import the configuration.
     let graph = import_graph(&repo().join("env").join("src"));
-    let settings = graph
-        .keys()
-        .filter(|m| in_config_layer(m) && m[0] == "scenario");
+    let settings_in = |room: &str| {
+        graph
+            .keys()
+            .filter(|m| in_config_layer(m) && m[0] == room)
+            .count()
+    };
     assert!(
-        settings.count() >= 5,
+        settings_in("scenario") >= 5,
         "the scenario families' settings.rs files were not found"
+    );
+    assert!(
+        settings_in("task") >= 1,
+        "the place task's settings.rs was not found"
     );
     let leaving = imports_leaving(&graph, in_config_layer);
     assert!(

@@ -1,13 +1,13 @@
 //! The environment's configuration: plain serde data with defaults ([`env_config`], the task's
-//! settings in [`task`] and [`place`], the rewards' weights in [`reward`]), loaded from TOML and
-//! checked with messages that name the field ([`validate`], the place task's rules in
-//! `validate_place`, and `validate_families`, which calls each scenario family's rules; all
-//! written with `check`; [`numbers`], [`error`]), the named presets ([`presets`]), and where a
-//! key is written in a TOML text ([`toml_lines`]).
+//! settings in [`task`], the rewards' weights in [`reward`]), loaded from TOML and checked with
+//! messages that name the field ([`validate`], and `validate_families`, which calls each
+//! scenario family's rules; all written with `check`; [`numbers`], [`error`]), the named presets
+//! ([`presets`]), and where a key is written in a TOML text ([`toml_lines`]).
 //!
-//! A scenario family's settings live in its own folder (`env/src/scenario/<family>/settings.rs`,
-//! plain data and its rules) and are named here only as the type of their `[randomization]`
-//! field; the grip tilt's rule is called by `validate_place`.
+//! A task's or a scenario family's own settings live in its folder (`settings.rs`, plain data
+//! and its rules: the place task's `[task.place]` in `env/src/task/place/settings.rs`, a
+//! family's in `env/src/scenario/<family>/settings.rs`) and are named here only as the type of
+//! their field; those files belong to this layer too.
 //!
 //! Otherwise a leaf: nothing here imports the env's behaviour (no cell, sim, robot, task or env),
 //! so every other room may import it.
@@ -19,7 +19,6 @@ pub(crate) mod check;
 pub mod env_config;
 pub mod error;
 pub mod numbers;
-pub mod place;
 pub mod presets;
 pub mod range;
 pub mod reward;
@@ -27,9 +26,9 @@ pub mod task;
 pub mod toml_lines;
 pub mod validate;
 mod validate_families;
-mod validate_place;
 
+pub use crate::task::place::settings::{PlaceConfig, SearchTuning};
 pub use env_config::*;
 pub use error::ConfigError;
-pub use place::{PlaceConfig, SearchTuning, TaskKind};
 pub use range::Range;
+pub use task::TaskKind;

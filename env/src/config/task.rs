@@ -8,8 +8,19 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::place::{PlaceConfig, TaskKind};
 use crate::config::reward::{DistanceReward, StagedReward};
+use crate::task::place::settings::PlaceConfig;
+
+/// Which task an env runs (`[task] kind`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum TaskKind {
+    /// Grasp the cube and lift it (the seed's task).
+    #[default]
+    Lift,
+    /// Grasp the cube, carry it and seat it in the fixture's pocket, release it, move clear.
+    Place,
+}
 
 /// The task, its success, reward and time limit.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -289,7 +289,7 @@ impl EnvConfig {
             "must be a finite force in (0, inf) N (default 35 N)",
         )?;
         t.staged.check()?;
-        crate::config::validate_place::check_place(&t.place, self.scene.cube_size)?;
+        crate::task::place::settings::check_place(&t.place, self.scene.cube_size)?;
         check(
             !(t.kind == crate::config::TaskKind::Place
                 && t.reward == crate::config::RewardKind::Staged),
