@@ -1,5 +1,5 @@
 //! The place task's settings (`[task.place]`): the fixture, where it stands, what counts as
-//! seated, and their rules ([`check_place`], called by `EnvConfig::validate`). Plain data and
+//! seated, and their rules (`check_place`, called by `EnvConfig::validate`). Plain data and
 //! its checks, in the config layer like a scenario family's `settings.rs`; the task's rules
 //! are in [`crate::task::place::rules`], the fixture's draw in `env/src/scenario/fixture/`,
 //! its bodies in `env/src/sim/fixture.rs`.
