@@ -9,8 +9,8 @@
 //! family's in `env/src/scenario/<family>/settings.rs`) and are named here only as the type of
 //! their field; those files belong to this layer too.
 //!
-//! Otherwise a leaf: nothing here imports the env's behaviour (no cell, sim, robot, task or env),
-//! so every other room may import it.
+//! Otherwise a leaf: nothing here imports the env's behaviour (no cell, sim, robot, a task's
+//! rules, a family's draw or hook, or env), so every other room may import it.
 //!
 //! Frames: `world` is z-up with the table top at `scene.table_height`; the arm's `base_link` sits
 //! at `arm.base_xyz` / `arm.base_rpy` in the world. Units: metres, radians, kilograms, seconds.
