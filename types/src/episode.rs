@@ -77,6 +77,14 @@ pub struct EpisodeRecord {
     /// stop), by their URDF link names (`table`, `cube` for those).
     #[serde(default)]
     pub collision_pair: Option<[String; 2]>,
+    /// The cycle time: simulated time from the reset to the step that succeeded \[s\] (`steps`
+    /// times the env step's duration); `None` unless the episode succeeded.
+    #[serde(default)]
+    pub cycle_time_s: Option<f64>,
+    /// The takt the task runs on \[s\] (`[task.place] takt`: a cell's time for one cycle from
+    /// the reset); `None` for a task without one (lift).
+    #[serde(default)]
+    pub takt_s: Option<f64>,
     /// What the env saw (in JSON beside the fields above: `success`, `held`, `lifted`, …).
     #[serde(flatten)]
     pub facts: EpisodeFacts,
@@ -86,6 +94,15 @@ impl EpisodeRecord {
     /// Whether the episode succeeded (its outcome is [`Outcome::Success`]).
     pub fn success(&self) -> bool {
         self.outcome == Outcome::Success
+    }
+
+    /// Succeeded within the takt: a success whose cycle time is at most the takt (any success
+    /// for a task without a takt).
+    pub fn success_within_takt(&self) -> bool {
+        match (self.cycle_time_s, self.takt_s) {
+            (Some(cycle), Some(takt)) => self.success() && cycle <= takt,
+            _ => self.success(),
+        }
     }
 
     /// The record with the policy's verdict taken into account (it outranks the outcomes below
@@ -174,6 +191,8 @@ mod tests {
             episode_return: 3.5,
             object_xy: [0.3, -0.1],
             collision_pair: None,
+            cycle_time_s: None,
+            takt_s: Some(20.0),
             facts: EpisodeFacts {
                 held: true,
                 lifted: true,

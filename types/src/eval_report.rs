@@ -34,6 +34,22 @@ pub struct EvalReport {
     /// Mean steps of the successful episodes (`None` without any).
     pub mean_steps_to_success: Option<f64>,
     pub mean_return: f64,
+    /// Mean cycle time of the successful episodes, reset to success \[s\] (`None` without any).
+    #[serde(default)]
+    pub mean_cycle_time_s: Option<f64>,
+    /// The takt the episodes ran on \[s\] (`None`: a task without one).
+    #[serde(default)]
+    pub takt_s: Option<f64>,
+    /// Successes within the takt (every success without a takt), their fraction and its 95 %
+    /// Wilson interval.
+    #[serde(default)]
+    pub successes_within_takt: usize,
+    #[serde(default)]
+    pub within_takt_rate: f64,
+    #[serde(default)]
+    pub within_takt_ci_low: f64,
+    #[serde(default)]
+    pub within_takt_ci_high: f64,
     /// Episodes per outcome (outcomes with no episode may be absent).
     pub outcomes: BTreeMap<Outcome, usize>,
     pub results: Vec<EpisodeRecord>,
@@ -56,6 +72,9 @@ impl EvalReport {
             .map(|r| r.steps as f64)
             .collect();
         let rate = |k: usize| if n == 0 { 0.0 } else { k as f64 / n as f64 };
+        let cycle_times: Vec<f64> = results.iter().filter_map(|r| r.cycle_time_s).collect();
+        let within = results.iter().filter(|r| r.success_within_takt()).count();
+        let (within_takt_ci_low, within_takt_ci_high) = wilson_interval(within, n);
         Self {
             episodes: n,
             successes,
@@ -70,8 +89,32 @@ impl EvalReport {
             } else {
                 results.iter().map(|r| r.episode_return).sum::<f64>() / n as f64
             },
+            mean_cycle_time_s: (!cycle_times.is_empty())
+                .then(|| cycle_times.iter().sum::<f64>() / cycle_times.len() as f64),
+            takt_s: results.iter().find_map(|r| r.takt_s),
+            successes_within_takt: within,
+            within_takt_rate: rate(within),
+            within_takt_ci_low,
+            within_takt_ci_high,
             outcomes,
             results,
+        }
+    }
+
+    /// The report with its cycle-time and takt summary taken from its episode records: what
+    /// a file written before those fields existed is read as (its records carry no takt, so
+    /// every success counts as within it). The other fields stay as read.
+    pub fn with_takt_summary(self) -> Self {
+        let summary = Self::from_results(self.results);
+        Self {
+            mean_cycle_time_s: summary.mean_cycle_time_s,
+            takt_s: summary.takt_s,
+            successes_within_takt: summary.successes_within_takt,
+            within_takt_rate: summary.within_takt_rate,
+            within_takt_ci_low: summary.within_takt_ci_low,
+            within_takt_ci_high: summary.within_takt_ci_high,
+            results: summary.results,
+            ..self
         }
     }
 
@@ -93,6 +136,8 @@ mod tests {
             episode_return: seed as f64,
             object_xy: [0.3, 0.0],
             collision_pair: None,
+            cycle_time_s: (outcome == Outcome::Success).then_some(steps as f64 / 12.0),
+            takt_s: Some(5.0),
             facts: crate::EpisodeFacts::default(),
         }
         .normalized()
@@ -127,6 +172,14 @@ mod tests {
         assert_eq!(r.mean_return, 1.5);
         assert_eq!(r.count(Outcome::Timeout), 1);
         assert_eq!(r.count(Outcome::IkFailure), 0);
+        // Cycle times 5 s and 6.67 s: the second is past the 5 s takt.
+        assert_eq!(r.mean_cycle_time_s, Some(70.0 / 12.0));
+        assert_eq!((r.takt_s, r.successes_within_takt), (Some(5.0), 1));
+        assert_eq!(r.within_takt_rate, 0.25);
+        assert_eq!(
+            (r.within_takt_ci_low, r.within_takt_ci_high),
+            wilson_interval(1, 4)
+        );
         let empty = EvalReport::from_results(Vec::new());
         assert_eq!(
             (empty.success_rate, empty.mean_steps_to_success),

@@ -513,6 +513,8 @@ impl GraspEnv {
                 seed,
                 object_xy,
                 steps: self.steps,
+                step_seconds: self.config.physics.dt * self.config.physics.substeps as f64,
+                takt: self.config.task.takt(),
                 success: info.success,
                 failure: info.failure.as_ref(),
                 physics_fault: info.physics_fault.is_some(),

@@ -40,8 +40,11 @@ pub struct Ending<'a> {
     /// Scenario seed and the object's start in the table frame \[m\].
     pub seed: u64,
     pub object_xy: [f64; 2],
-    /// Steps taken.
+    /// Steps taken, each `step_seconds` of simulated time \[s\].
     pub steps: usize,
+    pub step_seconds: f64,
+    /// The task's takt \[s\], if it runs on one.
+    pub takt: Option<f64>,
     pub success: bool,
     pub failure: Option<&'a Failure>,
     pub physics_fault: bool,
@@ -100,6 +103,10 @@ impl EpisodeTracker {
             episode_return: self.episode_return,
             object_xy: ending.object_xy,
             collision_pair,
+            cycle_time_s: ending
+                .success
+                .then(|| ending.steps as f64 * ending.step_seconds),
+            takt_s: ending.takt,
             facts,
         }
     }
