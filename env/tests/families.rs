@@ -259,3 +259,100 @@ fn the_same_seed_gives_the_same_nudged_episode() {
     assert_eq!(first, fresh);
     assert!(matches!(first.1, Some(NudgeEvent::Pushed { .. })));
 }
+
+/// The place cell's mix (`place_cell`, `[task.place.mix]`): over many scenarios each family is
+/// drawn at its weight's rate (inside the rate's 99.9 % Wilson interval), every scenario keeps
+/// its family's error and only it, and the walls' friction lies in the preset's range.
+#[test]
+fn the_place_cell_draws_one_familys_error_per_scenario_at_the_mixs_rates() {
+    use fairgrasp_env::scenario::error_mix::ErrorFamily;
+    let config = presets::load("place_cell").unwrap();
+    let mix = config.task.place.mix.expect("place_cell has a mix");
+    let n = 1500;
+    let scenarios = scenario_set(&config, 3, n).unwrap();
+    let mut counts = [0usize; 3];
+    for s in &scenarios {
+        let f = s.fixture.unwrap();
+        let family = f
+            .error_family
+            .expect("every scenario of a mix has its family");
+        counts[ErrorFamily::ALL.iter().position(|&x| x == family).unwrap()] += 1;
+        let grasp = s.observed_position_error != [0.0; 3] || s.observed_yaw_error != 0.0;
+        let fixture = f.observed_xy_error != [0.0; 2] || f.observed_yaw_error != 0.0;
+        let tilt = f.grip_tilt != 0.0;
+        assert_eq!(
+            (grasp, fixture, tilt),
+            (
+                family == ErrorFamily::GraspError,
+                family == ErrorFamily::FixtureError,
+                family == ErrorFamily::Tilted
+            ),
+            "scenario {}: {family} keeps its own error only",
+            s.seed
+        );
+        if tilt {
+            let [lo, hi] = config.task.place.grip_tilt;
+            assert!((lo..=hi).contains(&f.grip_tilt.abs()), "{}", f.grip_tilt);
+        }
+        let friction = f.friction.expect("the walls' friction is drawn");
+        assert!((0.3..=1.2).contains(&friction), "{friction}");
+    }
+    // 99.9 % Wilson interval around each observed rate must hold the weight's probability.
+    for ((family, k), p) in ErrorFamily::ALL.iter().zip(counts).zip(mix.probabilities()) {
+        let (z, nf, q) = (3.29, n as f64, k as f64 / n as f64);
+        let centre = (q + z * z / (2.0 * nf)) / (1.0 + z * z / nf);
+        let half = z * (q * (1.0 - q) / nf + z * z / (4.0 * nf * nf)).sqrt() / (1.0 + z * z / nf);
+        assert!(
+            (centre - half..=centre + half).contains(&p),
+            "{family}: {k} of {n}, expected about {p:.3}"
+        );
+    }
+    // A lopsided mix is drawn lopsided: the weights are read, not assumed even.
+    let mut lopsided = config.clone();
+    lopsided.task.place.mix = Some(fairgrasp_env::scenario::error_mix::ErrorMix {
+        fixture_error: 0.0,
+        grasp_error: 1.0,
+        tilted: 3.0,
+    });
+    let drawn = scenario_set(&lopsided, 3, 400).unwrap();
+    let tilted = drawn
+        .iter()
+        .filter(|s| s.fixture.unwrap().error_family == Some(ErrorFamily::Tilted))
+        .count();
+    let fixture = drawn
+        .iter()
+        .filter(|s| s.fixture.unwrap().error_family == Some(ErrorFamily::FixtureError))
+        .count();
+    assert_eq!(fixture, 0);
+    assert!((260..=340).contains(&tilted), "{tilted} of 400 at 3/4");
+}
+
+/// A mix that cannot mean what it says is refused naming the field: a negative or all-zero
+/// weight, or a family weighted in whose error the preset never draws.
+#[test]
+fn a_bad_mix_is_refused_naming_the_field() {
+    let base = include_str!("../../assets/configs/place_cell.toml");
+    for (patch, field) in [
+        ("fixture_error = -1.0", "task.place.mix.fixture_error"),
+        (
+            "fixture_error = 0.0\ngrasp_error = 0.0\ntilted = 0.0",
+            "task.place.mix",
+        ),
+    ] {
+        let text = base.replace(
+            "[task.place.mix]\nfixture_error = 1.0\ngrasp_error = 1.0\ntilted = 1.0",
+            &format!("[task.place.mix]\n{patch}"),
+        );
+        let e = EnvConfig::from_toml_str(&text).unwrap_err().to_string();
+        assert!(e.contains(field), "{patch}: {e}");
+    }
+    let no_tilt = base.replace(
+        "grip_tilt = [0.06981317007977318, 0.17453292519943295]",
+        "grip_tilt = [0.0, 0.0]",
+    );
+    let e = EnvConfig::from_toml_str(&no_tilt).unwrap_err().to_string();
+    assert!(
+        e.contains("task.place.mix.tilted") && e.contains("grip_tilt"),
+        "{e}"
+    );
+}

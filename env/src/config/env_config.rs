@@ -4,6 +4,8 @@
 //! Frames: `world` is z-up with the table top at `scene.table_height`; the arm's `base_link` sits
 //! at `arm.base_xyz` / `arm.base_rpy` in the world. Units: metres, radians, kilograms, seconds.
 
+use std::collections::BTreeMap;
+
 use serde::{Deserialize, Serialize};
 
 pub use crate::config::range::Range;
@@ -50,12 +52,52 @@ pub struct ControlConfig {
     /// the open-loop script does.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grip_force: Option<f64>,
+    /// How each control's settings in this config were tuned, by the control's command-line
+    /// name (`[control.tuned.force_search]`, written by `fairgrasp tune` into its fragment);
+    /// a control without an entry runs the preset's own settings.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub tuned: BTreeMap<String, TuningNote>,
 }
 
 impl ControlConfig {
     /// Nothing tuned (the section is left out of a written config).
     pub fn is_untuned(&self) -> bool {
-        self.grip_force.is_none()
+        self.grip_force.is_none() && self.tuned.is_empty()
+    }
+}
+
+/// How a control's settings were tuned (`fairgrasp tune`): what a comparison states beside it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TuningNote {
+    /// The preset it was tuned on.
+    pub preset: String,
+    /// The optimiser and its library.
+    pub optimiser: String,
+    /// What was maximised (`success within the takt`, `success`).
+    pub objective: String,
+    /// Env steps the tuning spent, over all its trials.
+    pub env_steps: u64,
+    /// Trials, episodes per trial and the scenario seed they were drawn from (training
+    /// scenarios: never a set results are reported on).
+    pub trials: usize,
+    pub episodes_per_trial: usize,
+    pub scenario_seed: u64,
+    /// The best trial's objective on those scenarios (a fraction).
+    pub best: f64,
+}
+
+impl TuningNote {
+    /// One line: `CMA-ES (cmaes 0.2.2), 96 trials × 150 episodes of seed 11, 3.01 M env steps`.
+    pub fn summary(&self) -> String {
+        format!(
+            "{}, {} trials × {} episodes of seed {}, {:.2} M env steps",
+            self.optimiser,
+            self.trials,
+            self.episodes_per_trial,
+            self.scenario_seed,
+            self.env_steps as f64 / 1e6
+        )
     }
 }
 

@@ -27,7 +27,9 @@ pub mod toml_lines;
 pub mod validate;
 mod validate_families;
 
-pub use crate::task::place::settings::{PlaceConfig, SearchTuning};
+pub use crate::task::place::settings::{
+    PlaceConfig, SEARCH_BOUNDS, SearchBound, SearchParams, SquareParams, SwitchParams,
+};
 pub use env_config::*;
 pub use error::ConfigError;
 pub use range::Range;

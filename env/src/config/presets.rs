@@ -1,7 +1,7 @@
 //! Named configurations: `fixed`, `sector`, `wide`, `full`, `hard` and the scenario families
 //! `miscalibrated`, `miscalibrated_b`, `wrist_camera`, `nudged` (`env/src/scenario/<family>/`)
 //! the contact family `heavy_slippery` and the place task's `place`, `place_grasp_error`,
-//! `place_fixture_error` and `place_tilted`, shipped as TOML files in
+//! `place_fixture_error`, `place_tilted` and the mix of the three, `place_cell`, shipped as TOML files in
 //! `assets/configs/` and built into the binary, so `--preset NAME` works from any folder.
 //!
 //! A preset that was renamed keeps its old name as an alias ([`RENAMED_PRESETS`]): every
@@ -12,7 +12,7 @@ use crate::config::EnvConfig;
 use crate::config::validate::ConfigError;
 
 /// Every preset: name, TOML text, one-line description.
-pub const PRESETS: [(&str, &str, &str); 14] = [
+pub const PRESETS: [(&str, &str, &str); 15] = [
     (
         "fixed",
         include_str!("../../../assets/configs/fixed.toml"),
@@ -82,6 +82,11 @@ pub const PRESETS: [(&str, &str, &str); 14] = [
         "place_tilted",
         include_str!("../../../assets/configs/place_tilted.toml"),
         "place with the cube turning 4–10° in the grip once lifted (about the pads' axis), unobserved: wider than the pocket as it hangs",
+    ),
+    (
+        "place_cell",
+        include_str!("../../../assets/configs/place_cell.toml"),
+        "a real place cell: each cycle one family's error (fixture pose, grasp, tilt in the grip), unlabelled, a third each; wall friction drawn; 20 s takt",
     ),
 ];
 

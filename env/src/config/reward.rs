@@ -18,6 +18,9 @@ pub struct DistanceReward {
     pub collision: f64,
     /// Dense reward per metre still to go \[1/m\] (`task.distance_reward`, negative).
     pub distance: f64,
+    /// Paid every step, the last too (`task.time_reward`, negative or 0): what a cycle's time
+    /// costs, for a cell on a takt. Default 0.
+    pub time: f64,
 }
 
 impl Default for DistanceReward {
@@ -26,6 +29,7 @@ impl Default for DistanceReward {
             success: 10.0,
             collision: -1.0,
             distance: -0.005,
+            time: 0.0,
         }
     }
 }

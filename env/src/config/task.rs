@@ -83,6 +83,17 @@ pub enum RewardKind {
     Staged,
 }
 
+impl TaskConfig {
+    /// The takt the task runs on \[s\]: a cell's time for one cycle, from the reset (the place
+    /// task's `[task.place] takt`; the lift task has none).
+    pub fn takt(&self) -> Option<f64> {
+        match self.kind {
+            TaskKind::Lift => None,
+            TaskKind::Place => Some(self.place.takt),
+        }
+    }
+}
+
 /// Default protective stop threshold \[N\] (see [`TaskConfig::protective_stop_force`]).
 pub const DEFAULT_PROTECTIVE_STOP_FORCE: f64 = 35.0;
 
@@ -121,12 +132,19 @@ pub struct TaskToml {
     pub collision_reward: f64,
     /// [`DistanceReward::distance`].
     pub distance_reward: f64,
+    /// [`DistanceReward::time`] (left out of a written file at 0).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub time_reward: f64,
     pub terminate_on_collision: bool,
     pub collision_voids_success: bool,
     pub terminate_on_self_collision: bool,
     pub reward: RewardKind,
     pub protective_stop_force: f64,
     pub staged: StagedReward,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 fn is_lift(kind: &TaskKind) -> bool {
@@ -159,6 +177,7 @@ impl From<TaskToml> for TaskConfig {
                 success: t.success_reward,
                 collision: t.collision_reward,
                 distance: t.distance_reward,
+                time: t.time_reward,
             },
             staged: t.staged,
         }
@@ -175,6 +194,7 @@ impl From<TaskConfig> for TaskToml {
             success_reward: t.distance.success,
             collision_reward: t.distance.collision,
             distance_reward: t.distance.distance,
+            time_reward: t.distance.time,
             terminate_on_collision: t.terminate_on_collision,
             collision_voids_success: t.collision_voids_success,
             terminate_on_self_collision: t.terminate_on_self_collision,

@@ -289,7 +289,22 @@ impl EnvConfig {
             "must be a finite force in (0, inf) N (default 35 N)",
         )?;
         t.staged.check()?;
+        check(
+            (-10.0..=0.0).contains(&t.distance.time),
+            "task.time_reward",
+            t.distance.time,
+            "must be in [-10, 0] per step (a cost; default 0)",
+        )?;
         crate::task::place::settings::check_place(&t.place, self.scene.cube_size)?;
+        if let Some(mix) = &t.place.mix {
+            let (p, r) = (&t.place, &self.randomization);
+            let drawn = [
+                p.observed_position_noise > 0.0 || p.observed_yaw_noise > 0.0,
+                r.observed_position_noise > 0.0 || r.observed_yaw_noise > 0.0,
+                p.grip_tilt[1] > 0.0,
+            ];
+            crate::scenario::error_mix::settings::check_error_mix(mix, drawn)?;
+        }
         check(
             !(t.kind == crate::config::TaskKind::Place
                 && t.reward == crate::config::RewardKind::Staged),

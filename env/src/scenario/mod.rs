@@ -9,10 +9,12 @@
 //! (a camera on the wrist), [`perception_noise`] (an error on the observed cube).
 //! The place task's fixture is a folder too, [`fixture`]: its pose and contact conditions drawn
 //! per scenario (its settings and their rules are `[task.place]`'s, in [`crate::config`]); the
-//! cube is turned in the grip by [`grip_tilt`].
+//! cube is turned in the grip by [`grip_tilt`]; [`error_mix`] gives each scenario of a place
+//! cell one family's error, unlabelled.
 
 pub mod camera_offset;
 pub mod curriculum;
+pub mod error_mix;
 pub mod fixture;
 pub mod graspable;
 pub mod grip_tilt;

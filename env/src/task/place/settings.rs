@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 use crate::config::check::{check, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
+use crate::scenario::error_mix::settings::ErrorMix;
 use crate::scenario::grip_tilt::settings::check_grip_tilt;
 
 /// The fixture and the seated criterion (`[task.place]`).
@@ -63,35 +64,141 @@ pub struct PlaceConfig {
     /// The friction coefficient between the fixture's walls and what touches them, drawn per
     /// episode uniformly in this range (`None`: the table's, `scene.table_friction`).
     pub fixture_friction: Option<Range>,
+    /// The place cell's unlabelled mix (`[task.place.mix]`, `env/src/scenario/error_mix/`):
+    /// each scenario keeps the error of one family only, drawn with these weights (`None`:
+    /// every error the preset draws, together).
+    pub mix: Option<ErrorMix>,
+    /// The "search + squaring" control's settings (`[task.place.square]`): the cube pressed
+    /// flat on the table beside the pocket before its own search.
+    pub square: SquareParams,
+    /// The switching search's settings (`[task.place.switch]`): a search per kind of cycle,
+    /// chosen from the first touch.
+    pub switch: SwitchParams,
+    /// The cell's takt: the time one cycle may take from the reset (grasp, carry, seat,
+    /// release, clear) \[s\]. A cycle that succeeds later counts as a success but not within
+    /// the takt. Default 20 s (240 env steps at 12 Hz), fixed before any control was tuned.
+    pub takt: f64,
     /// The force-guided search's settings as the cell's integrator tuned them for this family
-    /// (`[task.place.search]`; `planner::SearchParams::tuned_for` reads them).
-    pub search: SearchTuning,
+    /// (`[task.place.search]`).
+    pub search: SearchParams,
 }
 
-/// The tuned parameters of the force-guided search (`[task.place.search]`): what an integrator
-/// sets per cell after a tuning run (`scripts/tune-force-search.sh`, docs/place.md). The
-/// defaults were tuned on `place_grasp_error` and `place_fixture_error`.
+/// The force-guided search's settings (`[task.place.search]`; `planner::place_search` runs
+/// it): what an integrator sets per cell after a tuning run (`fairgrasp tune`, docs/place.md).
+/// The defaults of touch force, pitch and speed were tuned on `place_grasp_error` and
+/// `place_fixture_error` by a grid; the rest are the search's first settings.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct SearchTuning {
+pub struct SearchParams {
+    /// Descent speed \[m/s\].
+    pub descend_speed: f64,
     /// Upward wrist force that counts as a touch \[N\].
     pub contact_force: f64,
+    /// The admittance of the press while spiralling: the TCP's vertical speed per newton of
+    /// force below `contact_force` \[m/s/N\] (capped at `descend_speed` either way).
+    pub admittance: f64,
     /// The spiral's pitch: its radius grows this much per turn \[m\].
     pub pitch: f64,
     /// The spiral's speed along its path \[m/s\].
     pub speed: f64,
+    /// The largest spiral radius searched before giving up (the cube is released where it is)
+    /// \[m\].
+    pub max_radius: f64,
     /// A touch within this height above the pocket's floor counts as the cube on the floor;
     /// a higher one is the rim \[m\] (`None`: half the wall).
     pub floor_band: Option<f64>,
+    /// Check that a found opening leads to the floor: a touch while inserting, above the floor
+    /// band, is a false find (the cube tipped off the rim's edge, or caught a corner), and the
+    /// spiral goes on from where it was instead of letting the cube go. Off by default (the
+    /// search as first tuned); the `place_cell` controls have it on.
+    pub check_floor: bool,
 }
 
-impl Default for SearchTuning {
+impl Default for SearchParams {
     fn default() -> Self {
         Self {
+            descend_speed: 0.01,
             contact_force: 1.5,
+            admittance: 0.004,
             pitch: 0.003,
             speed: 0.01,
+            max_radius: 0.009,
             floor_band: None,
+            check_floor: false,
+        }
+    }
+}
+
+/// Squaring a cube that hangs tilted in the grip, as an integrator would before a tight
+/// insertion (`[task.place.square]`): carry the cube to a spot of free table `offset` beside the
+/// pocket (towards where the cube came from), squeeze it with `squeeze` only and lower it at
+/// `speed` until it would stand flat on the table, `press` deeper, or until the wrist feels
+/// `force`; hold `hold`; squeeze fully again and lift back. Pressed onto the table, a tilted
+/// cube turns in the fingers about the pads' axis until a face lies flat. Then the place and its search (`search`, this control's own) as without.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SquareParams {
+    /// Distance of the squaring spot from the pocket's observed centre, on the table \[m\].
+    pub offset: f64,
+    /// Speed down onto the table and back up \[m/s\].
+    pub speed: f64,
+    /// The press stops when the wrist feels this much upward force \[N\].
+    pub force: f64,
+    /// How far past "standing flat" the TCP is pressed \[m\] (negative: it stops above).
+    pub press: f64,
+    /// How long the press is held \[s\].
+    pub hold: f64,
+    /// The squeeze per finger while pressing and holding \[N\] (the gripper's force setting,
+    /// lowered so that the cube can turn between the pads; the full squeeze before the lift).
+    pub squeeze: f64,
+    /// The search after the squaring.
+    pub search: SearchParams,
+}
+
+impl Default for SquareParams {
+    fn default() -> Self {
+        Self {
+            offset: 0.08,
+            speed: 0.01,
+            force: 8.0,
+            press: 0.001,
+            hold: 0.25,
+            squeeze: 1.5,
+            search: SearchParams::default(),
+        }
+    }
+}
+
+/// The switching search (`[task.place.switch]`): the search runs `pose`'s settings until its
+/// first touch; a touch more than `tilt_band` above or below the rim's height is a cube that
+/// hangs tilted (its low corner meets the rim, or dips into the pocket, before its face
+/// would), and the search goes on with `tilted`'s settings; else with `pose`'s (a pose error:
+/// the face lands flat on the rim). The oracle switch, a ceiling, picks by the family it is
+/// told.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SwitchParams {
+    /// How far from the rim's height a first touch must be to read as a tilted cube \[m\].
+    pub tilt_band: f64,
+    /// The search for a cube that hangs square (a fixture or grasp error).
+    pub pose: SearchParams,
+    /// The search for a cube that hangs tilted.
+    pub tilted: SearchParams,
+}
+
+impl Default for SwitchParams {
+    /// The two settings the first grid found per family (docs/place.md).
+    fn default() -> Self {
+        Self {
+            tilt_band: 0.0015,
+            pose: SearchParams::default(),
+            tilted: SearchParams {
+                contact_force: 1.0,
+                pitch: 0.002,
+                speed: 0.025,
+                floor_band: Some(0.002),
+                ..SearchParams::default()
+            },
         }
     }
 }
@@ -116,7 +223,11 @@ impl Default for PlaceConfig {
             observed_yaw_noise: 0.0,
             grip_tilt: [0.0, 0.0],
             fixture_friction: None,
-            search: SearchTuning::default(),
+            mix: None,
+            square: SquareParams::default(),
+            switch: SwitchParams::default(),
+            takt: 20.0,
+            search: SearchParams::default(),
         }
     }
 }
@@ -188,6 +299,13 @@ fn check_fixture(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
             1.0,
             "must be in (0, 1] m",
         ),
+        (
+            p.takt,
+            "task.place.takt",
+            0.0,
+            3600.0,
+            "must be in (0, 3600] s",
+        ),
     ] {
         check(value > lo && value <= hi, field, value, rule)?;
     }
@@ -242,41 +360,150 @@ fn check_contact_conditions(p: &PlaceConfig) -> Result<(), ConfigError> {
     Ok(())
 }
 
-/// The force search's tuned settings (`[task.place.search]`).
+/// Every search's settings: the search's, the squaring's, the switch's two; and the squaring's
+/// and the switch's own.
 fn check_search(p: &PlaceConfig) -> Result<(), ConfigError> {
-    let s = &p.search;
+    check_one_search(&p.search, "", p.wall_height)?;
+    check_one_search(&p.square.search, "task.place.square.search", p.wall_height)?;
+    check_one_search(&p.switch.pose, "task.place.switch.pose", p.wall_height)?;
+    check_one_search(&p.switch.tilted, "task.place.switch.tilted", p.wall_height)?;
+    let q = &p.square;
     for (value, field, lo, hi, rule) in [
         (
-            s.contact_force,
-            "task.place.search.contact_force",
-            0.1,
-            30.0,
-            "must be in [0.1, 30] N",
+            q.offset,
+            "task.place.square.offset",
+            0.05,
+            0.3,
+            "must be in [0.05, 0.3] m",
         ),
         (
-            s.pitch,
-            "task.place.search.pitch",
-            0.0005,
-            0.02,
-            "must be in [0.0005, 0.02] m per turn",
-        ),
-        (
-            s.speed,
-            "task.place.search.speed",
+            q.speed,
+            "task.place.square.speed",
             0.001,
-            0.1,
-            "must be in [0.001, 0.1] m/s",
+            0.05,
+            "must be in [0.001, 0.05] m/s",
+        ),
+        (
+            q.force,
+            "task.place.square.force",
+            0.5,
+            30.0,
+            "must be in [0.5, 30] N",
+        ),
+        (
+            q.press,
+            "task.place.square.press",
+            -0.01,
+            0.01,
+            "must be in [-0.01, 0.01] m",
+        ),
+        (
+            q.hold,
+            "task.place.square.hold",
+            0.0,
+            3.0,
+            "must be in [0, 3] s",
+        ),
+        (
+            q.squeeze,
+            "task.place.square.squeeze",
+            0.2,
+            100.0,
+            "must be in [0.2, 100] N",
+        ),
+        (
+            p.switch.tilt_band,
+            "task.place.switch.tilt_band",
+            0.0001,
+            0.01,
+            "must be in [0.0001, 0.01] m",
         ),
     ] {
         check((lo..=hi).contains(&value), field, value, rule)?;
     }
+    Ok(())
+}
+
+/// One search's settings; `table` names its table in errors (empty: `task.place.search`).
+fn check_one_search(s: &SearchParams, table: &str, wall_height: f64) -> Result<(), ConfigError> {
+    for b in SEARCH_BOUNDS {
+        let value = (b.get)(s);
+        let field = match table {
+            "" => b.field.to_string(),
+            t => b.field.replace("task.place.search", t),
+        };
+        check((b.lo..=b.hi).contains(&value), &field, value, b.rule)?;
+    }
     if let Some(band) = s.floor_band {
+        let field = match table {
+            "" => "task.place.search.floor_band".to_string(),
+            t => format!("{t}.floor_band"),
+        };
         check(
-            band > 0.0 && band <= p.wall_height,
-            "task.place.search.floor_band",
+            band > 0.0 && band <= wall_height,
+            &field,
             band,
             "must be in (0, task.place.wall_height] m",
         )?;
     }
     Ok(())
 }
+
+/// The bounds of one number of the search's settings.
+pub struct SearchBound {
+    /// Its key in a preset.
+    pub field: &'static str,
+    /// Lowest and highest value accepted, in the field's unit.
+    pub lo: f64,
+    pub hi: f64,
+    /// The rule as an error states it.
+    pub rule: &'static str,
+    /// Reads it from settings.
+    pub get: fn(&SearchParams) -> f64,
+}
+
+/// The bounds of the search's numbers (what `fairgrasp tune` may search within, too).
+pub const SEARCH_BOUNDS: [SearchBound; 6] = [
+    SearchBound {
+        field: "task.place.search.descend_speed",
+        lo: 0.001,
+        hi: 0.05,
+        rule: "must be in [0.001, 0.05] m/s",
+        get: |s| s.descend_speed,
+    },
+    SearchBound {
+        field: "task.place.search.contact_force",
+        lo: 0.1,
+        hi: 30.0,
+        rule: "must be in [0.1, 30] N",
+        get: |s| s.contact_force,
+    },
+    SearchBound {
+        field: "task.place.search.admittance",
+        lo: 0.0001,
+        hi: 0.05,
+        rule: "must be in [0.0001, 0.05] m/s per N",
+        get: |s| s.admittance,
+    },
+    SearchBound {
+        field: "task.place.search.pitch",
+        lo: 0.0005,
+        hi: 0.02,
+        rule: "must be in [0.0005, 0.02] m per turn",
+        get: |s| s.pitch,
+    },
+    SearchBound {
+        field: "task.place.search.speed",
+        lo: 0.001,
+        hi: 0.1,
+        rule: "must be in [0.001, 0.1] m/s",
+        get: |s| s.speed,
+    },
+    SearchBound {
+        field: "task.place.search.max_radius",
+        lo: 0.001,
+        hi: 0.05,
+        rule: "must be in [0.001, 0.05] m",
+        get: |s| s.max_radius,
+    },
+];

@@ -9,13 +9,16 @@ use crate::task::tasks::distance_to_go;
 
 /// The distance reward of a step that ended in `s`: `w.success` on success, `w.collision` on a
 /// collision, else `w.distance ·` the distance still to go \[m\] ([`distance_to_go`]:
-/// `|TCP − object|`, plus for the place task the cube's distance from its seat in the pocket).
+/// `|TCP − object|`, plus for the place task the cube's distance from its seat in the pocket);
+/// plus `w.time` every step.
 pub fn distance_reward(s: &TaskState, success: bool, collision: bool, w: &DistanceReward) -> f64 {
-    if success {
+    let r = if success {
         w.success
     } else if collision {
         w.collision
     } else {
         w.distance * distance_to_go(s)
-    }
+    };
+    // The time's cost, when it has one (adding 0 would turn a -0 into 0).
+    if w.time == 0.0 { r } else { r + w.time }
 }
