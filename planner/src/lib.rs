@@ -8,8 +8,11 @@
 //! - [`phase`]: [`Phase`], where the script is (plan, approach, descend, close, lift, hold).
 //! - [`place`]: [`ScriptedPlace`], the place task's open-loop script (the grasp, then carry,
 //!   lower, release, retreat); [`place_search`]: the force-guided search that replaces the
-//!   lower in the engineer's control; [`place_residual`]: [`PlaceResidual`], what a residual
+//!   lower in the engineer's control; [`place_square`]: squaring a tilted cube on the table
+//!   before it; [`place_residual`]: [`PlaceResidual`], what a residual
 //!   policy corrects that search through.
+//! - [`oracle_switch`]: [`oracle_switch::OracleSwitch`], the switching search told each cycle's
+//!   family: the place cell's ceiling, not a control.
 //! - [`closed_loop`]: [`ClosedLoopGrasp`], the closed-loop script (re-plans, retries once) and
 //!   the oracle (the same on the true cube pose).
 //! - [`calibrated`]: [`CalibratedScript`], the open-loop script after a (simulated) camera
@@ -19,19 +22,24 @@
 //!   [`OracleResidual`], the hand-written residual that uses the true pose through it.
 //! - [`tuned_grip`]: [`TunedGripScript`], the open-loop script with the grip force an engineer
 //!   tuned for the cell (the contact family's control).
+//! - [`controls`]: every task's hand-written controls in one table ([`controls::CONTROLS`]):
+//!   names, tunable parameters, how each is built.
 //! - [`stream`]: an episode's joints as a real controller's servo stream (resampled with
 //!   Ruckig, checked against the FR3's limits, JSON / CSV / `.npy`), and its playback in the env.
 
 pub mod baseline;
 pub mod calibrated;
 pub mod closed_loop;
+pub mod controls;
 pub mod correction;
 pub mod grasp;
 pub mod motion;
+pub mod oracle_switch;
 pub mod phase;
 pub mod place;
 pub mod place_residual;
 pub mod place_search;
+pub mod place_square;
 pub mod residual;
 pub mod stream;
 pub mod tuned_grip;

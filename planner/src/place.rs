@@ -20,7 +20,9 @@ use crate::baseline::{BaselineConfig, Phase, ScriptedGrasp};
 use crate::correction::TaskCorrection;
 use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
 use crate::motion::{JointTrajectory, MotionLimits, tracking_action};
-use crate::place_search::{ForceSearch, SearchParams};
+use crate::place_search::{ForceSearch, Modulation, SearchParams};
+use crate::place_square::{SquareParams, Squaring};
+use fairgrasp_env::config::SwitchParams;
 
 /// The cube's bottom above the pocket's floor when the gripper opens \[m\].
 pub const DROP_HEIGHT: f64 = 0.002;
@@ -49,6 +51,10 @@ pub enum PlacePhase {
     Lower,
     /// The force-guided search instead of the lower ([`crate::place_search`]).
     Search,
+    /// The carry to the squaring spot beside the pocket ([`crate::place_square`]).
+    SquareCarry,
+    /// Squaring the cube on the table.
+    Square,
     Release,
     Retreat,
     Done,
@@ -62,6 +68,8 @@ impl PlacePhase {
             PlacePhase::Carry => "carry",
             PlacePhase::Lower => "lower",
             PlacePhase::Search => "search",
+            PlacePhase::SquareCarry => "square_carry",
+            PlacePhase::Square => "square",
             PlacePhase::Release => "release",
             PlacePhase::Retreat => "retreat",
             PlacePhase::Done => "done",
@@ -99,6 +107,19 @@ pub struct ScriptedPlace {
     reobserve: bool,
     /// A residual's correction of the search ([`crate::place_residual`]); zero otherwise.
     correction: TaskCorrection,
+    /// A residual's scaling of the search's settings; none otherwise.
+    modulation: Modulation,
+    /// Squaring the cube on the table before the place, if this script does.
+    square: Option<SquareParams>,
+    squaring: Option<Squaring>,
+    /// The switching search's rule (`tilt_band` \[m\] and the tilted cube's settings), if
+    /// this script switches.
+    switch: Option<(f64, SearchParams)>,
+    /// Where the cube was first seen, `base_link` \[m\] (the squaring spot lies towards it).
+    cube_start: Option<[f64; 3]>,
+    /// The gripper's full squeeze per finger \[N\] (`gripper.force`), asked for again after a
+    /// squaring's lowered one.
+    full_squeeze: f64,
 }
 
 impl ScriptedPlace {
@@ -131,8 +152,38 @@ impl ScriptedPlace {
             wall_height: env.task.place.wall_height,
             planned_fixture: None,
             correction: TaskCorrection::ZERO,
+            modulation: Modulation::NONE,
             reobserve: false,
+            square: None,
+            squaring: None,
+            switch: None,
+            cube_start: None,
+            full_squeeze: env.gripper.force,
         }
+    }
+
+    /// The place script that squares the cube on the table beside the pocket first
+    /// ([`crate::place_square`]), then places it with its own search (`square.search`).
+    pub fn with_squaring(env: &EnvConfig, square: SquareParams) -> Self {
+        Self {
+            square: Some(square),
+            ..Self::with_search(env, square.search)
+        }
+    }
+
+    /// The place script with the switching search ([`SwitchParams`]): `pose`'s settings, and
+    /// `tilted`'s from a first touch that reads as a tilted cube.
+    pub fn with_switch(env: &EnvConfig, switch: SwitchParams) -> Self {
+        Self {
+            switch: Some((switch.tilt_band, switch.tilted)),
+            ..Self::with_search(env, switch.pose)
+        }
+    }
+
+    /// Sets the search's settings for the episodes from the next reset on (an oracle that
+    /// knows each cycle's family, [`crate::oracle_switch`]).
+    pub fn set_search_params(&mut self, params: SearchParams) {
+        self.search_params = Some(params);
     }
 
     /// The place script with the force-guided search ([`crate::place_search`]) in place of the
@@ -179,6 +230,15 @@ impl ScriptedPlace {
         }
     }
 
+    /// Scales the search's settings from now on (a residual's adaptation; [`Modulation::NONE`]:
+    /// as set).
+    pub fn set_search_modulation(&mut self, m: Modulation) {
+        self.modulation = m;
+        if let Some(search) = &mut self.search {
+            search.set_modulation(m);
+        }
+    }
+
     /// The correction set by [`ScriptedPlace::set_search_correction`].
     pub fn search_correction(&self) -> TaskCorrection {
         self.correction
@@ -218,6 +278,51 @@ impl ScriptedPlace {
         plan(&target)
     }
 
+    /// The carry, "place" and retreat joints above the squaring spot: free table `offset` \[m\]
+    /// from the pocket's observed centre, towards where the cube started, the cube turned to
+    /// the pocket's yaw (so that the carry to the pocket after it does not turn it).
+    fn plan_square(&self, obs: &Observation, offset: f64) -> Option<GraspJoints> {
+        let fixture = obs.fixture?;
+        let start = self.cube_start?;
+        let z = self.mount.table_in_base.transform_vector([0.0, 0.0, 1.0]);
+        let d: [f64; 3] = [0, 1, 2].map(|i| start[i] - fixture.position[i]);
+        let along_z: f64 = (0..3).map(|i| d[i] * z[i]).sum();
+        let flat = [0, 1, 2].map(|i| d[i] - along_z * z[i]);
+        let norm = (flat[0] * flat[0] + flat[1] * flat[1] + flat[2] * flat[2]).sqrt();
+        if norm < 1e-6 {
+            return None;
+        }
+        let toward = flat.map(|v| v / norm);
+        let up = 0.5 * self.cube_size + DROP_HEIGHT + self.grasp_height;
+        // Towards the cube's start first, then turning away from it by 45° steps: the first
+        // spot the arm reaches.
+        [0.0f64, 45.0, -45.0, 90.0, -90.0, 135.0, -135.0, 180.0]
+            .iter()
+            .find_map(|deg| {
+                let (s, c) = deg.to_radians().sin_cos();
+                // `toward` turned about the table's vertical by the angle (Rodrigues; `toward`
+                // is perpendicular to the vertical).
+                let cross = [
+                    z[1] * toward[2] - z[2] * toward[1],
+                    z[2] * toward[0] - z[0] * toward[2],
+                    z[0] * toward[1] - z[1] * toward[0],
+                ];
+                let dir: [f64; 3] = [0, 1, 2].map(|i| c * toward[i] + s * cross[i]);
+                let target = GraspTarget {
+                    object: [0, 1, 2].map(|i| fixture.position[i] + offset * dir[i] + up * z[i]),
+                    object_yaw: fixture.yaw,
+                    mount: self.mount,
+                };
+                plan_grasp_joints(
+                    &self.model,
+                    &target,
+                    &obs.joints,
+                    CARRY_HEIGHT,
+                    RETREAT_HEIGHT,
+                )
+            })
+    }
+
     /// Where the cube seen in the hand at `obs` would be, horizontally, relative to the TCP
     /// once the arm is at the place joints `place` \[rad\] (`base_link`, m; no vertical part):
     /// the offset measured along the pads (the TCP's y; the fingers close along its x) now,
@@ -234,6 +339,30 @@ impl ScriptedPlace {
         let z = self.mount.table_in_base.transform_vector([0.0, 0.0, 1.0]);
         let along_z: f64 = (0..3).map(|i| at_place[i] * z[i]).sum();
         [0, 1, 2].map(|i| at_place[i] - along_z * z[i])
+    }
+
+    /// Plans the place over the pocket from where the arm is and starts the carry to it (or
+    /// gives up without an IK solution).
+    fn start_place(&mut self, obs: &Observation) {
+        match self.plan(obs) {
+            Some(t) => {
+                self.targets = Some(t);
+                self.planned_fixture = obs.fixture;
+                self.enter(PlacePhase::Carry, obs, Some(t.pre_grasp));
+            }
+            None => self.give_up(),
+        }
+    }
+
+    /// No IK solution for what comes next: the script stops where it is.
+    fn give_up(&mut self) {
+        self.phase = PlacePhase::Failed;
+        self.gave_up = Some(Outcome::IkFailure);
+    }
+
+    /// The running squaring (None before it starts, and without one).
+    pub fn squaring(&self) -> Option<&Squaring> {
+        self.squaring.as_ref()
     }
 
     fn enter(&mut self, phase: PlacePhase, obs: &Observation, target: Option<[f64; 6]>) {
@@ -314,24 +443,34 @@ impl Policy for ScriptedPlace {
         self.search = None;
         self.planned_fixture = None;
         self.correction = TaskCorrection::ZERO;
+        self.modulation = Modulation::NONE;
+        self.squaring = None;
+        self.cube_start = None;
+        self.grasp_height = self.config.grasp_height;
     }
 
     fn act(&mut self, obs: &Observation) -> Action {
         if self.phase == PlacePhase::Grasp {
             if self.grasp.phase() != Phase::Hold {
+                self.cube_start.get_or_insert(obs.object_position());
                 return self.grasp.act(obs);
             }
-            match self.plan(obs) {
-                Some(t) => {
-                    self.targets = Some(t);
-                    self.planned_fixture = obs.fixture;
-                    self.enter(PlacePhase::Carry, obs, Some(t.pre_grasp));
-                }
-                None => {
-                    self.phase = PlacePhase::Failed;
-                    self.gave_up = Some(Outcome::IkFailure);
-                }
+            match self.square {
+                Some(square) => match self.plan_square(obs, square.offset) {
+                    Some(t) => {
+                        self.targets = Some(t);
+                        self.enter(PlacePhase::SquareCarry, obs, Some(t.pre_grasp));
+                    }
+                    None => self.give_up(),
+                },
+                None => self.start_place(obs),
             }
+        }
+        if self.phase == PlacePhase::Square && self.squaring.as_ref().is_some_and(Squaring::done) {
+            if let Some(h) = self.squaring.as_ref().and_then(Squaring::grasp_height_seen) {
+                self.grasp_height = h;
+            }
+            self.start_place(obs);
         }
         let tolerance = match self.phase {
             PlacePhase::Carry => CARRY_TOLERANCE,
@@ -340,6 +479,19 @@ impl Policy for ScriptedPlace {
         let arrived = self.arrived(obs, tolerance);
         let targets = self.targets;
         match (self.phase, targets) {
+            (PlacePhase::SquareCarry, Some(t)) if arrived => {
+                if let Some(square) = self.square {
+                    let flat_depth = CARRY_HEIGHT + DROP_HEIGHT;
+                    self.squaring = Some(Squaring::new(
+                        square,
+                        t.pre_grasp,
+                        flat_depth,
+                        self.step_dt,
+                        self.cube_size,
+                    ));
+                }
+                self.enter(PlacePhase::Square, obs, None);
+            }
             (PlacePhase::Carry, Some(t)) if arrived => match self.search_params {
                 Some(params) => {
                     let mut search = ForceSearch::new(
@@ -349,7 +501,11 @@ impl Policy for ScriptedPlace {
                         self.wall_height,
                         self.step_dt,
                     );
+                    if let Some((band, tilted)) = self.switch {
+                        search = search.with_switch(band, tilted);
+                    }
                     search.set_correction(self.correction);
+                    search.set_modulation(self.modulation);
                     self.search = Some(search);
                     self.enter(PlacePhase::Search, obs, None);
                 }
@@ -363,23 +519,37 @@ impl Policy for ScriptedPlace {
                 self.enter(PlacePhase::Retreat, obs, Some(t.lift))
             }
             (PlacePhase::Retreat, _) if arrived => self.enter(PlacePhase::Done, obs, None),
-            (PlacePhase::Carry | PlacePhase::Lower | PlacePhase::Retreat, _)
-                if self.timed_out() =>
-            {
+            (
+                PlacePhase::Carry
+                | PlacePhase::SquareCarry
+                | PlacePhase::Lower
+                | PlacePhase::Retreat,
+                _,
+            ) if self.timed_out() => {
                 self.phase = PlacePhase::Failed;
                 self.trajectory = None;
             }
             _ => {}
         }
         let gripper = match self.phase {
-            PlacePhase::Grasp | PlacePhase::Carry | PlacePhase::Lower | PlacePhase::Search => 1.0,
+            PlacePhase::Grasp
+            | PlacePhase::Carry
+            | PlacePhase::Lower
+            | PlacePhase::Search
+            | PlacePhase::SquareCarry
+            | PlacePhase::Square => 1.0,
             PlacePhase::Failed => 1.0,
             PlacePhase::Release | PlacePhase::Retreat | PlacePhase::Done => -1.0,
         };
-        let action = match (self.phase, self.search.as_mut()) {
+        let table = &self.mount.table_in_base;
+        let target = match (self.phase, self.search.as_mut(), self.squaring.as_mut()) {
+            (PlacePhase::Search, Some(search), _) => Some(search.step(obs, &self.model, table)),
+            (PlacePhase::Square, _, Some(squaring)) => Some(squaring.step(obs, &self.model, table)),
+            _ => None,
+        };
+        let action = match (self.phase, target) {
             (PlacePhase::Failed, _) => Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, gripper]),
-            (PlacePhase::Search, Some(search)) => {
-                let target = search.step(obs, &self.model, &self.mount.table_in_base);
+            (_, Some(target)) => {
                 let mut a = [gripper; 7];
                 let q = &obs.joints;
                 let joints = tracking_action(q, &target, q, 0.0, self.step_dt, self.action_scale);
@@ -396,10 +566,22 @@ impl Policy for ScriptedPlace {
         self.grasp.gave_up().or(self.gave_up)
     }
 
+    fn grip_force(&self) -> Option<f64> {
+        if self.square.is_none() || self.phase == PlacePhase::Grasp {
+            return self.grasp.grip_force();
+        }
+        let lowered = self.squaring.as_ref().and_then(Squaring::squeeze);
+        match (self.phase, lowered) {
+            (PlacePhase::Square, Some(f)) => Some(f),
+            _ => Some(self.full_squeeze),
+        }
+    }
+
     fn phase(&self) -> Option<&'static str> {
         match (self.phase, &self.search) {
             (PlacePhase::Grasp, _) => Policy::phase(&self.grasp),
             (PlacePhase::Search, Some(search)) => Some(search.stage_name()),
+            (PlacePhase::Square, _) => self.squaring.as_ref().map(Squaring::stage_name),
             (p, _) => Some(p.name()),
         }
     }

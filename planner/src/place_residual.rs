@@ -8,13 +8,16 @@
 //! [`TaskCorrection`](crate::TaskCorrection) added to the search's offset (TCP along the table
 //! frame's x, y, z and yaw about its vertical, × [`place_limits`]' largest values), through the
 //! same filter and rate limits as the lift residual's ([`CorrectionLimits::follow`]); entries 4–6
-//! unused. The correction moves only while the search runs and is held from then on.
+//! scale the search's floor band, its pace along the spiral and its touch force, each by a
+//! factor 2^(± [`MODULATION_OCTAVES`]) ([`Modulation`]), from that step on (0: the search as
+//! tuned). The correction moves only while the search runs and is held from then on.
 //!
 //! The policy sees, besides the observation, [`FEATURE_DIM`] values ([`FEATURE_NAMES`]): the
 //! script's phase, the wrist force in the table frame (in units of the search's contact force;
 //! the search itself reads only its vertical part), where the search is (its spiral offset and
-//! depth), the correction so far, and how far the fixture now seen is from the one the place
-//! was planned on.
+//! depth), the correction so far, and what the cycle has felt: the first touch's depth
+//! against the rim's (a tilted cube's corner meets the rim higher or dips lower than a flat
+//! face), the largest upward force, and the time since the reset against the takt.
 
 use fairgrasp_env::cell::Cell;
 use fairgrasp_env::episode::{Outcome, Policy};
@@ -22,8 +25,7 @@ use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 
 use crate::correction::CorrectionLimits;
 use crate::place::{PlacePhase, ScriptedPlace};
-use crate::place_search::SearchParams;
-use crate::residual::wrap_quarter;
+use crate::place_search::{Modulation, SearchParams};
 
 /// Values the script adds to the policy input: as many as the lift residual's, so that a
 /// task-space residual's input has one size whatever the task.
@@ -47,10 +49,14 @@ pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
     "correction_y",
     "correction_z",
     "correction_yaw",
-    "fixture_moved_x",
-    "fixture_moved_y",
-    "fixture_turned",
+    "first_touch_below_rim",
+    "peak_force",
+    "cycle_time",
 ];
+
+/// The search's settings a place residual scales (entries 4–6 of its action) range over
+/// 2^(±this) times their tuned values.
+pub const MODULATION_OCTAVES: f64 = 1.5;
 
 /// The wrist-force features are clipped to ± this many contact forces (a hard press on the rim
 /// reads 10–20 N; the policy needs the direction, not the magnitude of a jam).
@@ -84,13 +90,17 @@ pub struct PlaceResidual {
     wall_height: f64,
     /// Duration of one env step \[s\].
     step_dt: f64,
+    /// Env steps since the reset.
+    steps: usize,
+    /// The cell's takt \[s\] (the cycle-time feature's unit).
+    takt: f64,
 }
 
 impl PlaceResidual {
-    /// The search tuned for the env `env`'s family ([`SearchParams::tuned_for`]) and
+    /// The search tuned for the env `env`'s family (its `[task.place.search]`) and
     /// [`place_limits`].
     pub fn new(env: &EnvConfig) -> Self {
-        let params = SearchParams::tuned_for(env);
+        let params = env.task.place.search;
         Self {
             script: ScriptedPlace::with_search(env, params),
             params,
@@ -98,6 +108,8 @@ impl PlaceResidual {
             mount: Cell::from_config(env).mount,
             wall_height: env.task.place.wall_height,
             step_dt: env.physics.dt * env.physics.substeps as f64,
+            steps: 0,
+            takt: env.task.place.takt,
         }
     }
 
@@ -112,6 +124,7 @@ impl PlaceResidual {
 
     pub fn reset(&mut self, seed: u64) {
         self.script.reset(seed);
+        self.steps = 0;
     }
 
     /// The env action for the policy's `action` at `obs` (module doc).
@@ -121,6 +134,13 @@ impl PlaceResidual {
             let c = self.limits.follow(&now, action, self.step_dt);
             self.script.set_search_correction(c);
         }
+        let factor = |a: f64| (a.clamp(-1.0, 1.0) * MODULATION_OCTAVES).exp2();
+        self.script.set_search_modulation(Modulation {
+            floor_band: factor(action[4]),
+            spiral_pace: factor(action[5]),
+            touch_force: factor(action[6]),
+        });
+        self.steps += 1;
         self.script.act(obs)
     }
 
@@ -158,13 +178,13 @@ impl PlaceResidual {
         }
         let c = self.limits.normalized(&self.script.search_correction());
         out[12..16].copy_from_slice(&c);
-        if let (Some(now), Some(planned)) = (obs.fixture, self.script.planned_fixture()) {
-            let moved = [0, 1, 2].map(|i| now.position[i] - planned.position[i]);
-            let moved = to_table.transform_vector(moved);
-            out[16] = (moved[0] / self.limits.max_offset).clamp(-1.0, 1.0);
-            out[17] = (moved[1] / self.limits.max_offset).clamp(-1.0, 1.0);
-            out[18] = (wrap_quarter(now.yaw - planned.yaw) / self.limits.max_yaw).clamp(-1.0, 1.0);
+        if let Some(s) = search {
+            if let Some(below) = s.first_touch_below_rim() {
+                out[16] = (below / self.wall_height).clamp(-1.0, 1.0);
+            }
+            out[17] = (s.peak_force() / self.params.contact_force).clamp(0.0, FORCE_FEATURE_BOUND);
         }
+        out[18] = (self.steps as f64 * self.step_dt / self.takt).min(2.0);
     }
 
     /// The script's verdict (it gave up).
@@ -191,5 +211,7 @@ pub fn feature_bounds() -> [(f64, f64); FEATURE_DIM] {
     b[9] = (-SPIRAL_FEATURE_BOUND, SPIRAL_FEATURE_BOUND);
     b[10] = (-SPIRAL_FEATURE_BOUND, SPIRAL_FEATURE_BOUND);
     b[11] = (-DEPTH_FEATURE_BOUND, DEPTH_FEATURE_BOUND);
+    b[17] = (0.0, FORCE_FEATURE_BOUND);
+    b[18] = (0.0, 2.0);
     b
 }

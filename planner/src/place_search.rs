@@ -9,68 +9,22 @@
 //! the open-loop script ([`crate::place`]).
 //!
 //! The TCP follows a task-space offset from the carry pose (`corrected`, through the arm's
-//! Jacobian), one env step at a time. Its parameters ([`SearchParams`]) are tuned on training
-//! scenarios by a grid search (`fairgrasp baseline --script force_search --search …`,
-//! docs/place.md).
+//! Jacobian), one env step at a time. Its parameters ([`SearchParams`], the preset's
+//! `[task.place.search]`) are tuned on training scenarios by `fairgrasp tune` (docs/place.md).
 
-use fairgrasp_env::config::SearchTuning;
-use fairgrasp_env::{EnvConfig, Observation};
+use fairgrasp_env::Observation;
+pub use fairgrasp_env::config::SearchParams;
 use fairgrasp_kinematics::{ArmModel, Pose};
-use serde::Serialize;
 
 use crate::correction::{TaskCorrection, corrected};
 
-/// The search's settings.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct SearchParams {
-    /// Descent speed \[m/s\].
-    pub descend_speed: f64,
-    /// Upward wrist force that counts as a touch \[N\].
-    pub contact_force: f64,
-    /// The admittance of the press while spiralling: the TCP's vertical speed per newton of
-    /// force below `contact_force` \[m/s/N\] (capped at `descend_speed` either way).
-    pub admittance: f64,
-    /// The spiral's pitch: its radius grows this much per turn \[m\].
-    pub pitch: f64,
-    /// The spiral's speed along its path \[m/s\].
-    pub speed: f64,
-    /// The largest spiral radius searched before giving up (the cube is released where it is)
-    /// \[m\].
-    pub max_radius: f64,
-    /// A touch within this height above the floor's depth counts as the cube on the floor (it
-    /// is in); a higher one is the rim, and the spiral starts \[m\]. `None`: half the wall.
-    pub floor_band: Option<f64>,
-}
-
-impl Default for SearchParams {
-    /// The settings tuned on `place_grasp_error` and `place_fixture_error`
-    /// ([`SearchTuning::default`]) and the untuned rest.
-    fn default() -> Self {
-        let tuned = SearchTuning::default();
-        Self {
-            descend_speed: 0.01,
-            contact_force: tuned.contact_force,
-            admittance: 0.004,
-            pitch: tuned.pitch,
-            speed: tuned.speed,
-            max_radius: 0.009,
-            floor_band: tuned.floor_band,
-        }
-    }
-}
-
-impl SearchParams {
-    /// The search as tuned for the env's family (`[task.place.search]`), the rest default.
-    pub fn tuned_for(env: &EnvConfig) -> Self {
-        let t = &env.task.place.search;
-        Self {
-            contact_force: t.contact_force,
-            pitch: t.pitch,
-            speed: t.speed,
-            floor_band: t.floor_band,
-            ..Self::default()
-        }
-    }
+/// What the wrist feels pushing up along the table's vertical in `obs` \[N\] (0 without a
+/// wrist sensor); `table_in_base` is the table frame in `base_link`.
+pub fn upward_force(obs: &Observation, table_in_base: &Pose) -> f64 {
+    obs.wrist_force.map_or(0.0, |f| {
+        let z = table_in_base.transform_vector([0.0, 0.0, 1.0]);
+        f[0] * z[0] + f[1] * z[1] + f[2] * z[2]
+    })
 }
 
 /// Where the search is.
@@ -81,8 +35,9 @@ enum Stage {
     /// On the rim, touched at `touch` \[m\] below the carry pose, now at `depth`, `time` \[s\] into
     /// the spiral.
     Spiral { touch: f64, depth: f64, time: f64 },
-    /// Found: going down into the pocket.
-    Insert { depth: f64 },
+    /// Found: going down into the pocket, from the spiral's `time` \[s\] (where it goes on if
+    /// the find proves false, [`SearchParams::check_floor`]).
+    Insert { depth: f64, time: f64 },
     /// At the floor, or given up: the search's work is done.
     Done,
 }
@@ -94,8 +49,6 @@ pub struct ForceSearch {
     carry: [f64; 6],
     /// Depth below the carry pose where the cube's bottom is just above the floor \[m\].
     floor_depth: f64,
-    /// Depths above this are touches on the rim, not on the floor \[m\].
-    rim_below: f64,
     /// The pocket's depth \[m\].
     wall_height: f64,
     stage: Stage,
@@ -108,6 +61,37 @@ pub struct ForceSearch {
     /// The offset the last step commanded: xy in the table plane, then depth below the carry
     /// pose \[m\].
     last: [f64; 3],
+    /// The switching search's rule, until its first touch: a touch farther than the band
+    /// \[m\] from the rim's height switches to the tilted cube's settings.
+    switch: Option<(f64, SearchParams)>,
+    /// What the switch read the cycle as at the first touch: `Some(true)` tilted.
+    read_tilted: Option<bool>,
+    /// A residual's scaling of the settings ([`Modulation`]).
+    modulation: Modulation,
+    /// Depth of the first touch below the carry pose \[m\].
+    first_touch: Option<f64>,
+    /// The largest upward wrist force so far \[N\].
+    peak_force: f64,
+}
+
+/// Factors on the search's settings, set each step by a residual: 1 leaves a setting as it is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Modulation {
+    /// On the floor band (how near the floor a touch counts as the cube in).
+    pub floor_band: f64,
+    /// On the pace along the spiral (its speed; the path stays the same).
+    pub spiral_pace: f64,
+    /// On the touch force (what counts as a touch, and the press the spiral holds).
+    pub touch_force: f64,
+}
+
+impl Modulation {
+    /// The search as set.
+    pub const NONE: Modulation = Modulation {
+        floor_band: 1.0,
+        spiral_pace: 1.0,
+        touch_force: 1.0,
+    };
 }
 
 impl ForceSearch {
@@ -124,13 +108,74 @@ impl ForceSearch {
             params,
             carry,
             floor_depth,
-            rim_below: floor_depth - params.floor_band.unwrap_or(0.5 * wall_height),
             wall_height,
             stage: Stage::Descend { depth: 0.0 },
             found_xy: [0.0; 2],
             step_dt,
             correction: TaskCorrection::ZERO,
             last: [0.0; 3],
+            switch: None,
+            read_tilted: None,
+            modulation: Modulation::NONE,
+            first_touch: None,
+            peak_force: 0.0,
+        }
+    }
+
+    /// Scales the search's settings from the next step on (a residual's adaptation): the floor
+    /// band, the spiral's pace along its path, the touch force; [`Modulation::NONE`] is the
+    /// search as set.
+    pub fn set_modulation(&mut self, m: Modulation) {
+        self.modulation = m;
+    }
+
+    /// The depth below the carry pose of the first touch, relative to where a flat cube meets
+    /// the rim \[m\] (positive: deeper; `None` before a touch).
+    pub fn first_touch_below_rim(&self) -> Option<f64> {
+        self.first_touch.map(|d| d - self.rim_contact_depth())
+    }
+
+    /// The largest upward wrist force felt so far \[N\].
+    pub fn peak_force(&self) -> f64 {
+        self.peak_force
+    }
+
+    /// Depths above this are touches on the rim, not on the floor \[m\].
+    fn rim_below(&self) -> f64 {
+        // A factor of 1 is exact: the search as set, to the bit.
+        let band = self.params.floor_band.unwrap_or(0.5 * self.wall_height);
+        self.floor_depth - band * self.modulation.floor_band
+    }
+
+    /// Where a flat cube's face meets the rim's top, below the carry pose \[m\] (the floor
+    /// depth leaves the cube DROP_HEIGHT above the floor).
+    fn rim_contact_depth(&self) -> f64 {
+        self.floor_depth + crate::place::DROP_HEIGHT - self.wall_height
+    }
+
+    /// The switching search: these settings until the first touch; a touch farther than
+    /// `tilt_band` \[m\] above or below the rim's height (a tilted cube's corner meets the rim
+    /// or dips into the pocket before a flat face would) switches to `tilted`.
+    pub fn with_switch(mut self, tilt_band: f64, tilted: SearchParams) -> Self {
+        self.switch = Some((tilt_band, tilted));
+        self
+    }
+
+    /// What the switching search read the cycle as at its first touch (`Some(true)`: a tilted
+    /// cube); `None` before the touch, or without a switch.
+    pub fn read_tilted(&self) -> Option<bool> {
+        self.read_tilted
+    }
+
+    /// At the first touch, at `depth` below the carry pose \[m\]: reads the cycle and switches.
+    fn switch_at_touch(&mut self, depth: f64) {
+        let Some((band, tilted)) = self.switch.take() else {
+            return;
+        };
+        let is_tilted = (depth - self.rim_contact_depth()).abs() > band;
+        self.read_tilted = Some(is_tilted);
+        if is_tilted {
+            self.params = tilted;
         }
     }
 
@@ -187,15 +232,20 @@ impl ForceSearch {
     /// Advances the search by one env step on what the wrist feels in `obs` (its push along
     /// the table's vertical); returns the joints the arm should reach by the next step.
     pub fn step(&mut self, obs: &Observation, model: &ArmModel, table_in_base: &Pose) -> [f64; 6] {
-        let up = obs.wrist_force.map_or(0.0, |f| {
-            let z = table_in_base.transform_vector([0.0, 0.0, 1.0]);
-            f[0] * z[0] + f[1] * z[1] + f[2] * z[2]
-        });
+        let up = upward_force(obs, table_in_base);
+        // A factor of 1 is exact: the search as set, to the bit.
+        let contact_force = self.params.contact_force * self.modulation.touch_force;
+        let touched = up > contact_force;
+        self.peak_force = self.peak_force.max(up);
+        if let (true, Stage::Descend { depth }) = (touched, self.stage) {
+            self.first_touch.get_or_insert(depth);
+            self.switch_at_touch(depth);
+        }
         let p = self.params;
-        let touched = up > p.contact_force;
+        let rim_below = self.rim_below();
         let down = p.descend_speed * self.step_dt;
         let (xy, depth) = match self.stage {
-            Stage::Descend { depth } if touched && depth < self.rim_below => {
+            Stage::Descend { depth } if touched && depth < rim_below => {
                 self.stage = Stage::Spiral {
                     touch: depth,
                     depth,
@@ -212,30 +262,38 @@ impl ForceSearch {
                 self.stage = Stage::Descend { depth: d };
                 ([0.0; 2], d)
             }
-            Stage::Insert { depth } if depth >= self.floor_depth => {
+            Stage::Insert { depth, .. } if depth >= self.floor_depth => {
                 self.stage = Stage::Done;
                 (self.found_xy, depth)
             }
-            Stage::Insert { depth } => {
+            Stage::Insert { depth, time } if p.check_floor && touched && depth < rim_below => {
+                // Stopped above the floor: a false find; the spiral goes on from there.
+                self.stage = Stage::Spiral {
+                    touch: depth,
+                    depth,
+                    time,
+                };
+                (self.found_xy, depth)
+            }
+            Stage::Insert { depth, time } => {
                 let d = (depth + down).min(self.floor_depth);
-                self.stage = Stage::Insert { depth: d };
+                self.stage = Stage::Insert { depth: d, time };
                 (self.found_xy, d)
             }
             Stage::Spiral { touch, depth, time } => {
                 let here = self.spiral(time);
-                let sink =
-                    (p.admittance * (p.contact_force - up) * self.step_dt).clamp(-down, down);
+                let sink = (p.admittance * (contact_force - up) * self.step_dt).clamp(-down, down);
                 let d = (depth + sink).min(self.floor_depth);
                 if d - touch > 0.5 * self.wall_height {
                     // Sunk below the rim: the cube is over the opening.
                     self.found_xy = here;
-                    self.stage = Stage::Insert { depth: d };
+                    self.stage = Stage::Insert { depth: d, time };
                     (here, d)
                 } else if here[0].hypot(here[1]) > p.max_radius {
                     self.stage = Stage::Done;
                     (here, d)
                 } else {
-                    let t = time + self.step_dt;
+                    let t = time + self.step_dt * self.modulation.spiral_pace;
                     self.stage = Stage::Spiral {
                         touch,
                         depth: d,

@@ -123,7 +123,7 @@ fn spirals_and_seats(seeds: std::ops::Range<u64>, floor_band: Option<f64>) -> (u
     let config = presets::load("place_tilted").unwrap();
     let params = SearchParams {
         floor_band,
-        ..SearchParams::tuned_for(&config)
+        ..config.task.place.search
     };
     let (mut spiralled, mut seated) = (0, 0);
     for seed in seeds {
