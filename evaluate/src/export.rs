@@ -76,12 +76,13 @@ pub fn export_episode(
     limits: &StreamLimits,
 ) -> Result<ExportedEpisode, ExportError> {
     method.check_task(config)?;
+    let scripts = scripts_for([config]);
     let (index, learned): (usize, Vec<LearnedPolicy>) = match method {
         Method::Script(i) => (i, Vec::new()),
-        Method::Learned(l) => (scripts_for(config).len(), vec![*l]),
+        Method::Learned(l) => (scripts.len(), vec![*l]),
     };
     let calibration = calibration_of(config, "the exported preset")?;
-    let mut policy = make_policy(index, &learned, config, &calibration);
+    let mut policy = make_policy(index, &scripts, &learned, config, &calibration);
     let mut env = GraspEnv::new(config.clone()).map_err(CompareError::from)?;
     let mut log = JointLog::default();
     let record =

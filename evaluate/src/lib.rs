@@ -5,7 +5,10 @@
 //! - [`squeeze_probe`]: the grip force a squeezing residual commands against the squeeze each
 //!   cube needed (`fairgrasp eval --squeeze-chart`).
 //! - [`export`]: one episode as a servo stream for a real FR3 (`fairgrasp export`).
+//! - [`tune`]: a hand-written control's parameters tuned on training scenarios by CMA-ES
+//!   (`fairgrasp tune`).
 
 pub mod compare;
 pub mod export;
 pub mod squeeze_probe;
+pub mod tune;

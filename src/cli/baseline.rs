@@ -4,14 +4,13 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 use fairgrasp_env::config::presets::{self, PRESETS, RENAMED_PRESETS};
 use fairgrasp_env::episode::{EvalReport, Policy, evaluate_seeded};
 use fairgrasp_env::{EnvConfig, TaskKind};
-use fairgrasp_planner::{
-    BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
-    ScriptedPlace, SearchParams, TunedGripScript,
-};
+use fairgrasp_evaluate::tune::fragment;
+use fairgrasp_planner::CameraCalibration;
+use fairgrasp_planner::controls::{self, CONTROLS, Control, ParamValues};
 use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -58,32 +57,17 @@ pub struct ScenarioArgs {
     pub json: bool,
 }
 
-/// Which scripted grasp runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ScriptArg {
-    /// Plans once from the first observation (the baseline).
-    #[value(name = "open_loop")]
-    OpenLoop,
-    /// Re-plans when the observed cube moves, retries a missed grasp once.
-    #[value(name = "closed_loop")]
-    ClosedLoop,
-    /// The closed loop on the cube's true pose (the ceiling).
-    Oracle,
-    /// The open-loop script after a simulated camera calibration (8 touched marker spots).
-    Calibrated,
-    /// The open-loop script squeezing the grip tuned for the preset (`[control] grip_force`;
-    /// `--grip-force` sets another, for a tuning grid).
-    #[value(name = "tuned_grip")]
-    TunedGrip,
-    /// The place task: the open-loop script with a force-guided spiral search in place of the
-    /// lower (`--search-*` set its parameters, for a tuning grid).
-    #[value(name = "force_search")]
-    ForceSearch,
-    /// The place task: the force search in closed loop (the cube re-observed in the hand before
-    /// the place is planned). `closed_loop` on a place preset is the closed-loop place without
-    /// the search.
-    #[value(name = "closed_loop_force_search")]
-    ClosedLoopForceSearch,
+/// Every control's command-line name, each once (the table in `fairgrasp_planner::controls`).
+fn script_names() -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = CONTROLS.iter().map(|c| c.cli).collect();
+    names.dedup();
+    let mut seen = Vec::new();
+    names.retain(|n| {
+        let new = !seen.contains(n);
+        seen.push(*n);
+        new
+    });
+    names
 }
 
 #[derive(Args, Debug)]
@@ -92,13 +76,20 @@ pub struct BaselineArgs {
     scenarios: ScenarioArgs,
     /// Which script: open_loop (the baseline), closed_loop, oracle, calibrated or tuned_grip; on
     /// a place preset open_loop, force_search, closed_loop or closed_loop_force_search.
-    #[arg(long, value_enum, default_value = "open_loop")]
-    script: ScriptArg,
+    #[arg(long, default_value = "open_loop", value_parser = clap::builder::PossibleValuesParser::new(script_names()))]
+    script: String,
+    /// A preset fragment `fairgrasp tune` wrote (its `tuned.toml`): the script runs with the
+    /// tuned setting. It must be the script's and tuned on this preset.
+    #[arg(long, value_name = "FILE")]
+    tuned: Option<PathBuf>,
     /// With `--script tuned_grip`: squeeze this many newtons per finger (0–100] instead of the
     /// preset's `[control] grip_force`: one point of the grid an engineer searches (run it on
     /// a training seed, never on the seed results are reported on).
     #[arg(long, value_name = "N", value_parser = grip_force)]
     grip_force: Option<f64>,
+    /// With `--script force_search`: the descent speed [m/s].
+    #[arg(long, value_name = "M_PER_S", value_parser = crate::cli::args::finite_number)]
+    search_descend_speed: Option<f64>,
     /// With `--script force_search`: the touch threshold of the wrist force [N].
     #[arg(long, value_name = "N", value_parser = crate::cli::args::finite_number)]
     search_force: Option<f64>,
@@ -123,55 +114,78 @@ pub struct BaselineArgs {
 }
 
 impl BaselineArgs {
-    /// The force search's parameters: the preset's tuned ones with the `--search-*` flags given.
-    /// The flags a family's tuning holds (force, pitch, speed, floor band) are checked by the
-    /// preset's own rule (`[task.place.search]`); admittance and largest radius here.
-    fn search_params(&self, config: &EnvConfig) -> anyhow::Result<SearchParams> {
-        let mut tuned = config.clone();
-        let t = &mut tuned.task.place.search;
-        let mut given_flags = Vec::new();
-        for (flag, given, slot) in [
-            ("--search-force", self.search_force, &mut t.contact_force),
-            ("--search-pitch", self.search_pitch, &mut t.pitch),
-            ("--search-speed", self.search_speed, &mut t.speed),
+    /// The values the flags give (`--search-*`, `--grip-force`), by parameter name, with the
+    /// flags as the user typed them (for an error).
+    fn flag_values(&self) -> (ParamValues, Vec<String>) {
+        let mut values = ParamValues::new();
+        let mut given = Vec::new();
+        for (flag, name, v) in [
+            (
+                "--search-descend-speed",
+                "descend_speed",
+                self.search_descend_speed,
+            ),
+            ("--search-force", "contact_force", self.search_force),
+            ("--search-admittance", "admittance", self.search_admittance),
+            ("--search-pitch", "pitch", self.search_pitch),
+            ("--search-speed", "speed", self.search_speed),
+            ("--search-max-radius", "max_radius", self.search_max_radius),
+            ("--search-floor-band", "floor_band", self.search_floor_band),
+            ("--grip-force", "grip_force", self.grip_force),
         ] {
-            if let Some(v) = given {
-                *slot = v;
-                given_flags.push(format!("{flag} {v}"));
+            if let Some(v) = v {
+                values.insert(name.to_string(), v);
+                given.push(format!("{flag} {v}"));
             }
         }
-        if let Some(band) = self.search_floor_band {
-            t.floor_band = Some(band);
-            given_flags.push(format!("--search-floor-band {band}"));
+        (values, given)
+    }
+
+    /// The preset's config with the tuned fragment and the flags' values set for `control`;
+    /// a flag of another control, or a value the preset refuses, is refused naming the flag.
+    fn control_config(&self, config: &mut EnvConfig, control: &Control) -> anyhow::Result<()> {
+        if let Some(path) = &self.tuned {
+            let tuned = fragment::apply(config, &self.scenarios.preset, path)?;
+            if tuned.cli != control.cli {
+                anyhow::bail!(
+                    "--tuned {}: a fragment of `{}`, not of --script {}",
+                    path.display(),
+                    tuned.cli,
+                    control.cli
+                );
+            }
         }
-        tuned
-            .validate()
-            .map_err(|e| anyhow::anyhow!("{}: {e}", given_flags.join(", ")))?;
-        let mut p = SearchParams::tuned_for(&tuned);
-        for (flag, given, slot, lo, hi) in [
-            (
-                "--search-admittance",
-                self.search_admittance,
-                &mut p.admittance,
-                0.0001,
-                0.05,
-            ),
-            (
-                "--search-max-radius",
-                self.search_max_radius,
-                &mut p.max_radius,
-                0.001,
-                0.05,
-            ),
-        ] {
-            if let Some(v) = given {
-                if !(lo..=hi).contains(&v) {
-                    anyhow::bail!("{flag} {v}: must be in [{lo}, {hi}]");
+        let (values, given) = self.flag_values();
+        if let Some(foreign) = values.keys().find(|n| control.param(n).is_none()) {
+            let flag = given
+                .iter()
+                .find(|g| {
+                    g.contains(&foreign.replace('_', "-"))
+                        || foreign == "contact_force"
+                        || foreign == "grip_force"
+                })
+                .cloned()
+                .unwrap_or_default();
+            anyhow::bail!(
+                "{flag}: not a parameter of --script {} ({}): the --search-* flags are force_search's, --grip-force tuned_grip's",
+                control.cli,
+                if control.params.is_empty() {
+                    "it has none".to_string()
+                } else {
+                    control
+                        .params
+                        .iter()
+                        .map(|p| p.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 }
-                *slot = v;
-            }
+            );
         }
-        Ok(p)
+        (control.set)(config, &values);
+        config
+            .validate()
+            .map_err(|e| anyhow::anyhow!("{}: {e}", given.join(", ")))?;
+        Ok(())
     }
 }
 
@@ -198,6 +212,17 @@ pub fn evaluate_and_print<P: Policy>(
     extra: serde_json::Value,
 ) -> anyhow::Result<ExitCode> {
     let config = preset_config(&a.preset, a.arm)?;
+    evaluate_config(a, &config, method, make, extra)
+}
+
+/// [`evaluate_and_print`] on `config` (the preset of `a` with a tuned setting, say).
+pub fn evaluate_config<P: Policy>(
+    a: &ScenarioArgs,
+    config: &EnvConfig,
+    method: &str,
+    make: &(dyn Fn(&EnvConfig) -> P + Sync),
+    extra: serde_json::Value,
+) -> anyhow::Result<ExitCode> {
     let threads = a
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
@@ -206,12 +231,12 @@ pub fn evaluate_and_print<P: Policy>(
     }
     let bar = progress_bar(u64::from(a.episodes), a.json, method);
     let report = evaluate_seeded(
-        &config,
+        config,
         a.seed,
         a.episodes as usize,
         threads,
         a.record.as_deref(),
-        &|| make(&config),
+        &|| make(config),
         &|| bar.inc(1),
     )?;
     bar.finish_and_clear();
@@ -285,9 +310,18 @@ pub fn print_report(method: &str, preset: &str, arm: ArmSimulation, seed: u64, r
         100.0 * r.ci_low,
         100.0 * r.ci_high
     );
-    match r.mean_steps_to_success {
-        Some(s) => println!("  mean steps to success {s:5.1}"),
-        None => println!("  mean steps to success   n/a (no success)"),
+    match (r.mean_steps_to_success, r.mean_cycle_time_s) {
+        (Some(s), Some(c)) => println!("  mean steps to success {s:5.1}  (cycle time {c:.1} s)"),
+        (Some(s), None) => println!("  mean steps to success {s:5.1}"),
+        (None, _) => println!("  mean steps to success   n/a (no success)"),
+    }
+    if let Some(takt) = r.takt_s {
+        println!(
+            "  within the {takt} s takt {:5.1} %  (95 % Wilson CI {:.1}–{:.1} %)",
+            100.0 * r.within_takt_rate,
+            100.0 * r.within_takt_ci_low,
+            100.0 * r.within_takt_ci_high
+        );
     }
     println!("  collision rate        {:5.1} %", 100.0 * r.collision_rate);
     println!("  mean return           {:7.3}", r.mean_return);
@@ -296,99 +330,85 @@ pub fn print_report(method: &str, preset: &str, arm: ArmSimulation, seed: u64, r
 }
 
 pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
-    let none = serde_json::json!({});
-    if a.grip_force.is_some() && a.script != ScriptArg::TunedGrip {
-        anyhow::bail!("--grip-force is the tuned_grip script's: add --script tuned_grip");
+    let mut config = preset_config(&a.scenarios.preset, a.scenarios.arm)?;
+    let task = config.task.kind;
+    let Some(control) = controls::control(task, &a.script) else {
+        anyhow::bail!(
+            "--script {} on preset `{}`: not a control of its task ({}); its scripts are {}",
+            a.script,
+            a.scenarios.preset,
+            if task == TaskKind::Place {
+                "place"
+            } else {
+                "lift"
+            },
+            controls::control_names(task).join(", ")
+        );
+    };
+    a.control_config(&mut config, control)?;
+    let calibration = CameraCalibration::of(&config).map_err(anyhow::Error::msg)?;
+    if control.cli == "calibrated" && !a.scenarios.json {
+        print_calibration(&calibration);
     }
-    let config = preset_config(&a.scenarios.preset, a.scenarios.arm)?;
-    if config.task.kind == TaskKind::Place {
-        let params = a.search_params(&config)?;
-        return match a.script {
-            ScriptArg::OpenLoop => {
-                let make = |config: &EnvConfig| ScriptedPlace::new(config);
-                evaluate_and_print(&a.scenarios, "place script", &make, none)
-            }
-            ScriptArg::ForceSearch => {
-                let make = |config: &EnvConfig| ScriptedPlace::with_search(config, params);
-                let extra = serde_json::json!({ "search": params });
-                evaluate_and_print(&a.scenarios, "place script + force search", &make, extra)
-            }
-            ScriptArg::ClosedLoop => {
-                let make = |config: &EnvConfig| ScriptedPlace::new(config).reobserving();
-                evaluate_and_print(&a.scenarios, "closed-loop place", &make, none)
-            }
-            ScriptArg::ClosedLoopForceSearch => {
-                let make =
-                    |config: &EnvConfig| ScriptedPlace::with_search(config, params).reobserving();
-                let extra = serde_json::json!({ "search": params });
-                let name = "closed-loop place + force search";
-                evaluate_and_print(&a.scenarios, name, &make, extra)
-            }
-            _ => anyhow::bail!(
-                "--preset {}: the place task's scripts are open_loop, force_search, closed_loop \
-                 and closed_loop_force_search; the other controls are lift scripts",
-                a.scenarios.preset
-            ),
-        };
+    let mut extra = serde_json::Map::new();
+    if !control.params.is_empty() {
+        let values = (control.values)(&config);
+        extra.insert("params".into(), serde_json::to_value(&values)?);
+        if control.cli.contains("force_search") {
+            extra.insert(
+                "search".into(),
+                serde_json::to_value(config.task.place.search)?,
+            );
+        }
+        if control.cli == "tuned_grip" {
+            extra.insert(
+                "grip_force_n".into(),
+                serde_json::to_value(values["grip_force"])?,
+            );
+        }
     }
-    match a.script {
-        ScriptArg::ForceSearch | ScriptArg::ClosedLoopForceSearch => {
-            anyhow::bail!(
-                "--script force_search and closed_loop_force_search are the place task's: give a place preset"
-            )
+    if let Some(note) = config.control.tuned.get(control.cli) {
+        extra.insert("tuned".into(), serde_json::to_value(note)?);
+    }
+    if control.cli == "calibrated" {
+        extra.insert("calibration".into(), calibration_json(&calibration));
+    }
+    let make = |config: &EnvConfig| (control.build)(config, &calibration);
+    evaluate_config(
+        &a.scenarios,
+        &config,
+        control.report,
+        &make,
+        serde_json::Value::Object(extra),
+    )
+}
+
+/// The camera calibration's result as `--json` reports it.
+fn calibration_json(calibration: &CameraCalibration) -> serde_json::Value {
+    match &calibration.fit {
+        Ok(fit) => serde_json::json!({
+            "touches": fit.residuals.len(), "rms_m": fit.rms,
+            "camera_error": fit.base_in_world.record(),
+        }),
+        Err(why) => serde_json::json!({"refused": why}),
+    }
+}
+
+/// The camera calibration's result as a line of text.
+fn print_calibration(calibration: &CameraCalibration) {
+    match &calibration.fit {
+        Ok(fit) => {
+            let (dp, dr) = fit.base_in_world.distance_to(&Default::default());
+            println!(
+                "camera calibrated from {} touches (RMS {:.2} mm): the fitted error moves the base origin {:.1} mm and turns {:.2}°",
+                fit.residuals.len(),
+                fit.rms * 1e3,
+                dp * 1e3,
+                dr.to_degrees()
+            );
         }
-        ScriptArg::TunedGrip => {
-            let make = |config: &EnvConfig| {
-                let force = a.grip_force.or(config.control.grip_force);
-                TunedGripScript::with_grip(config, force)
-            };
-            let config = preset_config(&a.scenarios.preset, a.scenarios.arm)?;
-            let force = a.grip_force.or(config.control.grip_force);
-            let extra =
-                serde_json::json!({ "grip_force_n": force.unwrap_or(config.gripper.force) });
-            evaluate_and_print(&a.scenarios, "tuned_grip", &make, extra)
-        }
-        ScriptArg::OpenLoop => {
-            let make = |config: &EnvConfig| ScriptedGrasp::new(config, BaselineConfig::default());
-            evaluate_and_print(&a.scenarios, "baseline", &make, none)
-        }
-        ScriptArg::ClosedLoop => {
-            let make = |config: &EnvConfig| ClosedLoopGrasp::observed(config);
-            evaluate_and_print(&a.scenarios, "closed_loop", &make, none)
-        }
-        ScriptArg::Oracle => {
-            let make = |config: &EnvConfig| ClosedLoopGrasp::oracle(config);
-            evaluate_and_print(&a.scenarios, "oracle", &make, none)
-        }
-        ScriptArg::Calibrated => {
-            let config = preset_config(&a.scenarios.preset, a.scenarios.arm)?;
-            let calibration = CameraCalibration::of(&config).map_err(anyhow::Error::msg)?;
-            let extra = match &calibration.fit {
-                Ok(fit) => serde_json::json!({"calibration": {
-                    "touches": fit.residuals.len(), "rms_m": fit.rms,
-                    "camera_error": fit.base_in_world.record(),
-                }}),
-                Err(why) => serde_json::json!({"calibration": {"refused": why}}),
-            };
-            if !a.scenarios.json {
-                match &calibration.fit {
-                    Ok(fit) => {
-                        let (dp, dr) = fit.base_in_world.distance_to(&Default::default());
-                        println!(
-                            "camera calibrated from {} touches (RMS {:.2} mm): the fitted error moves the base origin {:.1} mm and turns {:.2}°",
-                            fit.residuals.len(),
-                            fit.rms * 1e3,
-                            dp * 1e3,
-                            dr.to_degrees()
-                        );
-                    }
-                    Err(why) => println!(
-                        "camera calibration refused ({why}): the script runs on the camera as it is"
-                    ),
-                }
-            }
-            let make = |config: &EnvConfig| CalibratedScript::new(config, calibration.clone());
-            evaluate_and_print(&a.scenarios, "calibrated", &make, extra)
+        Err(why) => {
+            println!("camera calibration refused ({why}): the script runs on the camera as it is")
         }
     }
 }

@@ -12,6 +12,7 @@ use fairgrasp_evaluate::compare::{
     ComparePreset, CompareSpec, DEFAULT_REPLAY_EPISODES, LearnedPolicy, default_threads,
     run_comparison,
 };
+use fairgrasp_evaluate::tune::fragment;
 use fairgrasp_policy::shipped;
 use fairgrasp_report::comparison_folder::write_comparison_folder;
 use fairgrasp_report::comparison_table;
@@ -41,6 +42,11 @@ pub struct CompareArgs {
     /// place script, the tuned force-guided search, and both in closed loop.
     #[arg(long = "policy", value_name = "NAME|DIR|all")]
     policies: Vec<String>,
+    /// A tuned control's setting (`fairgrasp tune`'s tuned.toml), read into the preset it was
+    /// tuned on, which must be one of --preset; repeat for several. Presets that carry their
+    /// tuned settings (place_cell) need none.
+    #[arg(long = "tuned", value_name = "FILE")]
+    tuned: Vec<PathBuf>,
     /// Seed of the scenario sets, 0–9007199254740991 (2⁵³ − 1).
     #[arg(long, default_value_t = 0, value_parser = super::args::seed)]
     seed: u64,
@@ -101,6 +107,28 @@ fn policy_folders(names: &[String]) -> anyhow::Result<Vec<PathBuf>> {
     Ok(dirs)
 }
 
+/// Reads each tuned fragment into the preset it was tuned on (one of `presets`).
+fn apply_tuned(presets: &mut [ComparePreset], fragments: &[PathBuf]) -> anyhow::Result<()> {
+    for path in fragments {
+        let mut errors = Vec::new();
+        let mut applied = false;
+        for p in presets.iter_mut() {
+            match fragment::apply(&mut p.config, &p.name, path) {
+                Ok(_) => applied = true,
+                Err(e) => errors.push(e.to_string()),
+            }
+        }
+        if !applied {
+            anyhow::bail!(
+                "--tuned {}: fits none of the presets compared ({})",
+                path.display(),
+                errors.join("; ")
+            );
+        }
+    }
+    Ok(())
+}
+
 pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     let names = if a.presets.is_empty() {
         fairgrasp_evaluate::compare::DEFAULT_PRESETS
@@ -117,7 +145,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     } else {
         Vec::new()
     };
-    let presets = names
+    let mut presets = names
         .iter()
         .map(|p| {
             let config = preset_config(p, a.arm).with_context(|| format!("preset `{p}`"))?;
@@ -127,6 +155,7 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
             })
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
+    apply_tuned(&mut presets, &a.tuned)?;
     let spec = CompareSpec {
         presets,
         episodes: a.episodes as usize,
@@ -177,6 +206,11 @@ fn print_summary(
     written: &[String],
 ) -> anyhow::Result<()> {
     print!("{}", comparison_table::pivot_text(comparison));
+    let tuning = comparison_table::tuning_text(comparison);
+    if !tuning.is_empty() {
+        println!("\nHow the controls were set:");
+        print!("{tuning}");
+    }
     let key = comparison_table::key_paired_text(comparison)?;
     if !key.is_empty() {
         println!(

@@ -23,6 +23,7 @@ mod scene;
 mod soak;
 mod squeeze_chart;
 mod train;
+mod tune;
 
 use std::ffi::OsString;
 use std::process::ExitCode;
@@ -81,6 +82,9 @@ enum Command {
     /// An interactive 3D replay (one HTML file, no network) of a scenario run by one or more
     /// policies or scripts.
     Replay(replay::ReplayArgs),
+    /// Tune a hand-written control's parameters on training scenarios with CMA-ES, within a
+    /// budget of env steps: every trial as CSV, the best as a preset fragment (resumable).
+    Tune(tune::TuneArgs),
     /// Benchmarks: `bench env` measures environment steps per second and reset times.
     Bench(bench::BenchArgs),
 }
@@ -173,7 +177,8 @@ impl Cli {
             | Command::Plot(_)
             | Command::Report(_)
             | Command::Export(_)
-            | Command::Replay(_) => true,
+            | Command::Replay(_)
+            | Command::Tune(_) => true,
         }
     }
 }
@@ -196,6 +201,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Replay(a) => replay::run(&a),
         Command::Export(a) => export::run(&a),
         Command::Playback(a) => playback::run(&a),
+        Command::Tune(a) => tune::run(&a),
     }
 }
 

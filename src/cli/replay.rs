@@ -79,6 +79,7 @@ pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
         preset_config(&a.preset, a.arm).with_context(|| format!("preset `{}`", a.preset))?;
     let scenarios = scenario_set(&config, a.seed, a.episode + 1)
         .with_context(|| format!("preset `{}`: drawing scenario {}", a.preset, a.episode))?;
+    let scripts = scripts_for([&config]);
     let mut learned: Vec<LearnedPolicy> = Vec::new();
     let mut methods = Vec::new();
     let mut names = Vec::new();
@@ -89,7 +90,7 @@ pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
         match method {
             Method::Script(i) => methods.push(i),
             Method::Learned(l) => {
-                methods.push(scripts_for(&config).len() + learned.len());
+                methods.push(scripts.len() + learned.len());
                 learned.push(*l);
             }
         }
@@ -100,6 +101,7 @@ pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
         &scenarios,
         &[a.episode],
         &methods,
+        &scripts,
         &learned,
         threads,
     )?;

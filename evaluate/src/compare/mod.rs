@@ -21,6 +21,7 @@ pub mod policies;
 pub mod record;
 mod schedule;
 pub mod spec;
+pub mod tuning;
 
 pub use error::CompareError;
 pub use event::CompareEvent;
@@ -101,8 +102,8 @@ pub fn run_comparison(
     progress: &(dyn Fn(CompareEvent<'_>) + Sync),
 ) -> Result<CompareOutput, CompareError> {
     spec.check()?;
-    let scripts = scripts_for(&spec.presets[0].config);
-    let mut methods: Vec<String> = scripts.iter().map(|s| s.to_string()).collect();
+    let scripts = scripts_for(spec.presets.iter().map(|p| &p.config));
+    let mut methods: Vec<String> = scripts.iter().map(|s| s.report.to_string()).collect();
     methods.extend(learned.iter().map(|l| l.name.clone()));
     let mut work = Vec::with_capacity(spec.presets.len());
     for preset in &spec.presets {
@@ -113,7 +114,8 @@ pub fn run_comparison(
             calibration: calibration_of(&preset.config, &preset.name)?,
         });
     }
-    let reports = schedule::evaluate_all(&work, &methods, learned, spec.threads, progress)?;
+    let reports =
+        schedule::evaluate_all(&work, &methods, &scripts, learned, spec.threads, progress)?;
     let mut reports = reports.into_iter();
     let mut results = Vec::with_capacity(work.len() * methods.len());
     for preset in &spec.presets {
@@ -149,6 +151,7 @@ pub fn run_comparison(
             .collect(),
         recorded,
         replay,
+        tuning: tuning::of_controls(spec, &scripts),
         results,
     };
     comparison
@@ -209,6 +212,7 @@ fn record_all(
 ) -> Result<RecordedSets, CompareError> {
     let picked = picked_scenarios(spec, results);
     let all: Vec<usize> = (0..methods.len()).collect();
+    let scripts = scripts_for(spec.presets.iter().map(|p| &p.config));
     progress(CompareEvent::Recording {
         episodes: all.len() * picked.iter().map(|(p, _)| p.len()).sum::<usize>(),
     });
@@ -223,6 +227,7 @@ fn record_all(
             &w.scenarios,
             scenarios,
             &all,
+            &scripts,
             learned,
             spec.threads,
         )?;

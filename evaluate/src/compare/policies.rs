@@ -4,12 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
+use fairgrasp_env::EnvConfig;
 use fairgrasp_env::episode::Policy;
-use fairgrasp_env::{EnvConfig, TaskKind};
-use fairgrasp_planner::{
-    BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
-    ScriptedPlace, SearchParams, TunedGripScript,
-};
+use fairgrasp_planner::CameraCalibration;
+use fairgrasp_planner::controls::{Control, controls_of};
 
 use crate::compare::error::CompareError;
 use fairgrasp_policy::actor::Actor;
@@ -43,14 +41,19 @@ pub const PLACE_SCRIPTS: [&str; 4] = [
     "closed-loop place + force search",
 ];
 
-/// The scripts a comparison on presets of `config`'s task runs first: [`SCRIPTS`] for the lift
-/// task, [`PLACE_SCRIPTS`] for the place task. Method `i` of a comparison is script `i` while `i`
-/// is below their number, then the learned policies in order (`make_policy`).
-pub fn scripts_for(config: &EnvConfig) -> &'static [&'static str] {
-    match config.task.kind {
-        TaskKind::Lift => &SCRIPTS,
-        TaskKind::Place => &PLACE_SCRIPTS,
-    }
+/// The controls a comparison of `configs` (presets of one task) runs first: the task's controls
+/// ([`fairgrasp_planner::controls::CONTROLS`]) that any of the presets runs by default, in the
+/// table's order ([`SCRIPTS`] for the lift task, [`PLACE_SCRIPTS`] and, with a place cell's
+/// mix, its controls). Method `i` of a comparison is control `i` while `i` is below their
+/// number, then the learned policies in order (`make_policy`).
+pub fn scripts_for<'a>(configs: impl IntoIterator<Item = &'a EnvConfig>) -> Vec<&'static Control> {
+    let configs: Vec<&EnvConfig> = configs.into_iter().collect();
+    let Some(task) = configs.first().map(|c| c.task.kind) else {
+        return Vec::new();
+    };
+    controls_of(task)
+        .filter(|c| configs.iter().any(|env| (c.in_compare)(env)))
+        .collect()
 }
 
 /// A learned policy loaded from its checkpoint folder, with its name in the comparison.
@@ -109,34 +112,21 @@ pub fn run_folder_of(checkpoint: &Path) -> Option<PathBuf> {
         .map(Path::to_path_buf)
 }
 
-/// A fresh policy of method `i` (the task's scripts, [`scripts_for`], then `learned` in order)
-/// for `config`, whose camera calibration is `calibration`.
+/// A fresh policy of method `i` (`scripts` in order, then `learned` in order) for `config`,
+/// whose camera calibration is `calibration`.
 pub(crate) fn make_policy(
     i: usize,
+    scripts: &[&'static Control],
     learned: &[LearnedPolicy],
     config: &EnvConfig,
     calibration: &CameraCalibration,
 ) -> Box<dyn Policy> {
-    let scripts = scripts_for(config).len();
-    if i >= scripts {
-        let l = &learned[i - scripts];
-        return Box::new(actor_policy(&l.meta, &l.actor, config));
-    }
-    if config.task.kind == TaskKind::Place {
-        let search = || ScriptedPlace::with_search(config, SearchParams::tuned_for(config));
-        return match i {
-            0 => Box::new(ScriptedPlace::new(config)),
-            1 => Box::new(search()),
-            2 => Box::new(ScriptedPlace::new(config).reobserving()),
-            _ => Box::new(search().reobserving()),
-        };
-    }
-    match i {
-        0 => Box::new(ScriptedGrasp::new(config, BaselineConfig::default())),
-        1 => Box::new(ClosedLoopGrasp::observed(config)),
-        2 => Box::new(ClosedLoopGrasp::oracle(config)),
-        3 => Box::new(CalibratedScript::new(config, calibration.clone())),
-        _ => Box::new(TunedGripScript::new(config)),
+    match scripts.get(i) {
+        Some(control) => (control.build)(config, calibration),
+        None => {
+            let l = &learned[i - scripts.len()];
+            Box::new(actor_policy(&l.meta, &l.actor, config))
+        }
     }
 }
 

@@ -13,6 +13,7 @@ use fairgrasp_types::work_queue::run_in_order;
 
 use crate::compare::error::CompareError;
 use crate::compare::policies::{LearnedPolicy, calibration_of, make_policy};
+use fairgrasp_planner::controls::Control;
 
 /// One recorded episode: method index, scenario index, outcome and trajectory.
 pub struct Recording {
@@ -24,7 +25,8 @@ pub struct Recording {
     pub trajectory: Trajectory,
 }
 
-/// Runs and records every method of `methods` (indices, see `make_policy`) on every scenario
+/// Runs and records every method of `methods` (indices into `scripts`, then `learned`, see
+/// `make_policy`) on every scenario
 /// of `picked` (indices into `scenarios`) of `config`, on `threads` threads. Returns the
 /// recordings ordered by method, then by the order of `picked`.
 pub fn record_episodes(
@@ -32,6 +34,7 @@ pub fn record_episodes(
     scenarios: &[Scenario],
     picked: &[usize],
     methods: &[usize],
+    scripts: &[&'static Control],
     learned: &[LearnedPolicy],
     threads: usize,
 ) -> Result<Vec<Recording>, CompareError> {
@@ -47,7 +50,7 @@ pub fn record_episodes(
             None => env.insert(GraspEnv::new(config.clone())?),
         };
         let (method, scenario) = jobs[j];
-        let mut policy = make_policy(method, learned, config, calibration);
+        let mut policy = make_policy(method, scripts, learned, config, calibration);
         let mut trajectory = Trajectory::default();
         let record = run_episode(
             env,

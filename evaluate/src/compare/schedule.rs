@@ -23,7 +23,8 @@ use fairgrasp_types::work_queue::run_in_order;
 
 use crate::compare::error::CompareError;
 use crate::compare::event::CompareEvent;
-use crate::compare::policies::{LearnedPolicy, make_policy, scripts_for};
+use crate::compare::policies::{LearnedPolicy, make_policy};
+use fairgrasp_planner::controls::Control;
 
 /// One preset's share of a comparison: its name, config, scenario set and camera calibration.
 pub(crate) struct PresetWork<'a> {
@@ -57,6 +58,7 @@ fn units(methods: usize, scripts: usize) -> Vec<Range<usize>> {
 pub(crate) fn evaluate_all(
     presets: &[PresetWork<'_>],
     methods: &[String],
+    scripts: &[&'static Control],
     learned: &[LearnedPolicy],
     threads: usize,
     progress: &(dyn Fn(CompareEvent<'_>) + Sync),
@@ -64,8 +66,7 @@ pub(crate) fn evaluate_all(
     // Every preset's set has the spec's episode count.
     let episodes = presets.first().map_or(0, |p| p.scenarios.len());
     debug_assert!(presets.iter().all(|p| p.scenarios.len() == episodes));
-    let scripts = presets.first().map_or(0, |p| scripts_for(p.config).len());
-    let units = units(methods.len(), scripts);
+    let units = units(methods.len(), scripts.len());
     let cells = presets.len() * methods.len();
     // Job j is (preset, unit, scenario) in that nesting.
     let locate = |j: usize| {
@@ -103,7 +104,7 @@ pub(crate) fn evaluate_all(
             _ => {
                 let made = units[u]
                     .clone()
-                    .map(|m| make_policy(m, learned, work.config, &work.calibration))
+                    .map(|m| make_policy(m, scripts, learned, work.config, &work.calibration))
                     .collect();
                 &mut policies.insert(((p, u), made)).1
             }

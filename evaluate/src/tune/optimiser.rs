@@ -1,0 +1,282 @@
+//! The tuning loop: CMA-ES (the `cmaes` crate) over the searched parameters mapped to the unit
+//! cube, each trial the control's success on the same training scenarios, until the budget of
+//! env steps is spent. The optimiser is seeded, so a resumed tuning asks for the same settings
+//! in the same order: the trials already in `trials.csv` answer for themselves (checked to be
+//! the same settings), and the tuning goes on where it stopped. Trial 0 is the preset's own
+//! setting, the optimiser's start; the budget is checked before every trial, so a tuning stops
+//! within one trial of it.
+
+use std::cell::{Cell, RefCell};
+use std::path::Path;
+
+use cmaes::{CMAESOptions, DVector, Mode};
+use fairgrasp_env::EnvConfig;
+use fairgrasp_env::config::TuningNote;
+use fairgrasp_env::episode::evaluate_seeded;
+use fairgrasp_planner::CameraCalibration;
+
+use crate::tune::error::TuneError;
+use crate::tune::spec::{Objective, TuneSpec};
+use crate::tune::trials::{self, Trial};
+
+/// The optimiser as a tuning note names it.
+pub const OPTIMISER: &str = "CMA-ES (cmaes 0.2.2)";
+/// The search distribution's first spread, in the unit cube (a quarter of each range).
+const INITIAL_SIGMA: f64 = 0.25;
+/// The objective's cost per squared unit a sample lies outside the cube (its values are
+/// clamped; the cost keeps the mean inside).
+const OUTSIDE_PENALTY: f64 = 1.0;
+
+/// What a tuning reports as it goes.
+pub enum TuneEvent<'a> {
+    /// `trials` were read back from the folder and answer for themselves.
+    Resumed { trials: usize, env_steps: u64 },
+    /// A trial starts (`index`), `spent` of `budget` env steps spent before it.
+    TrialStart {
+        index: usize,
+        spent: u64,
+        budget: u64,
+    },
+    /// One episode of the running trial ended.
+    Episode,
+    /// A trial ended; `best` is the best so far.
+    TrialDone {
+        trial: &'a Trial,
+        best: &'a Trial,
+        spent: u64,
+        budget: u64,
+    },
+}
+
+/// A finished tuning.
+pub struct TuneOutcome {
+    pub trials: Vec<Trial>,
+    /// Index of the best trial (the highest objective; the earliest of equals).
+    pub best: usize,
+    /// The preset's config with the best trial's settings.
+    pub tuned: EnvConfig,
+    pub note: TuningNote,
+}
+
+/// Runs (or resumes) the tuning `spec` in the folder `dir` on `threads` threads.
+pub fn run_tune(
+    spec: &TuneSpec,
+    dir: &Path,
+    threads: usize,
+    progress: &(dyn Fn(TuneEvent<'_>) + Sync),
+) -> Result<TuneOutcome, TuneError> {
+    let previous = crate::tune::folder::open(spec, dir)?;
+    let names = spec.names();
+    let csv = dir.join("trials.csv");
+    if !previous.is_empty() {
+        let env_steps = previous.iter().map(|t| t.env_steps).sum();
+        progress(TuneEvent::Resumed {
+            trials: previous.len(),
+            env_steps,
+        });
+    }
+    let calibration = CameraCalibration::of(&spec.config).map_err(TuneError::Request)?;
+    let done: RefCell<Vec<Trial>> = RefCell::new(Vec::new());
+    let failure: RefCell<Option<TuneError>> = RefCell::new(None);
+    let generation = Cell::new(0usize);
+    let budget_spent = Cell::new(false);
+    let spent = || done.borrow().iter().map(|t| t.env_steps).sum::<u64>();
+    let objective = |point: &DVector<f64>| -> f64 {
+        if failure.borrow().is_some() {
+            return f64::NAN;
+        }
+        let raw: Vec<f64> = point.iter().copied().collect();
+        let unit: Vec<f64> = raw.iter().map(|u| u.clamp(0.0, 1.0)).collect();
+        let outside: f64 = raw.iter().zip(&unit).map(|(r, u)| (r - u).powi(2)).sum();
+        let index = done.borrow().len();
+        if index >= previous.len() && spent() >= spec.budget {
+            budget_spent.set(true);
+            return f64::NAN; // ends the generation: the budget is spent
+        }
+        let values = spec.values_at(&unit);
+        let trial = match previous.get(index) {
+            Some(old) if old.values == values => old.clone(),
+            Some(_) => {
+                *failure.borrow_mut() = Some(TuneError::file(
+                    &csv,
+                    format!(
+                        "trial {index} holds other settings than the optimiser asks for again: the folder's trials are not this tuning's"
+                    ),
+                ));
+                return f64::NAN;
+            }
+            None => {
+                progress(TuneEvent::TrialStart {
+                    index,
+                    spent: spent(),
+                    budget: spec.budget,
+                });
+                match run_trial(
+                    spec,
+                    index,
+                    generation.get(),
+                    values,
+                    threads,
+                    &calibration,
+                    progress,
+                ) {
+                    Ok(t) => t,
+                    Err(e) => {
+                        *failure.borrow_mut() = Some(e);
+                        return f64::NAN;
+                    }
+                }
+            }
+        };
+        let score = trial.objective - OUTSIDE_PENALTY * outside;
+        let fresh = index >= previous.len();
+        done.borrow_mut().push(trial);
+        if fresh {
+            let all = done.borrow();
+            if let Err(e) = trials::save(&csv, &all, &names) {
+                *failure.borrow_mut() = Some(e);
+                return f64::NAN;
+            }
+            let best = &all[best_of(&all)];
+            progress(TuneEvent::TrialDone {
+                trial: &all[index],
+                best,
+                spent: spent(),
+                budget: spec.budget,
+            });
+        }
+        score
+    };
+    // Trial 0 is the preset's own setting: the tuning's starting point, measured.
+    let mut start = spec.start();
+    let _ = objective(&DVector::from_vec(start.clone()));
+    if let Some(e) = failure.borrow_mut().take() {
+        return Err(e);
+    }
+    let mut restart = 0u64;
+    while spent() < spec.budget {
+        let mut cma = CMAESOptions::new(start.clone(), INITIAL_SIGMA)
+            .mode(Mode::Maximize)
+            .seed(spec.optimiser_seed.wrapping_add(restart))
+            .build(&objective)
+            .map_err(|e| TuneError::Request(format!("the optimiser refused its options: {e:?}")))?;
+        while spent() < spec.budget {
+            let ended = cma.next();
+            if let Some(e) = failure.borrow_mut().take() {
+                return Err(e);
+            }
+            if budget_spent.get() {
+                break;
+            }
+            generation.set(generation.get() + 1);
+            if ended.is_some() {
+                break; // converged or stalled: restart from the best so far
+            }
+        }
+        restart += 1;
+        let all = done.borrow();
+        let best = &all[best_of(&all)];
+        start = spec
+            .searched
+            .iter()
+            .map(|s| {
+                s.param
+                    .to_unit(best.values[s.param.name], s.range)
+                    .clamp(0.0, 1.0)
+            })
+            .collect();
+    }
+    let trials = done.into_inner();
+    finish(spec, dir, trials)
+}
+
+/// The best trial's index: the highest objective, the earliest of equals.
+pub fn best_of(trials: &[Trial]) -> usize {
+    let mut best = 0;
+    for (i, t) in trials.iter().enumerate() {
+        if t.objective > trials[best].objective {
+            best = i;
+        }
+    }
+    best
+}
+
+/// One trial: the control with `values` on the spec's training scenarios.
+fn run_trial(
+    spec: &TuneSpec,
+    index: usize,
+    generation: usize,
+    values: fairgrasp_planner::controls::ParamValues,
+    threads: usize,
+    calibration: &CameraCalibration,
+    progress: &(dyn Fn(TuneEvent<'_>) + Sync),
+) -> Result<Trial, TuneError> {
+    let mut config = spec.config.clone();
+    (spec.control.set)(&mut config, &values);
+    let refused = Trial {
+        index,
+        generation,
+        values: values.clone(),
+        episodes: 0,
+        env_steps: 0,
+        successes: 0,
+        within_takt: 0,
+        objective: -1.0,
+        mean_cycle_time_s: None,
+    };
+    if config.validate().is_err() {
+        return Ok(refused);
+    }
+    let build = spec.control.build;
+    let report = evaluate_seeded(
+        &config,
+        spec.scenario_seed,
+        spec.episodes,
+        threads,
+        None,
+        &|| build(&config, calibration),
+        &|| progress(TuneEvent::Episode),
+    )?;
+    let n = report.episodes.max(1) as f64;
+    let objective = match spec.objective {
+        Objective::SuccessWithinTakt => report.successes_within_takt as f64 / n,
+        Objective::Success => report.successes as f64 / n,
+    };
+    Ok(Trial {
+        episodes: report.episodes,
+        env_steps: report.results.iter().map(|r| r.steps as u64).sum(),
+        successes: report.successes,
+        within_takt: report.successes_within_takt,
+        objective,
+        mean_cycle_time_s: report.mean_cycle_time_s,
+        ..refused
+    })
+}
+
+/// The tuned config and its note from the trials; writes the fragment.
+fn finish(spec: &TuneSpec, dir: &Path, trials: Vec<Trial>) -> Result<TuneOutcome, TuneError> {
+    let best = best_of(&trials);
+    let note = TuningNote {
+        preset: spec.preset.clone(),
+        optimiser: OPTIMISER.to_string(),
+        objective: spec.objective.describe().to_string(),
+        env_steps: trials.iter().map(|t| t.env_steps).sum(),
+        trials: trials.len(),
+        episodes_per_trial: spec.episodes,
+        scenario_seed: spec.scenario_seed,
+        best: trials[best].objective,
+    };
+    let mut tuned = spec.config.clone();
+    (spec.control.set)(&mut tuned, &trials[best].values);
+    tuned
+        .control
+        .tuned
+        .insert(spec.control.cli.to_string(), note.clone());
+    crate::tune::fragment::write(&dir.join("tuned.toml"), &tuned, spec.control, &note)?;
+    Ok(TuneOutcome {
+        trials,
+        best,
+        tuned,
+        note,
+    })
+}

@@ -1,0 +1,205 @@
+//! `fairgrasp tune`: a hand-written control's parameters tuned by CMA-ES on training scenarios
+//! (`fairgrasp_evaluate::tune`), with a budget of env steps; every trial in `trials.csv`, the
+//! best as a preset fragment (`tuned.toml`) that `baseline --tuned` and `compare --tuned` read.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use clap::Args;
+use fairgrasp_evaluate::tune::{TuneEvent, TuneSpec, run_tune};
+use fairgrasp_types::ArmSimulation;
+
+use crate::cli::baseline::preset_config;
+
+/// The place residual's training budget \[env steps\]: what a control tuned against it gets.
+const DEFAULT_BUDGET: u64 = 3_000_000;
+
+#[derive(Args, Debug)]
+#[command(after_help = "Examples:
+  fairgrasp tune --preset place_cell --control force_search --out tuned/place_cell_search
+  fairgrasp tune --preset place_cell --control force_search --param pitch=0.001:0.004 --param speed --budget 500000 --out t
+  fairgrasp tune --preset heavy_slippery --control tuned_grip --out tuned/grip
+
+Ctrl-C stops it; the same command again resumes it, trial for trial. The tuned setting is
+tuned.toml in the folder: `fairgrasp baseline --preset P --script C --tuned FOLDER/tuned.toml`
+runs it (on a held-out seed, e.g. --seed 7), `fairgrasp compare --tuned …` compares it.")]
+pub struct TuneArgs {
+    /// The preset (or .toml file) whose training scenarios the control is tuned on.
+    #[arg(long, value_parser = crate::cli::args::preset)]
+    preset: String,
+    /// The control, by its command-line name (as `baseline --script` takes it): on a place
+    /// preset force_search or closed_loop_force_search; on a lift preset tuned_grip.
+    #[arg(long)]
+    control: String,
+    /// A parameter to tune, with an optional range `NAME=LOW:HIGH` (repeat it; without any,
+    /// every parameter of the control in its default range). `--list` shows them.
+    #[arg(long = "param", value_name = "NAME[=LOW:HIGH]", value_parser = param_range)]
+    params: Vec<(String, Option<[f64; 2]>)>,
+    /// Env steps to spend, 1–1000000000 (the last generation may go a little past it).
+    #[arg(long, default_value_t = DEFAULT_BUDGET)]
+    budget: u64,
+    /// Episodes per trial, 1–100000: the same training scenarios for every trial.
+    #[arg(long, default_value_t = 150)]
+    episodes: usize,
+    /// Seed of the training scenarios (never the seed results are reported on: 7).
+    #[arg(long, default_value_t = 11, value_parser = crate::cli::args::seed)]
+    seed: u64,
+    /// The optimiser's seed.
+    #[arg(long, default_value_t = 0, value_parser = crate::cli::args::seed)]
+    optimiser_seed: u64,
+    /// The tuning's folder: new or empty, or one of this same tuning to resume.
+    #[arg(long, value_name = "DIR", required_unless_present = "list")]
+    out: Option<PathBuf>,
+    /// Worker threads, 1–256 (default: all cores).
+    #[arg(long, value_parser = crate::cli::args::thread_count)]
+    threads: Option<usize>,
+    /// List the control's parameters (name, unit, what it accepts, default range) and stop.
+    #[arg(long)]
+    list: bool,
+}
+
+/// `NAME` or `NAME=LOW:HIGH`.
+fn param_range(text: &str) -> Result<(String, Option<[f64; 2]>), String> {
+    let Some((name, range)) = text.split_once('=') else {
+        return Ok((text.to_string(), None));
+    };
+    let (lo, hi) = range
+        .split_once(':')
+        .ok_or_else(|| format!("`{text}`: a range is NAME=LOW:HIGH"))?;
+    let num = |s: &str| {
+        s.parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| format!("`{text}`: `{s}` is not a finite number"))
+    };
+    Ok((name.to_string(), Some([num(lo)?, num(hi)?])))
+}
+
+pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
+    let config = preset_config(&a.preset, ArmSimulation::Servo)?;
+    if a.list {
+        return list(&config, &a.control);
+    }
+    let spec = TuneSpec::new(
+        &a.preset,
+        config,
+        &a.control,
+        &a.params,
+        a.seed,
+        a.episodes,
+        a.budget,
+        a.optimiser_seed,
+    )?;
+    let dir = a.out.clone().expect("clap requires --out without --list");
+    let threads = a
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    eprintln!(
+        "tuning `{}` on `{}`: {} over {}, {} episodes per trial of seed {}, a budget of {:.2} M env steps ({})",
+        spec.control.cli,
+        spec.preset,
+        spec.objective.describe(),
+        spec.names().join(", "),
+        spec.episodes,
+        spec.scenario_seed,
+        spec.budget as f64 / 1e6,
+        dir.display()
+    );
+    let episodes = AtomicUsize::new(0);
+    let live = std::io::stderr().is_terminal();
+    let outcome = run_tune(&spec, &dir, threads, &|e| {
+        report(&e, &episodes, live, spec.episodes)
+    })?;
+    let best = &outcome.trials[outcome.best];
+    println!(
+        "best: trial {} of {}, {} {:.1} % ({} of {} episodes{}); {:.2} M env steps",
+        best.index,
+        outcome.trials.len(),
+        spec.objective.describe(),
+        100.0 * best.objective,
+        match spec.objective {
+            fairgrasp_evaluate::tune::Objective::SuccessWithinTakt => best.within_takt,
+            fairgrasp_evaluate::tune::Objective::Success => best.successes,
+        },
+        best.episodes,
+        best.mean_cycle_time_s
+            .map_or(String::new(), |c| format!(", mean cycle {c:.1} s")),
+        outcome.note.env_steps as f64 / 1e6
+    );
+    for (name, v) in &best.values {
+        println!("  {name:<14} {v}");
+    }
+    println!(
+        "trials: {}; the setting: {}",
+        dir.join("trials.csv").display(),
+        dir.join("tuned.toml").display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// One progress line per trial on stderr (and a running count of episodes on a terminal).
+fn report(e: &TuneEvent<'_>, episodes: &AtomicUsize, live: bool, per_trial: usize) {
+    match e {
+        TuneEvent::Resumed { trials, env_steps } => eprintln!(
+            "resuming: {trials} trials ({:.2} M env steps) already in the folder",
+            *env_steps as f64 / 1e6
+        ),
+        TuneEvent::TrialStart { .. } => episodes.store(0, Ordering::Relaxed),
+        TuneEvent::Episode => {
+            let n = episodes.fetch_add(1, Ordering::Relaxed) + 1;
+            if live {
+                eprint!("\r  {n}/{per_trial} episodes");
+            }
+        }
+        TuneEvent::TrialDone {
+            trial,
+            best,
+            spent,
+            budget,
+        } => {
+            if live {
+                eprint!("\r");
+            }
+            eprintln!(
+                "trial {:>3} (gen {:>2}): {:5.1} %   best {:5.1} % (trial {})   {:.2} / {:.2} M env steps",
+                trial.index,
+                trial.generation,
+                100.0 * trial.objective,
+                100.0 * best.objective,
+                best.index,
+                *spent as f64 / 1e6,
+                *budget as f64 / 1e6
+            );
+        }
+    }
+}
+
+/// Prints the control's parameters.
+fn list(config: &fairgrasp_env::EnvConfig, name: &str) -> anyhow::Result<ExitCode> {
+    let task = config.task.kind;
+    let Some(c) = fairgrasp_planner::controls::control(task, name) else {
+        anyhow::bail!(
+            "--control {name}: not a control of this preset's task; choose one of {}",
+            fairgrasp_planner::controls::control_names(task).join(", ")
+        );
+    };
+    let now = (c.values)(config);
+    println!("{} ({}): {} parameters", c.cli, c.report, c.params.len());
+    for p in c.params {
+        println!(
+            "  {:<14} {:<11} accepts [{}, {}], searched [{}, {}] ({:?}), now {}: {}",
+            p.name,
+            p.unit,
+            p.accepts[0],
+            p.accepts[1],
+            p.range[0],
+            p.range[1],
+            p.scale,
+            now.get(p.name).copied().unwrap_or(f64::NAN),
+            p.doc
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
