@@ -30,11 +30,20 @@ pub fn csv_header() -> String {
         "mean_return",
     ];
     cols.extend(Outcome::ALL.iter().map(|o| o.as_str()));
+    cols.extend([
+        "mean_cycle_time_s",
+        "takt_s",
+        "successes_within_takt",
+        "within_takt_rate",
+        "within_takt_ci_low",
+        "within_takt_ci_high",
+    ]);
     cols.join(",")
 }
 
 /// `compare.csv`: one row per method and preset, rates as fractions, an empty
-/// `mean_steps_to_success` when nothing succeeded.
+/// `mean_steps_to_success` and `mean_cycle_time_s` when nothing succeeded, an empty `takt_s`
+/// for a task without a takt (then every success counts as within it).
 pub fn to_csv(c: &Comparison) -> String {
     let mut out = csv_header();
     out.push('\n');
@@ -56,6 +65,15 @@ pub fn to_csv(c: &Comparison) -> String {
             e.mean_return.to_string(),
         ];
         fields.extend(Outcome::ALL.iter().map(|&o| e.count(o).to_string()));
+        let optional = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+        fields.extend([
+            optional(e.mean_cycle_time_s),
+            optional(e.takt_s),
+            e.successes_within_takt.to_string(),
+            e.within_takt_rate.to_string(),
+            e.within_takt_ci_low.to_string(),
+            e.within_takt_ci_high.to_string(),
+        ]);
         out.push_str(&fields.join(","));
         out.push('\n');
     }
@@ -147,29 +165,105 @@ pub fn pivot_text(c: &Comparison) -> String {
                 .collect()
         })
         .collect();
+    let mut out = aligned(&header, &rows);
+    out.push('\n');
+    out += &cycle_pivot_text(c, takt_of(c));
+    out
+}
+
+/// The takt of the comparison's presets, if they run on one (the first found).
+fn takt_of(c: &Comparison) -> Option<f64> {
+    c.results.iter().find_map(|r| r.report.takt_s)
+}
+
+/// A cell of the cycle pivot: with a takt, success within it in % and the mean cycle time of
+/// the successes \[s\]; without, the mean cycle time alone.
+fn cycle_cell(r: &MethodResult, takt: Option<f64>) -> String {
+    let e = &r.report;
+    let cycle = e
+        .mean_cycle_time_s
+        .map_or("–".to_string(), |c| format!("{c:.1} s"));
+    match takt {
+        Some(_) => format!("{} ({cycle})", pct(e.within_takt_rate)),
+        None => cycle,
+    }
+}
+
+/// The pivot of the cycle: success within the takt (% of the episodes) and mean cycle time
+/// \[s\] of a task on a takt, the mean cycle time alone of one without, as aligned text.
+fn cycle_pivot_text(c: &Comparison, takt: Option<f64>) -> String {
+    let title = match takt {
+        Some(t) => format!("within {t} s % (mean cycle)"),
+        None => "mean cycle time".to_string(),
+    };
+    let mut header = vec![title.as_str()];
+    header.extend(c.presets.iter().map(String::as_str));
+    let rows: Vec<Vec<String>> = c
+        .methods
+        .iter()
+        .map(|m| {
+            std::iter::once(m.clone())
+                .chain(
+                    c.presets
+                        .iter()
+                        .map(|p| result_of(c, m, p).map_or("–".into(), |r| cycle_cell(r, takt))),
+                )
+                .collect()
+        })
+        .collect();
     aligned(&header, &rows)
 }
 
+/// How each control with parameters was set, one line each (empty without any): what a
+/// learned policy is compared against.
+pub fn tuning_text(c: &Comparison) -> String {
+    c.tuning
+        .iter()
+        .map(|t| format!("  {} on `{}`: {}\n", t.method, t.preset, t.how))
+        .collect()
+}
+
 /// The pivot table in Markdown: one row per method, one column per preset, each cell the
-/// success rate in % over its 95 % Wilson interval.
+/// success rate in % over its 95 % Wilson interval; on a task with a takt, a second table of
+/// success within it and the mean cycle time.
 pub fn pivot_markdown(c: &Comparison) -> String {
+    let mut out = markdown_pivot(c, |e| {
+        format!(
+            "**{}**<br>{}–{}",
+            pct(e.success_rate),
+            pct(e.ci_low),
+            pct(e.ci_high)
+        )
+    });
+    if let Some(takt) = takt_of(c) {
+        out += &format!(
+            "\nSuccess within the {takt} s takt (% of the episodes, 95 % Wilson interval) and the \
+             mean cycle time of the successes, reset to success:\n\n"
+        );
+        out += &markdown_pivot(c, |e| {
+            let cycle = e
+                .mean_cycle_time_s
+                .map_or("–".to_string(), |s| format!("{s:.1} s"));
+            format!(
+                "**{}**<br>{}–{}<br>{cycle}",
+                pct(e.within_takt_rate),
+                pct(e.within_takt_ci_low),
+                pct(e.within_takt_ci_high)
+            )
+        });
+    }
+    out
+}
+
+/// A Markdown table of methods × presets, each cell `cell` of the result's report.
+fn markdown_pivot(c: &Comparison, cell: impl Fn(&fairgrasp_types::EvalReport) -> String) -> String {
     let mut out = format!("| method | {} |\n", c.presets.join(" | "));
     out += &format!("|{}\n", "---|".repeat(c.presets.len() + 1));
     for m in &c.methods {
         let cells: Vec<String> = c
             .presets
             .iter()
-            .map(|p| {
-                result_of(c, m, p).map_or("–".into(), |r| {
-                    let e = &r.report;
-                    format!(
-                        "**{}**<br>{}–{}",
-                        pct(e.success_rate),
-                        pct(e.ci_low),
-                        pct(e.ci_high)
-                    )
-                })
-            })
+            .map(|p| result_of(c, m, p).map_or("–".into(), |r| cell(&r.report)))
             .collect();
         out += &format!("| {} | {} |\n", m, cells.join(" | "));
     }

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use crate::charts::curves;
 use crate::charts::draw_all::draw_comparison_charts;
 use crate::comparison_table::{
-    Comparison, key_paired_markdown, markdown_table, paired_markdown, pivot_markdown,
+    Comparison, key_paired_markdown, markdown_table, paired_markdown, pivot_markdown, tuning_text,
 };
 use crate::document::{Document, toml_block};
 use crate::error::{ReportError, write_file};
@@ -211,6 +211,19 @@ fn results_head(doc: &mut Document, c: &Comparison, out: &Path) -> Result<(), Re
          steps are in the appendix and in `compare.csv`.\n\n{}",
         pivot_markdown(c)
     ));
+    let tuning = tuning_text(c);
+    if !tuning.is_empty() {
+        doc.markdown(format!(
+            "How each control with parameters was set (a learned policy is compared against \
+             the control at its best: tuned on training scenarios, never the reported ones, \
+             with at least the learner's env steps):\n\n{}",
+            tuning
+                .lines()
+                .map(|l| format!("- {}", l.trim()))
+                .collect::<Vec<_>>()
+                .join("\n")
+        ));
+    }
     let malformed = |e: fairgrasp_types::PairingError| {
         ReportError::malformed(&out.join("compare.json"), e.to_string())
     };
@@ -255,6 +268,21 @@ fn comparison_section(
     for (file, preset) in &charts.workspaces {
         written.push(file.clone());
         doc.image(file, &format!("workspace map, preset {preset}"));
+    }
+    if !charts.takts.is_empty() {
+        doc.markdown(
+            "### On the takt\n\nA cell judges a cycle by whether it ends in time: success within \
+             the takt (up) against the mean cycle time of the successes (left is faster). Each \
+             method is a point on the held-out scenarios; the faint dots are the tuning trials \
+             of the controls, on their training scenarios.",
+        );
+    }
+    for (file, preset, _) in &charts.takts {
+        written.push(file.clone());
+        doc.image(
+            file,
+            &format!("success within the takt against cycle time, preset {preset}"),
+        );
     }
     if !c.recorded.is_empty() {
         doc.markdown(

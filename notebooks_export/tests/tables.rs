@@ -89,6 +89,7 @@ fn inconsistent_comparisons_are_refused() {
         run_folders: vec![],
         recorded: vec![],
         replay: vec![],
+        tuning: vec![],
         results: vec![r.clone()],
     };
     assert_eq!(c.check(), Ok(()));
@@ -231,6 +232,7 @@ fn the_leading_paired_tests_are_against_the_baseline_and_the_best_script_without
         run_folders: vec![],
         recorded: vec![],
         replay: vec![],
+        tuning: vec![],
         results,
     };
     let key = fairgrasp_types::learned_vs_key_scripts(&c).unwrap();

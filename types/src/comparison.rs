@@ -39,6 +39,21 @@ pub struct RecordedEpisode {
     pub trajectory: String,
 }
 
+/// How a hand-written control with parameters was set for one preset of a comparison.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ControlTuning {
+    pub preset: String,
+    /// The control's name in the comparison.
+    pub method: String,
+    /// How its setting was found (`CMA-ES (cmaes 0.2.2), 80 trials × 150 episodes of seed 11,
+    /// 3.01 M env steps; success within the takt`), or that the preset's own setting runs.
+    pub how: String,
+    /// The tuning's trials on its training scenarios, as (mean cycle time of the successes
+    /// \[s\], objective as a fraction), where they are known.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub trials: Vec<[f64; 2]>,
+}
+
 /// Everything `fairgrasp compare` measured: `compare.json`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Comparison {
@@ -60,6 +75,9 @@ pub struct Comparison {
     /// replay then shows the `recorded` episodes).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub replay: Vec<RecordedEpisode>,
+    /// How each control with parameters was set, per preset (empty in older files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tuning: Vec<ControlTuning>,
     pub results: Vec<MethodResult>,
 }
 
@@ -78,9 +96,14 @@ impl std::error::Error for SchemaError {}
 impl Comparison {
     /// Parses and checks the text of a `compare.json`.
     pub fn from_json(text: &str) -> Result<Self, SchemaError> {
-        let c: Self = serde_json::from_str(text)
+        let mut c: Self = serde_json::from_str(text)
             .map_err(|e| SchemaError(format!("not a fairgrasp compare.json: {e}")))?;
         c.check()?;
+        // The cycle-time summary follows from the records (files from before it have none).
+        for r in &mut c.results {
+            r.report = std::mem::replace(&mut r.report, EvalReport::from_results(Vec::new()))
+                .with_takt_summary();
+        }
         Ok(c)
     }
 

@@ -29,7 +29,7 @@ pub mod text;
 pub mod trajectory;
 pub mod work_queue;
 
-pub use comparison::{Comparison, MethodResult, RecordedEpisode, SchemaError};
+pub use comparison::{Comparison, ControlTuning, MethodResult, RecordedEpisode, SchemaError};
 pub use episode::{EpisodeFacts, EpisodeRecord};
 pub use eval_report::{EvalReport, wilson_interval};
 pub use fs::{read_bounded, read_text_bounded, write_atomic};

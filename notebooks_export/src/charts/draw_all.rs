@@ -8,7 +8,7 @@ use std::path::Path;
 use fairgrasp_types::fs::slug;
 use fairgrasp_types::work_queue::run_in_order;
 
-use crate::charts::{episode, heatmap, replay, workspace};
+use crate::charts::{episode, heatmap, replay, takt, workspace};
 use crate::comparison_table::Comparison;
 use crate::error::ReportError;
 use crate::trajectory::Trajectory;
@@ -21,6 +21,9 @@ pub(crate) struct ComparisonCharts {
     pub workspaces: Vec<(String, String)>,
     /// Per recorded episode that has its trajectory: (episode chart PNG, replay GIF, title).
     pub episodes: Vec<(String, String, String)>,
+    /// Per preset that runs on a takt: (file, preset, takt \[s\]), success within it against
+    /// cycle time.
+    pub takts: Vec<(String, String, f64)>,
 }
 
 /// Draws the success chart, a workspace map per preset and, per recorded episode (`trajectories`
@@ -62,9 +65,18 @@ pub(crate) fn draw_comparison_charts(
                 )
             })
             .collect(),
+        takts: c
+            .presets
+            .iter()
+            .filter_map(|p| {
+                let takt = c.results.iter().find(|r| r.preset == *p)?.report.takt_s?;
+                Some((format!("{prefix}takt_{}.png", slug(p)), p.clone(), takt))
+            })
+            .collect(),
     };
-    // Job 0: the success chart; then one per workspace map; then two per recorded episode.
-    let maps = charts.workspaces.len();
+    // Job 0: the success chart; then one per workspace map, one per takt chart; then two per
+    // recorded episode.
+    let maps = charts.workspaces.len() + charts.takts.len();
     let episodes = charts.episodes.len();
     let draw = |_: &mut (), j: usize| -> Result<(), ReportError> {
         if j == 0 {
@@ -72,6 +84,9 @@ pub(crate) fn draw_comparison_charts(
         }
         if let Some((file, preset)) = charts.workspaces.get(j - 1) {
             return workspace::workspace_map(c, preset, &out.join(file));
+        }
+        if let Some((file, preset, takt)) = charts.takts.get(j - 1 - charts.workspaces.len()) {
+            return takt::takt_chart(c, preset, *takt, &out.join(file));
         }
         let k = j - 1 - maps;
         let ((png, gif, title), t) = (&charts.episodes[k / 2], &trajectories[k / 2]);

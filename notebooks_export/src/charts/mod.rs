@@ -16,6 +16,7 @@ pub mod heatmap;
 pub mod replay;
 pub mod squeeze;
 pub mod success;
+pub mod takt;
 pub mod workspace;
 
 pub(crate) use axis::{min_max, padded};

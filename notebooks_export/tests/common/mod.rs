@@ -60,6 +60,8 @@ pub fn method_result(
                 episode_return: if i < successes { 10.0 } else { -1.0 },
                 object_xy: [r * angle.cos(), r * angle.sin()],
                 collision_pair: None,
+                cycle_time_s: None,
+                takt_s: None,
                 facts: Default::default(),
             }
             .normalized()
@@ -86,6 +88,12 @@ pub fn method_result(
                 / n as f64,
             mean_steps_to_success: (successes > 0).then_some(69.5),
             mean_return: results.iter().map(|r| r.episode_return).sum::<f64>() / n as f64,
+            mean_cycle_time_s: None,
+            takt_s: None,
+            successes_within_takt: successes,
+            within_takt_rate: rate,
+            within_takt_ci_low: (rate - 0.08).max(0.0),
+            within_takt_ci_high: (rate + 0.05).min(1.0),
             outcomes,
             results,
         },
@@ -195,6 +203,7 @@ pub fn write_comparison(dir: &Path, run_folders: Vec<String>) -> Comparison {
             trajectory: "episodes/baseline_hard_ep0.json".into(),
         }],
         replay: vec![],
+        tuning: vec![],
         results,
     };
     std::fs::write(dir.join("compare.json"), c.to_json()).unwrap();
