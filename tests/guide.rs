@@ -87,6 +87,10 @@ fn budgeted(line: &str) -> (Vec<String>, i32) {
         "train" => cap(&mut args, "--timesteps", 2048),
         "baseline" | "eval" => cap(&mut args, "--episodes", 4),
         "compare" => cap(&mut args, "--episodes", 2),
+        "tune" if !args.iter().any(|a| a == "--list") => {
+            cap(&mut args, "--budget", 1500);
+            cap(&mut args, "--episodes", 2);
+        }
         "scene" if args.iter().any(|a| a == "--seeds") => cap(&mut args, "--seeds", 10),
         "bench" if args[1] == "env" => {
             cap(&mut args, "--steps", 20);

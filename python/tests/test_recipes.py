@@ -27,7 +27,7 @@ PLACE_FEATURES = [
     "place_phase_search_spiral", "place_phase_search_insert", "place_phase_release",
     "wrist_force_x", "wrist_force_y", "wrist_force_z", "search_x", "search_y", "search_depth",
     "correction_x", "correction_y", "correction_z", "correction_yaw",
-    "fixture_moved_x", "fixture_moved_y", "fixture_turned",
+    "first_touch_below_rim", "peak_force", "cycle_time",
 ]
 
 

@@ -29,9 +29,11 @@ pub struct CheckpointMeta {
     /// Training wall-clock time so far, over all invocations \[s\].
     #[serde(default)]
     pub wall_time_s: f64,
-    /// Evaluation success rate of this checkpoint, if evaluated.
+    /// Evaluation success rate of this checkpoint, if evaluated: on a task with a takt, success
+    /// within it (the place task's objective).
     pub eval_success_rate: Option<f64>,
-    /// The best evaluation success rate of the run up to this checkpoint (what `best` holds).
+    /// The best evaluation success rate of the run up to this checkpoint (what `best` holds;
+    /// within the takt on a task with one).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub best_eval_success_rate: Option<f64>,
     /// The `metrics.csv` row of the update this checkpoint ends (a resume restores it if a
