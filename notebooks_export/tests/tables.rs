@@ -34,7 +34,8 @@ fn csv_json_and_text_table_agree() {
     );
     let lines: Vec<&str> = csv.lines().collect();
     let header = fields(lines[0]);
-    assert_eq!(header.len(), 12 + Outcome::ALL.len());
+    // The summary, an outcome count each, then the cycle time and the takt's six.
+    assert_eq!(header.len(), 12 + Outcome::ALL.len() + 6);
     assert_eq!(lines.len(), 1 + c.results.len());
     let table = comparison_table::text_table(&c);
     for (line, r) in lines[1..].iter().zip(&c.results) {
@@ -48,6 +49,11 @@ fn csv_json_and_text_table_agree() {
             r.report.success_rate
         );
         assert_eq!(col("ci_low").parse::<f64>().unwrap(), r.report.ci_low);
+        assert_eq!(
+            col("within_takt_rate").parse::<f64>().unwrap(),
+            r.report.within_takt_rate
+        );
+        assert_eq!(col("takt_s"), "", "a lift comparison runs on no takt");
         for &o in Outcome::ALL {
             assert_eq!(
                 col(o.as_str()).parse::<usize>().unwrap(),
@@ -184,8 +190,9 @@ fn the_pivot_tables_numbers_are_compare_csvs() {
     let header = fields(lines[0]);
     let text = comparison_table::pivot_text(&c);
     let markdown = comparison_table::pivot_markdown(&c);
-    // One row per method after the header and the rule, one column per preset.
-    assert_eq!(text.lines().count(), 2 + c.methods.len());
+    // One row per method after the header and the rule, one column per preset; then a blank
+    // line and the cycle's table, the same shape.
+    assert_eq!(text.lines().count(), 2 * (2 + c.methods.len()) + 1);
     let head: Vec<&str> = text.lines().next().unwrap().split_whitespace().collect();
     assert_eq!(
         &head[2..],

@@ -24,8 +24,7 @@ use crate::place_search::{ForceSearch, Modulation, SearchParams};
 use crate::place_square::{SquareParams, Squaring};
 use fairgrasp_env::config::SwitchParams;
 
-/// The cube's bottom above the pocket's floor when the gripper opens \[m\].
-pub const DROP_HEIGHT: f64 = 0.002;
+pub use crate::place_search::DROP_HEIGHT;
 /// Height of the carry above the place pose \[m\]: low, because the lower that follows is a joint
 /// trajectory, whose TCP path bows away from the vertical (6 mm off over a 10 cm lower, more
 /// than the pocket's clearance; about a tenth of that over 3 cm).

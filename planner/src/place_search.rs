@@ -18,6 +18,10 @@ use fairgrasp_kinematics::{ArmModel, Pose};
 
 use crate::correction::{TaskCorrection, corrected};
 
+/// The cube's bottom above the pocket's floor when the gripper opens \[m\] (the place
+/// script's place pose, and the search's floor depth).
+pub const DROP_HEIGHT: f64 = 0.002;
+
 /// What the wrist feels pushing up along the table's vertical in `obs` \[N\] (0 without a
 /// wrist sensor); `table_in_base` is the table frame in `base_link`.
 pub fn upward_force(obs: &Observation, table_in_base: &Pose) -> f64 {
@@ -150,7 +154,7 @@ impl ForceSearch {
     /// Where a flat cube's face meets the rim's top, below the carry pose \[m\] (the floor
     /// depth leaves the cube DROP_HEIGHT above the floor).
     fn rim_contact_depth(&self) -> f64 {
-        self.floor_depth + crate::place::DROP_HEIGHT - self.wall_height
+        self.floor_depth + DROP_HEIGHT - self.wall_height
     }
 
     /// The switching search: these settings until the first touch; a touch farther than

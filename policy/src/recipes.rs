@@ -7,7 +7,7 @@ use std::path::Path;
 use fairgrasp_env::ConfigError;
 
 /// Name (the file's stem) and text of every shipped recipe, in name order.
-pub const SHIPPED: [(&str, &str); 13] = [
+pub const SHIPPED: [(&str, &str); 14] = [
     (
         "joint_residual_nudged",
         include_str!("../../assets/experiments/joint_residual_nudged.toml"),
@@ -49,6 +49,10 @@ pub const SHIPPED: [(&str, &str); 13] = [
         include_str!("../../assets/experiments/residual_miscalibrated.toml"),
     ),
     (
+        "residual_place_cell",
+        include_str!("../../assets/experiments/residual_place_cell.toml"),
+    ),
+    (
         "residual_place_grasp_error",
         include_str!("../../assets/experiments/residual_place_grasp_error.toml"),
     ),
@@ -70,11 +74,12 @@ pub fn names() -> Vec<&'static str> {
 /// The shipped recipe of the task-space residual for the preset `preset` (what Python's
 /// `FairGrasp-Residual-<Preset>-v0` trains with, `preset` laid over it): the squeeze's on
 /// `heavy_slippery`, the wrist-view family's on `wrist_camera`, the place residual's on a place
-/// preset (`place_task`; `place_tilted` has its own), the first task-space residual's (`residual_miscalibrated`, which names
+/// preset (`place_task`; `place_tilted` and `place_cell` have their own), the first task-space residual's (`residual_miscalibrated`, which names
 /// nothing but its default preset) elsewhere.
 pub fn task_residual_recipe(preset: &str, place_task: bool) -> &'static str {
     match preset {
         "place_tilted" => "residual_place_tilted",
+        "place_cell" => "residual_place_cell",
         _ if place_task => "residual_place_grasp_error",
         "heavy_slippery" => "residual_heavy_slippery",
         "wrist_camera" => "residual_wrist_camera",

@@ -8,6 +8,7 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use clap::Args;
+use fairgrasp_evaluate::tune::spec::{MAX_BUDGET, MAX_EPISODES_PER_TRIAL};
 use fairgrasp_evaluate::tune::{TuneEvent, TuneSpec, run_tune};
 use fairgrasp_types::ArmSimulation;
 
@@ -37,16 +38,17 @@ pub struct TuneArgs {
     /// every parameter of the control in its default range). `--list` shows them.
     #[arg(long = "param", value_name = "NAME[=LOW:HIGH]", value_parser = param_range)]
     params: Vec<(String, Option<[f64; 2]>)>,
-    /// Env steps to spend, 1–1000000000 (the last generation may go a little past it).
-    #[arg(long, default_value_t = DEFAULT_BUDGET)]
+    /// Env steps to spend, 1–1000000000 (the trial running when they are spent finishes).
+    #[arg(long, default_value_t = DEFAULT_BUDGET, value_parser = budget)]
     budget: u64,
     /// Episodes per trial, 1–100000: the same training scenarios for every trial.
-    #[arg(long, default_value_t = 150)]
+    #[arg(long, default_value_t = 150, value_parser = episodes_per_trial)]
     episodes: usize,
-    /// Seed of the training scenarios (never the seed results are reported on: 7).
+    /// Seed of the training scenarios, 0–9007199254740991 (2⁵³ − 1): never the seed results are
+    /// reported on (7).
     #[arg(long, default_value_t = 11, value_parser = crate::cli::args::seed)]
     seed: u64,
-    /// The optimiser's seed.
+    /// The optimiser's seed, 0–9007199254740991 (2⁵³ − 1).
     #[arg(long, default_value_t = 0, value_parser = crate::cli::args::seed)]
     optimiser_seed: u64,
     /// The tuning's folder: new or empty, or one of this same tuning to resume.
@@ -58,6 +60,16 @@ pub struct TuneArgs {
     /// List the control's parameters (name, unit, what it accepts, default range) and stop.
     #[arg(long)]
     list: bool,
+}
+
+/// A budget of env steps, 1–[`MAX_BUDGET`] (clap value parser).
+fn budget(text: &str) -> Result<u64, String> {
+    crate::cli::args::whole_number_in(text, 1..=MAX_BUDGET)
+}
+
+/// Episodes per trial, 1–[`MAX_EPISODES_PER_TRIAL`] (clap value parser).
+fn episodes_per_trial(text: &str) -> Result<usize, String> {
+    crate::cli::args::whole_number_in(text, 1..=MAX_EPISODES_PER_TRIAL as u64).map(|n| n as usize)
 }
 
 /// `NAME` or `NAME=LOW:HIGH`.

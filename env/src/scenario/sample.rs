@@ -10,7 +10,7 @@ use serde::Serialize;
 use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
 use crate::config::{EnvConfig, TaskKind};
-use crate::scenario::error_mix::{draw_error_family, keep_only};
+use crate::scenario::error_mix::draw::{draw_error_family, keep_only};
 use crate::scenario::fixture::{FixturePose, draw_fixture};
 use crate::scenario::graspable::top_down_grasp;
 use crate::scenario::noise::{gauss, uniform_in_sector};
@@ -158,8 +158,9 @@ impl Scenario {
             };
             if top_down_grasp(model, &mount, &pose, &s.start_joints).is_some() {
                 s.fixture = fixture;
-                if let (Some(mix), Some(_)) = (&config.task.place.mix, &s.fixture) {
-                    keep_only(&mut s, draw_error_family(mix, seed));
+                if let (Some(mix), Some(f)) = (&config.task.place.mix, &mut s.fixture) {
+                    let cube_error = (&mut s.observed_position_error, &mut s.observed_yaw_error);
+                    keep_only(draw_error_family(mix, seed), cube_error, f);
                 }
                 s.nudge = r.nudge.as_ref().and_then(|n| {
                     draw_nudge(

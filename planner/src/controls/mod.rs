@@ -78,6 +78,7 @@ fn square_values(env: &EnvConfig) -> ParamValues {
         ("force", q.force),
         ("press", q.press),
         ("hold", q.hold),
+        ("squeeze", q.squeeze),
     ] {
         v.insert(k.to_string(), x);
     }
@@ -93,6 +94,7 @@ fn set_square(env: &mut EnvConfig, values: &ParamValues) {
         ("force", &mut q.force),
         ("press", &mut q.press),
         ("hold", &mut q.hold),
+        ("squeeze", &mut q.squeeze),
     ] {
         if let Some(&x) = values.get(k) {
             *slot = x;

@@ -79,9 +79,9 @@ pub const SEARCH: [Param; 8] = [
     },
 ];
 
-/// The squaring control's parameters: the squaring's own five, then its search's
+/// The squaring control's parameters: the squaring's own six, then its search's
 /// (`search_…`).
-pub const SQUARE: [Param; 13] = [
+pub const SQUARE: [Param; 14] = [
     Param {
         name: "offset",
         unit: "m",
@@ -94,7 +94,7 @@ pub const SQUARE: [Param; 13] = [
         name: "speed",
         unit: "m/s",
         accepts: [0.001, 0.05],
-        range: [0.003, 0.03],
+        range: [0.005, 0.05],
         scale: Scale::Log,
         doc: "speed down onto the table and back",
     },
@@ -121,6 +121,14 @@ pub const SQUARE: [Param; 13] = [
         range: [0.0, 1.0],
         scale: Scale::Linear,
         doc: "how long the press is held",
+    },
+    Param {
+        name: "squeeze",
+        unit: "N",
+        accepts: [0.2, 100.0],
+        range: [0.3, 5.0],
+        scale: Scale::Log,
+        doc: "the squeeze per finger while pressing and holding",
     },
     renamed(SEARCH[0], "search_descend_speed"),
     renamed(SEARCH[1], "search_contact_force"),

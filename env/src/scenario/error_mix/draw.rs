@@ -4,8 +4,8 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use crate::scenario::Scenario;
 use crate::scenario::error_mix::settings::{ErrorFamily, ErrorMix};
+use crate::scenario::fixture::draw::FixturePose;
 
 /// The family of scenario `seed` in `mix`: one uniform draw against the cumulative weights.
 pub fn draw_error_family(mix: &ErrorMix, seed: u64) -> ErrorFamily {
@@ -27,22 +27,24 @@ pub fn draw_error_family(mix: &ErrorMix, seed: u64) -> ErrorFamily {
         .map_or(ErrorFamily::Tilted, |(f, _)| f)
 }
 
-/// Keeps `family`'s error in `s` and sets the other families' to none: the observed cube's
-/// error (the grasp error), the observed fixture's error (the fixture error), the turn in the
-/// grip (the tilt).
-pub fn keep_only(s: &mut Scenario, family: ErrorFamily) {
+/// Keeps `family`'s error and sets the other families' to none: the observed cube's error
+/// (`cube_error`: position \[m\] and yaw \[rad\]; the grasp error), the observed fixture's
+/// error (the fixture error), the turn in the grip (the tilt); records the family in `fixture`.
+pub fn keep_only(
+    family: ErrorFamily,
+    cube_error: (&mut [f64; 3], &mut f64),
+    fixture: &mut FixturePose,
+) {
     if family != ErrorFamily::GraspError {
-        s.observed_position_error = [0.0; 3];
-        s.observed_yaw_error = 0.0;
+        *cube_error.0 = [0.0; 3];
+        *cube_error.1 = 0.0;
     }
-    if let Some(f) = &mut s.fixture {
-        if family != ErrorFamily::FixtureError {
-            f.observed_xy_error = [0.0; 2];
-            f.observed_yaw_error = 0.0;
-        }
-        if family != ErrorFamily::Tilted {
-            f.grip_tilt = 0.0;
-        }
-        f.error_family = Some(family);
+    if family != ErrorFamily::FixtureError {
+        fixture.observed_xy_error = [0.0; 2];
+        fixture.observed_yaw_error = 0.0;
     }
+    if family != ErrorFamily::Tilted {
+        fixture.grip_tilt = 0.0;
+    }
+    fixture.error_family = Some(family);
 }
