@@ -364,6 +364,120 @@ impl ScriptedPlace {
         self.squaring.as_ref()
     }
 
+    /// Moves to the next phase when this one is over at `obs` (the grasp held, a motion
+    /// arrived, the squaring or the search done, a phase timed out).
+    fn advance(&mut self, obs: &Observation) {
+        if self.phase == PlacePhase::Grasp {
+            match self.square {
+                Some(square) => match self.plan_square(obs, square.offset) {
+                    Some(t) => {
+                        self.targets = Some(t);
+                        self.enter(PlacePhase::SquareCarry, obs, Some(t.pre_grasp));
+                    }
+                    None => self.give_up(),
+                },
+                None => self.start_place(obs),
+            }
+        }
+        if self.phase == PlacePhase::Square && self.squaring.as_ref().is_some_and(Squaring::done) {
+            if let Some(h) = self.squaring.as_ref().and_then(Squaring::grasp_height_seen) {
+                self.grasp_height = h;
+            }
+            self.start_place(obs);
+        }
+        let tolerance = match self.phase {
+            PlacePhase::Carry => CARRY_TOLERANCE,
+            _ => 0.01,
+        };
+        let arrived = self.arrived(obs, tolerance);
+        match (self.phase, self.targets) {
+            (PlacePhase::SquareCarry, Some(t)) if arrived => self.start_squaring(obs, &t),
+            (PlacePhase::Carry, Some(t)) if arrived => match self.search_params {
+                Some(params) => self.start_search(obs, params, &t),
+                None => self.enter(PlacePhase::Lower, obs, Some(t.grasp)),
+            },
+            (PlacePhase::Search, _) if self.search.as_ref().is_some_and(ForceSearch::done) => {
+                self.enter(PlacePhase::Release, obs, None)
+            }
+            (PlacePhase::Lower, _) if arrived => self.enter(PlacePhase::Release, obs, None),
+            (PlacePhase::Release, Some(t)) if self.steps_in_phase >= RELEASE_STEPS => {
+                self.enter(PlacePhase::Retreat, obs, Some(t.lift))
+            }
+            (PlacePhase::Retreat, _) if arrived => self.enter(PlacePhase::Done, obs, None),
+            (
+                PlacePhase::Carry
+                | PlacePhase::SquareCarry
+                | PlacePhase::Lower
+                | PlacePhase::Retreat,
+                _,
+            ) if self.timed_out() => {
+                self.phase = PlacePhase::Failed;
+                self.trajectory = None;
+            }
+            _ => {}
+        }
+    }
+
+    /// Starts squaring the cube from the carry pose above its spot (`t.pre_grasp`).
+    fn start_squaring(&mut self, obs: &Observation, t: &GraspJoints) {
+        if let Some(square) = self.square {
+            let flat_depth = CARRY_HEIGHT + DROP_HEIGHT;
+            self.squaring = Some(Squaring::new(
+                square,
+                t.pre_grasp,
+                flat_depth,
+                self.step_dt,
+                self.cube_size,
+            ));
+        }
+        self.enter(PlacePhase::Square, obs, None);
+    }
+
+    /// Starts the force search with `params` from the carry pose above the pocket.
+    fn start_search(&mut self, obs: &Observation, params: SearchParams, t: &GraspJoints) {
+        let mut search = ForceSearch::new(
+            params,
+            t.pre_grasp,
+            CARRY_HEIGHT,
+            self.wall_height,
+            self.step_dt,
+        );
+        if let Some((band, tilted)) = self.switch {
+            search = search.with_switch(band, tilted);
+        }
+        search.set_correction(self.correction);
+        search.set_modulation(self.modulation);
+        self.search = Some(search);
+        self.enter(PlacePhase::Search, obs, None);
+    }
+
+    /// The action of the phase the script is in: the search's or the squaring's next joints,
+    /// the current motion, or holding still after a failure; the gripper closed until the
+    /// release.
+    fn command(&mut self, obs: &Observation) -> Action {
+        let gripper = match self.phase {
+            PlacePhase::Release | PlacePhase::Retreat | PlacePhase::Done => -1.0,
+            _ => 1.0,
+        };
+        let table = &self.mount.table_in_base;
+        let target = match (self.phase, self.search.as_mut(), self.squaring.as_mut()) {
+            (PlacePhase::Search, Some(search), _) => Some(search.step(obs, &self.model, table)),
+            (PlacePhase::Square, _, Some(squaring)) => Some(squaring.step(obs, &self.model, table)),
+            _ => None,
+        };
+        match (self.phase, target) {
+            (PlacePhase::Failed, _) => Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, gripper]),
+            (_, Some(target)) => {
+                let mut a = [gripper; 7];
+                let q = &obs.joints;
+                let joints = tracking_action(q, &target, q, 0.0, self.step_dt, self.action_scale);
+                a[..6].copy_from_slice(&joints);
+                Action(a)
+            }
+            _ => self.follow(obs, gripper),
+        }
+    }
+
     fn enter(&mut self, phase: PlacePhase, obs: &Observation, target: Option<[f64; 6]>) {
         self.phase = phase;
         self.steps_in_phase = 0;
@@ -449,114 +563,12 @@ impl Policy for ScriptedPlace {
     }
 
     fn act(&mut self, obs: &Observation) -> Action {
-        if self.phase == PlacePhase::Grasp {
-            if self.grasp.phase() != Phase::Hold {
-                self.cube_start.get_or_insert(obs.object_position());
-                return self.grasp.act(obs);
-            }
-            match self.square {
-                Some(square) => match self.plan_square(obs, square.offset) {
-                    Some(t) => {
-                        self.targets = Some(t);
-                        self.enter(PlacePhase::SquareCarry, obs, Some(t.pre_grasp));
-                    }
-                    None => self.give_up(),
-                },
-                None => self.start_place(obs),
-            }
+        if self.phase == PlacePhase::Grasp && self.grasp.phase() != Phase::Hold {
+            self.cube_start.get_or_insert(obs.object_position());
+            return self.grasp.act(obs);
         }
-        if self.phase == PlacePhase::Square && self.squaring.as_ref().is_some_and(Squaring::done) {
-            if let Some(h) = self.squaring.as_ref().and_then(Squaring::grasp_height_seen) {
-                self.grasp_height = h;
-            }
-            self.start_place(obs);
-        }
-        let tolerance = match self.phase {
-            PlacePhase::Carry => CARRY_TOLERANCE,
-            _ => 0.01,
-        };
-        let arrived = self.arrived(obs, tolerance);
-        let targets = self.targets;
-        match (self.phase, targets) {
-            (PlacePhase::SquareCarry, Some(t)) if arrived => {
-                if let Some(square) = self.square {
-                    let flat_depth = CARRY_HEIGHT + DROP_HEIGHT;
-                    self.squaring = Some(Squaring::new(
-                        square,
-                        t.pre_grasp,
-                        flat_depth,
-                        self.step_dt,
-                        self.cube_size,
-                    ));
-                }
-                self.enter(PlacePhase::Square, obs, None);
-            }
-            (PlacePhase::Carry, Some(t)) if arrived => match self.search_params {
-                Some(params) => {
-                    let mut search = ForceSearch::new(
-                        params,
-                        t.pre_grasp,
-                        CARRY_HEIGHT,
-                        self.wall_height,
-                        self.step_dt,
-                    );
-                    if let Some((band, tilted)) = self.switch {
-                        search = search.with_switch(band, tilted);
-                    }
-                    search.set_correction(self.correction);
-                    search.set_modulation(self.modulation);
-                    self.search = Some(search);
-                    self.enter(PlacePhase::Search, obs, None);
-                }
-                None => self.enter(PlacePhase::Lower, obs, Some(t.grasp)),
-            },
-            (PlacePhase::Search, _) if self.search.as_ref().is_some_and(ForceSearch::done) => {
-                self.enter(PlacePhase::Release, obs, None)
-            }
-            (PlacePhase::Lower, _) if arrived => self.enter(PlacePhase::Release, obs, None),
-            (PlacePhase::Release, Some(t)) if self.steps_in_phase >= RELEASE_STEPS => {
-                self.enter(PlacePhase::Retreat, obs, Some(t.lift))
-            }
-            (PlacePhase::Retreat, _) if arrived => self.enter(PlacePhase::Done, obs, None),
-            (
-                PlacePhase::Carry
-                | PlacePhase::SquareCarry
-                | PlacePhase::Lower
-                | PlacePhase::Retreat,
-                _,
-            ) if self.timed_out() => {
-                self.phase = PlacePhase::Failed;
-                self.trajectory = None;
-            }
-            _ => {}
-        }
-        let gripper = match self.phase {
-            PlacePhase::Grasp
-            | PlacePhase::Carry
-            | PlacePhase::Lower
-            | PlacePhase::Search
-            | PlacePhase::SquareCarry
-            | PlacePhase::Square => 1.0,
-            PlacePhase::Failed => 1.0,
-            PlacePhase::Release | PlacePhase::Retreat | PlacePhase::Done => -1.0,
-        };
-        let table = &self.mount.table_in_base;
-        let target = match (self.phase, self.search.as_mut(), self.squaring.as_mut()) {
-            (PlacePhase::Search, Some(search), _) => Some(search.step(obs, &self.model, table)),
-            (PlacePhase::Square, _, Some(squaring)) => Some(squaring.step(obs, &self.model, table)),
-            _ => None,
-        };
-        let action = match (self.phase, target) {
-            (PlacePhase::Failed, _) => Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, gripper]),
-            (_, Some(target)) => {
-                let mut a = [gripper; 7];
-                let q = &obs.joints;
-                let joints = tracking_action(q, &target, q, 0.0, self.step_dt, self.action_scale);
-                a[..6].copy_from_slice(&joints);
-                Action(a)
-            }
-            _ => self.follow(obs, gripper),
-        };
+        self.advance(obs);
+        let action = self.command(obs);
         self.steps_in_phase += 1;
         action
     }

@@ -75,7 +75,10 @@ pub struct BaselineArgs {
     #[command(flatten)]
     scenarios: ScenarioArgs,
     /// Which script: open_loop (the baseline), closed_loop, oracle, calibrated or tuned_grip; on
-    /// a place preset open_loop, force_search, closed_loop or closed_loop_force_search.
+    /// a place preset open_loop, force_search, closed_loop, closed_loop_force_search,
+    /// square_search (the cube squared on the table first), switch_search (the search that
+    /// switches settings at its first touch) or oracle_switch (told each cycle's family: a
+    /// ceiling).
     #[arg(long, default_value = "open_loop", value_parser = clap::builder::PossibleValuesParser::new(script_names()))]
     script: String,
     /// A preset fragment `fairgrasp tune` wrote (its `tuned.toml`): the script runs with the

@@ -31,7 +31,8 @@ pub struct TuneArgs {
     #[arg(long, value_parser = crate::cli::args::preset)]
     preset: String,
     /// The control, by its command-line name (as `baseline --script` takes it): on a place
-    /// preset force_search or closed_loop_force_search; on a lift preset tuned_grip.
+    /// preset force_search, closed_loop_force_search, square_search or switch_search; on a
+    /// lift preset tuned_grip.
     #[arg(long)]
     control: String,
     /// A parameter to tune, with an optional range `NAME=LOW:HIGH` (repeat it; without any,

@@ -9,7 +9,18 @@ use fairgrasp_types::ControlTuning;
 use crate::compare::spec::CompareSpec;
 
 /// The trials of the shipped tunings, as `fairgrasp tune` wrote them: (preset, control, CSV).
-const SHIPPED_TRIALS: [(&str, &str, &str); 0] = [];
+const SHIPPED_TRIALS: [(&str, &str, &str); 2] = [
+    (
+        "place_cell",
+        "force_search",
+        include_str!("../../../assets/tuned/place_cell/force_search_trials.csv"),
+    ),
+    (
+        "place_cell",
+        "switch_search",
+        include_str!("../../../assets/tuned/place_cell/switch_search_trials.csv"),
+    ),
+];
 
 /// The tuning of every control with parameters on every preset of `spec`.
 pub(crate) fn of_controls(spec: &CompareSpec, scripts: &[&'static Control]) -> Vec<ControlTuning> {

@@ -7,13 +7,14 @@
 //! within one trial of it.
 
 use std::cell::{Cell, RefCell};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use cmaes::{CMAESOptions, DVector, Mode};
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::config::TuningNote;
 use fairgrasp_env::episode::evaluate_seeded;
 use fairgrasp_planner::CameraCalibration;
+use fairgrasp_planner::controls::ParamValues;
 
 use crate::tune::error::TuneError;
 use crate::tune::spec::{Objective, TuneSpec};
@@ -58,6 +59,118 @@ pub struct TuneOutcome {
     pub note: TuningNote,
 }
 
+/// A running tuning: the trials so far, those read back from its folder, and what stopped it.
+struct Session<'a> {
+    spec: &'a TuneSpec,
+    /// The trials of an earlier run in the folder, which answer for themselves in order.
+    previous: Vec<Trial>,
+    done: RefCell<Vec<Trial>>,
+    failure: RefCell<Option<TuneError>>,
+    generation: Cell<usize>,
+    /// Set when a trial was asked for with the budget spent (the generation ends there).
+    budget_spent: Cell<bool>,
+    csv: PathBuf,
+    threads: usize,
+    calibration: CameraCalibration,
+    progress: &'a (dyn Fn(TuneEvent<'_>) + Sync),
+}
+
+impl Session<'_> {
+    /// Env steps spent so far.
+    fn spent(&self) -> u64 {
+        self.done.borrow().iter().map(|t| t.env_steps).sum()
+    }
+
+    /// The optimiser's objective at `point` (the unit cube's coordinates): the next trial's
+    /// objective, less the cost of lying outside the cube; NaN (which ends the generation)
+    /// once the budget is spent or something failed.
+    fn score(&self, point: &DVector<f64>) -> f64 {
+        if self.failure.borrow().is_some() {
+            return f64::NAN;
+        }
+        let raw: Vec<f64> = point.iter().copied().collect();
+        let unit: Vec<f64> = raw.iter().map(|u| u.clamp(0.0, 1.0)).collect();
+        let outside: f64 = raw.iter().zip(&unit).map(|(r, u)| (r - u).powi(2)).sum();
+        let index = self.done.borrow().len();
+        if index >= self.previous.len() && self.spent() >= self.spec.budget {
+            self.budget_spent.set(true);
+            return f64::NAN;
+        }
+        match self.trial(index, self.spec.values_at(&unit)) {
+            Ok(objective) => objective - OUTSIDE_PENALTY * outside,
+            Err(e) => {
+                *self.failure.borrow_mut() = Some(e);
+                f64::NAN
+            }
+        }
+    }
+
+    /// Trial `index` at `values`: read back from the folder, or run and saved; its objective.
+    fn trial(&self, index: usize, values: ParamValues) -> Result<f64, TuneError> {
+        if let Some(old) = self.previous.get(index) {
+            if old.values != values {
+                return Err(TuneError::file(
+                    &self.csv,
+                    format!(
+                        "trial {index} holds other settings than the optimiser asks for again: the folder's trials are not this tuning's"
+                    ),
+                ));
+            }
+            self.done.borrow_mut().push(old.clone());
+            return Ok(old.objective);
+        }
+        let spec = self.spec;
+        (self.progress)(TuneEvent::TrialStart {
+            index,
+            spent: self.spent(),
+            budget: spec.budget,
+        });
+        let trial = run_trial(
+            spec,
+            index,
+            self.generation.get(),
+            values,
+            self.threads,
+            &self.calibration,
+            self.progress,
+        )?;
+        let objective = trial.objective;
+        self.done.borrow_mut().push(trial);
+        let all = self.done.borrow();
+        trials::save(&self.csv, &all, &spec.names())?;
+        (self.progress)(TuneEvent::TrialDone {
+            trial: &all[index],
+            best: &all[best_of(&all)],
+            spent: self.spent(),
+            budget: spec.budget,
+        });
+        Ok(objective)
+    }
+
+    /// Where the best trial so far lies in the unit cube.
+    fn best_point(&self) -> Vec<f64> {
+        let all = self.done.borrow();
+        let best = &all[best_of(&all)];
+        self.spec
+            .searched
+            .iter()
+            .map(|s| {
+                s.param
+                    .to_unit(best.values[s.param.name], s.range)
+                    .clamp(0.0, 1.0)
+            })
+            .collect()
+    }
+
+    /// The failure a trial left, if any.
+    fn failed(&self) -> Result<(), TuneError> {
+        match self.failure.borrow_mut().take() {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+}
+
 /// Runs (or resumes) the tuning `spec` in the folder `dir` on `threads` threads.
 pub fn run_tune(
     spec: &TuneSpec,
@@ -66,128 +179,51 @@ pub fn run_tune(
     progress: &(dyn Fn(TuneEvent<'_>) + Sync),
 ) -> Result<TuneOutcome, TuneError> {
     let previous = crate::tune::folder::open(spec, dir)?;
-    let names = spec.names();
-    let csv = dir.join("trials.csv");
     if !previous.is_empty() {
-        let env_steps = previous.iter().map(|t| t.env_steps).sum();
         progress(TuneEvent::Resumed {
             trials: previous.len(),
-            env_steps,
+            env_steps: previous.iter().map(|t| t.env_steps).sum(),
         });
     }
-    let calibration = CameraCalibration::of(&spec.config).map_err(TuneError::Request)?;
-    let done: RefCell<Vec<Trial>> = RefCell::new(Vec::new());
-    let failure: RefCell<Option<TuneError>> = RefCell::new(None);
-    let generation = Cell::new(0usize);
-    let budget_spent = Cell::new(false);
-    let spent = || done.borrow().iter().map(|t| t.env_steps).sum::<u64>();
-    let objective = |point: &DVector<f64>| -> f64 {
-        if failure.borrow().is_some() {
-            return f64::NAN;
-        }
-        let raw: Vec<f64> = point.iter().copied().collect();
-        let unit: Vec<f64> = raw.iter().map(|u| u.clamp(0.0, 1.0)).collect();
-        let outside: f64 = raw.iter().zip(&unit).map(|(r, u)| (r - u).powi(2)).sum();
-        let index = done.borrow().len();
-        if index >= previous.len() && spent() >= spec.budget {
-            budget_spent.set(true);
-            return f64::NAN; // ends the generation: the budget is spent
-        }
-        let values = spec.values_at(&unit);
-        let trial = match previous.get(index) {
-            Some(old) if old.values == values => old.clone(),
-            Some(_) => {
-                *failure.borrow_mut() = Some(TuneError::file(
-                    &csv,
-                    format!(
-                        "trial {index} holds other settings than the optimiser asks for again: the folder's trials are not this tuning's"
-                    ),
-                ));
-                return f64::NAN;
-            }
-            None => {
-                progress(TuneEvent::TrialStart {
-                    index,
-                    spent: spent(),
-                    budget: spec.budget,
-                });
-                match run_trial(
-                    spec,
-                    index,
-                    generation.get(),
-                    values,
-                    threads,
-                    &calibration,
-                    progress,
-                ) {
-                    Ok(t) => t,
-                    Err(e) => {
-                        *failure.borrow_mut() = Some(e);
-                        return f64::NAN;
-                    }
-                }
-            }
-        };
-        let score = trial.objective - OUTSIDE_PENALTY * outside;
-        let fresh = index >= previous.len();
-        done.borrow_mut().push(trial);
-        if fresh {
-            let all = done.borrow();
-            if let Err(e) = trials::save(&csv, &all, &names) {
-                *failure.borrow_mut() = Some(e);
-                return f64::NAN;
-            }
-            let best = &all[best_of(&all)];
-            progress(TuneEvent::TrialDone {
-                trial: &all[index],
-                best,
-                spent: spent(),
-                budget: spec.budget,
-            });
-        }
-        score
+    let session = Session {
+        spec,
+        previous,
+        done: RefCell::new(Vec::new()),
+        failure: RefCell::new(None),
+        generation: Cell::new(0),
+        budget_spent: Cell::new(false),
+        csv: dir.join("trials.csv"),
+        threads,
+        calibration: CameraCalibration::of(&spec.config).map_err(TuneError::Request)?,
+        progress,
     };
     // Trial 0 is the preset's own setting: the tuning's starting point, measured.
     let mut start = spec.start();
-    let _ = objective(&DVector::from_vec(start.clone()));
-    if let Some(e) = failure.borrow_mut().take() {
-        return Err(e);
-    }
+    session.score(&DVector::from_vec(start.clone()));
+    session.failed()?;
+    let objective = |point: &DVector<f64>| session.score(point);
     let mut restart = 0u64;
-    while spent() < spec.budget {
+    while session.spent() < spec.budget {
         let mut cma = CMAESOptions::new(start.clone(), INITIAL_SIGMA)
             .mode(Mode::Maximize)
             .seed(spec.optimiser_seed.wrapping_add(restart))
             .build(&objective)
             .map_err(|e| TuneError::Request(format!("the optimiser refused its options: {e:?}")))?;
-        while spent() < spec.budget {
+        while session.spent() < spec.budget {
             let ended = cma.next();
-            if let Some(e) = failure.borrow_mut().take() {
-                return Err(e);
-            }
-            if budget_spent.get() {
+            session.failed()?;
+            if session.budget_spent.get() {
                 break;
             }
-            generation.set(generation.get() + 1);
+            session.generation.set(session.generation.get() + 1);
             if ended.is_some() {
                 break; // converged or stalled: restart from the best so far
             }
         }
         restart += 1;
-        let all = done.borrow();
-        let best = &all[best_of(&all)];
-        start = spec
-            .searched
-            .iter()
-            .map(|s| {
-                s.param
-                    .to_unit(best.values[s.param.name], s.range)
-                    .clamp(0.0, 1.0)
-            })
-            .collect();
+        start = session.best_point();
     }
-    let trials = done.into_inner();
-    finish(spec, dir, trials)
+    finish(spec, dir, session.done.into_inner())
 }
 
 /// The best trial's index: the highest objective, the earliest of equals.
@@ -206,7 +242,7 @@ fn run_trial(
     spec: &TuneSpec,
     index: usize,
     generation: usize,
-    values: fairgrasp_planner::controls::ParamValues,
+    values: ParamValues,
     threads: usize,
     calibration: &CameraCalibration,
     progress: &(dyn Fn(TuneEvent<'_>) + Sync),
