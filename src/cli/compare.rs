@@ -214,8 +214,9 @@ fn print_summary(
     let key = comparison_table::key_paired_text(comparison)?;
     if !key.is_empty() {
         println!(
-            "\nPaired tests (McNemar, exact, two-sided): each learned method vs the baseline and \
-             vs the preset's best script (the oracle sees the truth: not a control):"
+            "\nPaired tests (McNemar, exact, two-sided; on a task with a takt, of success within \
+             it): each learned method vs the baseline and vs the preset's best script (an \
+             oracle sees the truth: not a control):"
         );
         print!("{key}");
     }

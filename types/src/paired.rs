@@ -9,7 +9,6 @@
 use serde::{Deserialize, Serialize};
 
 use crate::comparison::{Comparison, MethodResult};
-use crate::names::Outcome;
 
 /// McNemar's exact two-sided p-value for `only_a` and `only_b` discordant pairs (1 without any).
 pub fn mcnemar_exact(only_a: usize, only_b: usize) -> f64 {
@@ -64,7 +63,8 @@ impl std::fmt::Display for PairingError {
 
 impl std::error::Error for PairingError {}
 
-/// Pairs two results scenario by scenario (same preset, same seeds in the same order).
+/// Pairs two results scenario by scenario (same preset, same seeds in the same order), on
+/// success within the task's takt (on a task without one, every success counts).
 pub fn paired_test(a: &MethodResult, b: &MethodResult) -> Result<PairedTest, PairingError> {
     let error = |why: String| PairingError {
         preset: a.preset.clone(),
@@ -90,7 +90,7 @@ pub fn paired_test(a: &MethodResult, b: &MethodResult) -> Result<PairedTest, Pai
                 x.seed, y.seed
             )));
         }
-        match (x.outcome == Outcome::Success, y.outcome == Outcome::Success) {
+        match (x.success_within_takt(), y.success_within_takt()) {
             (true, false) => only_a += 1,
             (false, true) => only_b += 1,
             _ => {}
@@ -100,7 +100,7 @@ pub fn paired_test(a: &MethodResult, b: &MethodResult) -> Result<PairedTest, Pai
         r.report
             .results
             .iter()
-            .filter(|e| e.outcome == Outcome::Success)
+            .filter(|e| e.success_within_takt())
             .count()
     };
     Ok(PairedTest {
@@ -131,23 +131,25 @@ pub fn learned_vs_scripts(c: &Comparison) -> Result<Vec<PairedTest>, PairingErro
     Ok(out)
 }
 
-/// Does `method` see the truth (the oracle script: the cube's true pose)? Such a method is a
-/// ceiling, never the control a learned method is measured against: that control uses the
-/// same information as the learned method.
+/// Does `method` see the truth (the oracle script: the cube's true pose; the oracle switch: each
+/// cycle's family)? Such a method is a ceiling, never the control a learned method is measured
+/// against: that control uses the same information as the learned method.
 pub fn sees_the_truth(method: &str) -> bool {
-    method.starts_with("oracle")
+    method.contains("oracle")
 }
 
 /// The script a learned method must beat on one preset's results `here`: the one with the most
-/// successes among those that do not see the truth ([`sees_the_truth`]); on a tie the first in
-/// the comparison's order (the simplest, as the scripts are listed from the open loop up).
+/// successes (within the takt, on a task with one) among those that do not see the truth
+/// ([`sees_the_truth`]); on a tie the first in the comparison's order (the simplest, as the
+/// scripts are listed from the open loop up).
 pub fn best_script<'a>(here: &[&'a MethodResult]) -> Option<&'a MethodResult> {
     let mut best: Option<&MethodResult> = None;
     for r in here
         .iter()
         .filter(|r| r.policy.is_none() && !sees_the_truth(&r.method))
     {
-        if best.is_none_or(|b| r.report.successes > b.report.successes) {
+        let within = |m: &MethodResult| m.report.successes_within_takt;
+        if best.is_none_or(|b| within(r) > within(b)) {
             best = Some(r);
         }
     }

@@ -105,7 +105,7 @@ impl EpisodeTracker {
             collision_pair,
             cycle_time_s: ending
                 .success
-                .then(|| ending.steps as f64 * ending.step_seconds),
+                .then_some(ending.steps as f64 * ending.step_seconds),
             takt_s: ending.takt,
             facts,
         }
