@@ -33,7 +33,7 @@ pub const SCRIPTS: [&str; 5] = [
 /// The place task's scripts, in order: the open-loop place script, the same with the
 /// force-guided search, tuned on training scenarios, in place of its lower
 /// ([`fairgrasp_planner::place_search`]), and both in closed loop (the cube re-observed in the
-/// hand before the place is planned, [`ScriptedPlace::reobserving`]).
+/// hand before the place is planned, `ScriptedPlace::reobserving`).
 pub const PLACE_SCRIPTS: [&str; 4] = [
     "place script",
     "place script + force search",

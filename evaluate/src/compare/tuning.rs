@@ -9,11 +9,16 @@ use fairgrasp_types::ControlTuning;
 use crate::compare::spec::CompareSpec;
 
 /// The trials of the shipped tunings, as `fairgrasp tune` wrote them: (preset, control, CSV).
-const SHIPPED_TRIALS: [(&str, &str, &str); 2] = [
+const SHIPPED_TRIALS: [(&str, &str, &str); 3] = [
     (
         "place_cell",
         "force_search",
         include_str!("../../../assets/tuned/place_cell/force_search_trials.csv"),
+    ),
+    (
+        "place_cell",
+        "square_search",
+        include_str!("../../../assets/tuned/place_cell/square_search_trials.csv"),
     ),
     (
         "place_cell",

@@ -259,7 +259,7 @@ impl SpecRecord {
     }
 
     /// The first thing in which `saved` (a folder's) differs from `self` (the request), as
-    /// ([what], before, now).
+    /// (what, before, now).
     pub fn first_difference(&self, saved: &SpecRecord) -> Option<(&'static str, String, String)> {
         let pairs: [(&'static str, String, String); 7] = [
             ("preset", saved.preset.clone(), self.preset.clone()),
