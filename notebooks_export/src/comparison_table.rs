@@ -150,25 +150,37 @@ fn result_of<'a>(c: &'a Comparison, method: &str, preset: &str) -> Option<&'a Me
 }
 
 /// The pivot table as aligned text: one row per method, one column per preset, success in %
-/// (the intervals are in `compare.csv` and the Markdown pivot).
+/// (the intervals are in `compare.csv` and the Markdown pivot); then the cycle's table.
 pub fn pivot_text(c: &Comparison) -> String {
-    let mut header = vec!["success %"];
+    let mut out = text_pivot(c, "success %", |r| pct(r.report.success_rate));
+    out.push('\n');
+    let takt = takt_of(c);
+    let title = match takt {
+        Some(t) => format!("within {t} s % (mean cycle)"),
+        None => "mean cycle time".to_string(),
+    };
+    out += &text_pivot(c, &title, |r| cycle_cell(r, takt));
+    out
+}
+
+/// An aligned text table of methods × presets headed `title`, each cell `cell` of the result.
+fn text_pivot(c: &Comparison, title: &str, cell: impl Fn(&MethodResult) -> String) -> String {
+    let mut header = vec![title];
     header.extend(c.presets.iter().map(String::as_str));
     let rows: Vec<Vec<String>> = c
         .methods
         .iter()
         .map(|m| {
             std::iter::once(m.clone())
-                .chain(c.presets.iter().map(|p| {
-                    result_of(c, m, p).map_or("–".into(), |r| pct(r.report.success_rate))
-                }))
+                .chain(
+                    c.presets
+                        .iter()
+                        .map(|p| result_of(c, m, p).map_or("–".into(), &cell)),
+                )
                 .collect()
         })
         .collect();
-    let mut out = aligned(&header, &rows);
-    out.push('\n');
-    out += &cycle_pivot_text(c, takt_of(c));
-    out
+    aligned(&header, &rows)
 }
 
 /// The takt of the comparison's presets, if they run on one (the first found).
@@ -187,31 +199,6 @@ fn cycle_cell(r: &MethodResult, takt: Option<f64>) -> String {
         Some(_) => format!("{} ({cycle})", pct(e.within_takt_rate)),
         None => cycle,
     }
-}
-
-/// The pivot of the cycle: success within the takt (% of the episodes) and mean cycle time
-/// \[s\] of a task on a takt, the mean cycle time alone of one without, as aligned text.
-fn cycle_pivot_text(c: &Comparison, takt: Option<f64>) -> String {
-    let title = match takt {
-        Some(t) => format!("within {t} s % (mean cycle)"),
-        None => "mean cycle time".to_string(),
-    };
-    let mut header = vec![title.as_str()];
-    header.extend(c.presets.iter().map(String::as_str));
-    let rows: Vec<Vec<String>> = c
-        .methods
-        .iter()
-        .map(|m| {
-            std::iter::once(m.clone())
-                .chain(
-                    c.presets
-                        .iter()
-                        .map(|p| result_of(c, m, p).map_or("–".into(), |r| cycle_cell(r, takt))),
-                )
-                .collect()
-        })
-        .collect();
-    aligned(&header, &rows)
 }
 
 /// How each control with parameters was set, one line each (empty without any): what a
