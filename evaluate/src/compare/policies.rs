@@ -140,3 +140,24 @@ pub(crate) fn calibration_of(
         message,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fairgrasp_env::TaskKind;
+
+    /// The name lists are the table's names, in its order (they are not a second list of the
+    /// controls to keep in step: a control added to the table and not here fails this).
+    #[test]
+    fn the_script_names_are_the_tables() {
+        let names = |task| controls_of(task).map(|c| c.report).collect::<Vec<_>>();
+        assert_eq!(names(TaskKind::Lift), SCRIPTS.to_vec());
+        assert_eq!(names(TaskKind::Place)[..PLACE_SCRIPTS.len()], PLACE_SCRIPTS);
+        // A place preset without a mix runs the four; the place cell adds its three.
+        let place = fairgrasp_env::config::presets::load("place").unwrap();
+        let cell = fairgrasp_env::config::presets::load("place_cell").unwrap();
+        assert_eq!(scripts_for([&place]).len(), PLACE_SCRIPTS.len());
+        assert_eq!(scripts_for([&cell]).len(), PLACE_SCRIPTS.len() + 3);
+        assert_eq!(scripts_for([&place, &cell]).len(), PLACE_SCRIPTS.len() + 3);
+    }
+}
