@@ -100,6 +100,32 @@ fn the_place_tasks_contact_conditions_and_search_tuning_are_refused_out_of_range
             "wall_height",
         ),
         ("search = { pich = 0.002 }", "pich", "unknown field"),
+        (
+            "search = { descend_speed = 0.2 }",
+            "task.place.search.descend_speed",
+            "[0.001, 0.05] m/s",
+        ),
+        ("takt = 0.0", "task.place.takt", "(0, 3600] s"),
+        (
+            "square = { squeeze = 0.1 }",
+            "task.place.square.squeeze",
+            "[0.2, 100] N",
+        ),
+        (
+            "square = { search = { pitch = 0.5 } }",
+            "task.place.square.search.pitch",
+            "[0.0005, 0.02]",
+        ),
+        (
+            "switch = { tilted = { floor_band = 0.05 } }",
+            "task.place.switch.tilted.floor_band",
+            "wall_height",
+        ),
+        (
+            "switch = { tilt_band = 0.05 }",
+            "task.place.switch.tilt_band",
+            "[0.0001, 0.01] m",
+        ),
     ] {
         let m = refused(&format!("[task]\nkind = \"place\"\n[task.place]\n{toml}\n"));
         assert!(m.contains(field) && m.contains(rule), "{toml}: {m}");
@@ -112,6 +138,19 @@ fn the_place_tasks_contact_conditions_and_search_tuning_are_refused_out_of_range
         config.task.place.search.contact_force, 1.5,
         "the rest default"
     );
+}
+
+/// An angle range may be negative, down to −π: the message states that bound, not "must not be
+/// negative" (issue 60's example).
+#[test]
+fn an_angle_range_below_minus_pi_is_refused_stating_its_real_bound() {
+    let m = refused("[randomization]\nangle = [-3.5, 1.0]\n");
+    assert!(
+        m.contains("randomization.angle") && m.contains("-3.5") && m.contains("-π"),
+        "{m}"
+    );
+    assert!(!m.contains("negative"), "{m}");
+    EnvConfig::from_toml_str("[randomization]\nangle = [-3.0, 1.0]\n").unwrap();
 }
 
 #[test]

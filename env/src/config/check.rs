@@ -23,11 +23,20 @@ pub(crate) fn check(
     }
 }
 
-/// A `[min, max]` range: finite, ordered, and not below `lowest`.
+/// The lowest value a range accepts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Lowest {
+    /// 0: a distance, a friction, a scale.
+    Zero,
+    /// −π: an angle about the vertical.
+    MinusPi,
+}
+
+/// A `[min, max]` range: finite, ordered, and not below `lowest` (the message states it).
 pub(crate) fn check_range(
     range: &Range,
     field: &'static str,
-    lowest: f64,
+    lowest: Lowest,
 ) -> Result<(), ConfigError> {
     check(
         range.iter().all(|v| v.is_finite()),
@@ -41,5 +50,12 @@ pub(crate) fn check_range(
         range,
         "min must not exceed max",
     )?;
-    check(range[0] >= lowest, field, range, "must not be negative")
+    let (bound, rule) = match lowest {
+        Lowest::Zero => (0.0, "must not be negative"),
+        Lowest::MinusPi => (
+            -std::f64::consts::PI,
+            "must not start below -π (-3.141592653589793) rad",
+        ),
+    };
+    check(range[0] >= bound, field, range, rule)
 }

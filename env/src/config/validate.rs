@@ -4,7 +4,7 @@ use std::path::Path;
 
 use fairgrasp_kinematics::Pose;
 
-use crate::config::check::{check, check_range};
+use crate::config::check::{Lowest, check, check_range};
 use crate::config::env_config::{EnvConfig, SIMULATED_ARM};
 pub use crate::config::error::ConfigError;
 pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
@@ -243,13 +243,13 @@ impl EnvConfig {
     /// `validate_families`').
     fn validate_randomization(&self) -> Result<(), ConfigError> {
         let r = &self.randomization;
-        check_range(&r.radius, "randomization.radius", 0.0)?;
-        check_range(&r.angle, "randomization.angle", -std::f64::consts::PI)?;
+        check_range(&r.radius, "randomization.radius", Lowest::Zero)?;
+        check_range(&r.angle, "randomization.angle", Lowest::MinusPi)?;
         if let Some(f) = &r.friction {
-            check_range(f, "randomization.friction", 0.0)?;
+            check_range(f, "randomization.friction", Lowest::Zero)?;
         }
         if let Some(m) = &r.mass_scale {
-            check_range(m, "randomization.mass_scale", 0.0)?;
+            check_range(m, "randomization.mass_scale", Lowest::Zero)?;
             check(
                 m[0] > 0.0,
                 "randomization.mass_scale",

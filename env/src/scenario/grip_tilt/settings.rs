@@ -1,7 +1,7 @@
 //! The grip tilt's bounds and rule (`[task.place] grip_tilt`, a `[min, max]` range of angles
 //! \[rad\]).
 
-use crate::config::check::{check, check_range};
+use crate::config::check::{Lowest, check, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
 
@@ -15,7 +15,7 @@ pub const MAX_GRIP_TILT: f64 = 0.35;
 /// Refuses a grip tilt range that is not finite, ordered, non-negative and within
 /// [`MAX_GRIP_TILT`], naming `task.place.grip_tilt`.
 pub fn check_grip_tilt(grip_tilt: &Range) -> Result<(), ConfigError> {
-    check_range(grip_tilt, "task.place.grip_tilt", 0.0)?;
+    check_range(grip_tilt, "task.place.grip_tilt", Lowest::Zero)?;
     check(
         grip_tilt[1] <= MAX_GRIP_TILT,
         "task.place.grip_tilt",

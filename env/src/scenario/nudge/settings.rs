@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{check, check_range};
+use crate::config::check::{Lowest, check, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
 
@@ -31,7 +31,7 @@ impl NudgeConfig {
     /// `task.max_steps` (the push must come before the episode ends), `position` is
     /// `randomization.position` (the push stays in the position's radius range).
     pub fn check(&self, max_steps: usize, position: bool) -> Result<(), ConfigError> {
-        check_range(&self.distance, "randomization.nudge.distance", 0.0)?;
+        check_range(&self.distance, "randomization.nudge.distance", Lowest::Zero)?;
         check(
             self.distance[0] > 0.0 && self.distance[1] <= MAX_NUDGE,
             "randomization.nudge.distance",

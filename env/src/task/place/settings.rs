@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{check, check_range};
+use crate::config::check::{Lowest, check, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
 use crate::scenario::error_mix::settings::ErrorMix;
@@ -321,11 +321,11 @@ fn check_fixture(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
         p.fixture_xy,
         "must be within 2 m of the base [m]",
     )?;
-    check_range(&p.fixture_radius, "task.place.fixture_radius", 0.0)?;
+    check_range(&p.fixture_radius, "task.place.fixture_radius", Lowest::Zero)?;
     check_range(
         &p.fixture_angle,
         "task.place.fixture_angle",
-        -std::f64::consts::PI,
+        Lowest::MinusPi,
     )
 }
 
@@ -349,7 +349,7 @@ fn check_observation_noise(p: &PlaceConfig) -> Result<(), ConfigError> {
 fn check_contact_conditions(p: &PlaceConfig) -> Result<(), ConfigError> {
     check_grip_tilt(&p.grip_tilt)?;
     if let Some(friction) = &p.fixture_friction {
-        check_range(friction, "task.place.fixture_friction", 0.0)?;
+        check_range(friction, "task.place.fixture_friction", Lowest::Zero)?;
         check(
             friction[1] <= 2.0,
             "task.place.fixture_friction",
