@@ -1,4 +1,6 @@
-"""Ray RLlib PPO (the new API stack) on the task-space residual env, on the native vector env:
+"""Ray RLlib PPO (the new API stack) on the task-space residual env of the preset's task (the
+recipe `--recipe`, default the preset's residual recipe: `residual_miscalibrated` on a lift preset,
+the place task's on a place preset), on the native vector env:
 RLlib's env runner builds `FairGrasp-Residual-<Preset>-v0` with
 `gym_env_vectorize_mode="vector_entry_point"`, so the 8 envs step on Rust threads
 (`fairgrasp.VectorEnv`) instead of RLlib's Python loop over 8 single envs. The
@@ -18,7 +20,8 @@ One process: the env runner and the learner run in the driver (`num_env_runners=
 `num_learners=0`), as SB3 does, so the throughput compares. On a Ray cluster (`ray start --head`,
 `ray start --address=HEAD:6379`, fairgrasp installed on every node), `--address auto
 --runners N` samples on N remote env runners instead. Needs torch and Ray RLlib (the venv
-above); not part of CI.
+above); not part of CI (its reporting step, `report`, is tested with a stub policy in
+python/tests/test_examples.py).
 """
 
 import argparse
@@ -26,47 +29,77 @@ import json
 import os
 import time
 
+import gymnasium as gym
 import numpy as np
 
 import fairgrasp
+from fairgrasp.recipes import task_residual_recipe
+from report_step import compare_with_scripts
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--recipe", default="residual_miscalibrated", help="the recipe whose env and hyperparameters to use")
-parser.add_argument("--preset", default="nudged")
-parser.add_argument("--timesteps", type=int, default=300_000)
-parser.add_argument("--seed", type=int, default=0, help="training seed, 0–999 999")
-parser.add_argument("--envs", type=int, default=8, help="envs of the native vector env (per env runner)")
-parser.add_argument("--threads", type=int, default=2, help="Rust threads of the vector env")
-parser.add_argument("--episodes", type=int, default=300)
-parser.add_argument("--eval-seed", type=int, default=7, help="held-out scenarios: the set of fairgrasp eval --seed EVAL_SEED")
-parser.add_argument("--runners", type=int, default=0, help="remote env runners (0: sample in this process)")
-parser.add_argument("--address", default=None, help="an existing Ray cluster (e.g. auto)")
-parser.add_argument("--log", default=None, help="append one JSON line per training iteration and the result")
-parser.add_argument("--out", default="runs/rllib_residual_report", help="the report folder fairgrasp.compare writes")
-parser.add_argument("--force", action="store_true", help="replace an earlier report in --out")
-args = parser.parse_args()
-if not 0 <= args.seed < 1_000_000:
-    parser.error(f"--seed {args.seed}: must be in 0–999999 (training scenario seeds start at 100 000 000 + seed)")
-if args.timesteps < 1 or args.episodes < 1 or args.envs < 1 or args.threads < 1:
-    parser.error("--timesteps, --episodes, --envs and --threads must be positive")
+NAME = "RLlib PPO residual"
 
-import gymnasium as gym  # noqa: E402
-import ray  # noqa: E402  (after the argument checks: importing Ray takes seconds)
-import torch  # noqa: E402
-from ray.rllib.algorithms.ppo import PPOConfig  # noqa: E402
-from ray.rllib.connectors.env_to_module import MeanStdFilter  # noqa: E402
-from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig  # noqa: E402
-from ray.tune.registry import register_env  # noqa: E402
 
-try:
-    import tomllib  # Python 3.11+
-except ModuleNotFoundError:  # Python 3.10, the package's oldest: the same parser, from PyPI
-    import tomli as tomllib
+def parse_args(argv=None):
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--recipe", default=None,
+                        help="the recipe whose env and hyperparameters to use (default: the preset's residual recipe)")
+    parser.add_argument("--preset", default="nudged")
+    parser.add_argument("--timesteps", type=int, default=300_000)
+    parser.add_argument("--seed", type=int, default=0, help="training seed, 0–999 999")
+    parser.add_argument("--envs", type=int, default=8, help="envs of the native vector env (per env runner)")
+    parser.add_argument("--threads", type=int, default=2, help="Rust threads of the vector env")
+    parser.add_argument("--episodes", type=int, default=300)
+    parser.add_argument("--eval-seed", type=int, default=7,
+                        help="held-out scenarios: the set of fairgrasp eval --seed EVAL_SEED")
+    parser.add_argument("--runners", type=int, default=0, help="remote env runners (0: sample in this process)")
+    parser.add_argument("--address", default=None, help="an existing Ray cluster (e.g. auto)")
+    parser.add_argument("--log", default=None, help="append one JSON line per training iteration and the result")
+    parser.add_argument("--out", default="runs/rllib_residual_report", help="the report folder fairgrasp.compare writes")
+    parser.add_argument("--force", action="store_true", help="replace an earlier report in --out")
+    args = parser.parse_args(argv)
+    if not 0 <= args.seed < 1_000_000:
+        parser.error(f"--seed {args.seed}: must be in 0–999999 (training scenario seeds start at 100 000 000 + seed)")
+    if args.timesteps < 1 or args.episodes < 1 or args.envs < 1 or args.threads < 1:
+        parser.error("--timesteps, --episodes, --envs and --threads must be positive")
+    if args.recipe is None:
+        args.recipe = task_residual_recipe(args.preset)
+    return args
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-with open(os.path.join(ROOT, "assets", "experiments", args.recipe + ".toml"), "rb") as f:
-    recipe = tomllib.load(f)
-ppo, model = recipe["ppo"], recipe["model"]
+
+def log(args, row):
+    print(json.dumps(row), flush=True)
+    if args.log:
+        with open(args.log, "a") as f:
+            f.write(json.dumps(row) + "\n")
+
+
+def report(act, args, steps, train_s):
+    """The reporting step: the trained policy ``act`` (``obs -> action`` on the recipe's env) in
+    the report folder ``args.out`` beside the task's scripts; prints the result against the
+    open-loop script and logs it as one JSON row, which it returns."""
+    pair = compare_with_scripts(NAME, act, recipe=args.recipe, preset=args.preset, episodes=args.episodes,
+                                eval_seed=args.eval_seed, out=args.out, force=args.force, shipped=True)
+    trained, script = pair["method"], pair["script"]
+    row = {"recipe": args.recipe, "preset": args.preset, "seed": args.seed, "timesteps": steps,
+           "train_wall_s": round(train_s, 1), "steps_per_s": round(steps / train_s, 1) if train_s > 0 else None,
+           "episodes": args.episodes, "eval_seed": args.eval_seed,
+           "trained": trained["successes"], "ci95": [trained["ci_low"], trained["ci_high"]],
+           "trained_outcomes": trained["outcomes"], "script_name": script["method"], "script": script["successes"],
+           "difference_points": pair["difference_points"], "report": args.out}
+    log(args, row)
+    return row
+
+
+def read_recipe(name):
+    """The recipe ``name`` of ``assets/experiments/`` as a dict."""
+    try:
+        import tomllib  # Python 3.11+
+    except ModuleNotFoundError:  # Python 3.10, the package's oldest: the same parser, from PyPI
+        import tomli as tomllib
+
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    with open(os.path.join(root, "assets", "experiments", name + ".toml"), "rb") as f:
+        return tomllib.load(f)
 
 
 class NextStepAutoreset(gym.vector.VectorWrapper):
@@ -128,126 +161,123 @@ def record_success(episode, metrics_logger, **kwargs):
     metrics_logger.log_value("success", float(episode.get_infos(-1)["success"]), window=200)
 
 
-register_env("fairgrasp_residual", make_env)
-# RLlib resets the env runner's envs once with config.seed (+ the runner's index): the native
-# vector env then plays scenario seeds from there. 100 000 000 + seed keeps them far from the
-# held-out sets (set 7 is 7 000 021 + i) and below 2³² (RLlib also seeds NumPy with it).
-train_seed = 100_000_000 + args.seed
+def build_algo(args, recipe):
+    """RLlib's PPO on the recipe's env with its hyperparameters (see the module doc), the actor's
+    output layer zeroed when the recipe's model says so."""
+    import torch
+    from ray.rllib.algorithms.ppo import PPOConfig
+    from ray.rllib.connectors.env_to_module import MeanStdFilter
+    from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
+    from ray.tune.registry import register_env
 
-ray.init(address=args.address, include_dashboard=False, num_cpus=None if args.address else 2,
-         log_to_driver=False)
-batch = args.envs * ppo["n_steps"]
-config = (
-    PPOConfig()
-    .environment("fairgrasp_residual", env_config={"recipe": fairgrasp._native.task_residual_recipe(args.preset),
-                                                   "preset": args.preset, "threads": args.threads},
-                 clip_actions=True)
-    .env_runners(
-        num_env_runners=args.runners,
-        num_envs_per_env_runner=args.envs,
-        gym_env_vectorize_mode="vector_entry_point",
-        rollout_fragment_length=ppo["n_steps"],
-        env_to_module_connector=lambda env, spaces, device: MeanStdFilter(clip_by_value=10.0),
+    ppo, model = recipe["ppo"], recipe["model"]
+    register_env("fairgrasp_residual", make_env)
+    # RLlib resets the env runner's envs once with config.seed (+ the runner's index): the native
+    # vector env then plays scenario seeds from there. 100 000 000 + seed keeps them far from the
+    # held-out sets (set 7 is 7 000 021 + i) and below 2³² (RLlib also seeds NumPy with it).
+    train_seed = 100_000_000 + args.seed
+    config = (
+        PPOConfig()
+        .environment("fairgrasp_residual", env_config={"recipe": args.recipe, "preset": args.preset,
+                                                       "threads": args.threads},
+                     clip_actions=True)
+        .env_runners(
+            num_env_runners=args.runners,
+            num_envs_per_env_runner=args.envs,
+            gym_env_vectorize_mode="vector_entry_point",
+            rollout_fragment_length=ppo["n_steps"],
+            env_to_module_connector=lambda env, spaces, device: MeanStdFilter(clip_by_value=10.0),
+        )
+        .learners(num_learners=0)
+        .training(
+            train_batch_size_per_learner=args.envs * ppo["n_steps"],
+            minibatch_size=ppo["batch_size"],
+            num_epochs=ppo["n_epochs"],
+            gamma=ppo["gamma"],
+            lambda_=ppo["gae_lambda"],
+            clip_param=ppo["clip_coef"],
+            vf_clip_param=1e9,  # the recipe does not clip the value loss (clip_vloss = false)
+            entropy_coeff=ppo["ent_coef"],
+            vf_loss_coeff=ppo["vf_coef"],
+            grad_clip=ppo["max_grad_norm"],
+            grad_clip_by="global_norm",
+            use_kl_loss=False,
+            # Annealed linearly to 0 over the run, as anneal_lr does in the Rust trainer and SB3.
+            lr=[[0, ppo["learning_rate"]], [args.timesteps, 0.0]] if ppo.get("anneal_lr") else ppo["learning_rate"],
+        )
+        .rl_module(model_config=DefaultModelConfig(fcnet_hiddens=model["hidden"], fcnet_activation="tanh",
+                                                   head_fcnet_hiddens=[], vf_share_layers=False))
+        .callbacks(on_episode_end=record_success)
+        .debugging(seed=train_seed)
     )
-    .learners(num_learners=0)
-    .training(
-        train_batch_size_per_learner=batch,
-        minibatch_size=ppo["batch_size"],
-        num_epochs=ppo["n_epochs"],
-        gamma=ppo["gamma"],
-        lambda_=ppo["gae_lambda"],
-        clip_param=ppo["clip_coef"],
-        vf_clip_param=1e9,  # the recipe does not clip the value loss (clip_vloss = false)
-        entropy_coeff=ppo["ent_coef"],
-        vf_loss_coeff=ppo["vf_coef"],
-        grad_clip=ppo["max_grad_norm"],
-        grad_clip_by="global_norm",
-        use_kl_loss=False,
-        # Annealed linearly to 0 over the run, as anneal_lr does in the Rust trainer and SB3.
-        lr=[[0, ppo["learning_rate"]], [args.timesteps, 0.0]] if ppo.get("anneal_lr") else ppo["learning_rate"],
-    )
-    .rl_module(model_config=DefaultModelConfig(fcnet_hiddens=model["hidden"], fcnet_activation="tanh",
-                                               head_fcnet_hiddens=[], vf_share_layers=False))
-    .callbacks(on_episode_end=record_success)
-    .debugging(seed=train_seed)
-)
-algo = config.build_algo()
+    algo = config.build_algo()
+
+    def zero_actor_output(learner):
+        """The actor's last layer: means 0 (the script) and log σ the recipe's log_std_init."""
+        module = learner.module["default_policy"]
+        layer = [m for m in module.pi.modules() if isinstance(m, torch.nn.Linear)][-1]
+        act_dim = layer.out_features // 2
+        with torch.no_grad():
+            layer.weight.zero_()
+            layer.bias[:act_dim] = 0.0
+            layer.bias[act_dim:] = model["log_std_init"]
+        return act_dim
+
+    if model.get("zero_actor_output", False):
+        algo.learner_group.foreach_learner(zero_actor_output)
+        algo.env_runner_group.sync_weights(from_worker_or_learner_group=algo.learner_group, inference_only=True)
+    return algo
 
 
-def last_linear(module):
-    return [m for m in module.pi.modules() if isinstance(m, torch.nn.Linear)][-1]
+def train(algo, args):
+    """Trains until ``args.timesteps`` env steps: ``(steps, wall seconds)``."""
+    start, steps, iteration = time.time(), 0, 0
+    while steps < args.timesteps:
+        result = algo.train()
+        iteration += 1
+        steps = int(result["num_env_steps_sampled_lifetime"])
+        runners = result.get("env_runners", {})
+        if iteration % 10 == 0 or steps >= args.timesteps:
+            wall = time.time() - start
+            log(args, {"iteration": iteration, "steps": steps, "wall_s": round(wall, 1),
+                       "steps_per_s": round(steps / wall, 1),
+                       "episode_return_mean": runners.get("episode_return_mean"),
+                       "episode_len_mean": runners.get("episode_len_mean"),
+                       "training_success_last_200": runners.get("success")})
+    return steps, time.time() - start
 
 
-def zero_actor_output(learner):
-    """The actor's last layer: means 0 (the script) and log σ the recipe's log_std_init."""
-    module = learner.module["default_policy"]
-    layer = last_linear(module)
-    act_dim = layer.out_features // 2
-    with torch.no_grad():
-        layer.weight.zero_()
-        layer.bias[:act_dim] = 0.0
-        layer.bias[act_dim:] = model["log_std_init"]
-    return act_dim
+def trained_policy(algo):
+    """The trained policy outside RLlib: the env runner's observation filter (frozen) and the
+    module's deterministic action (the Gaussian's mean, clipped to the action space)."""
+    import torch
+    from ray.rllib.connectors.env_to_module import MeanStdFilter
+
+    filters = [c for c in algo.env_runner._env_to_module.connectors if isinstance(c, MeanStdFilter)]
+    obs_filter = next(iter(filters[0]._filters.values()))
+    module = algo.get_module()
+
+    def act(obs):
+        x = obs_filter(np.asarray(obs, dtype=np.float32)[None, :], update=False)
+        with torch.no_grad():
+            out = module.forward_inference({"obs": torch.as_tensor(np.asarray(x, dtype=np.float32))})
+        mean = out["action_dist_inputs"][0, : out["action_dist_inputs"].shape[1] // 2].numpy()
+        return np.clip(mean.astype(np.float64), -1.0, 1.0)
+
+    return act
 
 
-if model.get("zero_actor_output", False):
-    algo.learner_group.foreach_learner(zero_actor_output)
-    algo.env_runner_group.sync_weights(from_worker_or_learner_group=algo.learner_group, inference_only=True)
+def main(argv=None):
+    args = parse_args(argv)
+    import ray  # after the argument checks: importing Ray takes seconds
+
+    ray.init(address=args.address, include_dashboard=False, num_cpus=None if args.address else 2,
+             log_to_driver=False)
+    algo = build_algo(args, read_recipe(args.recipe))
+    steps, train_s = train(algo, args)
+    report(trained_policy(algo), args, steps, train_s)
+    ray.shutdown()
 
 
-def log(row):
-    print(json.dumps(row), flush=True)
-    if args.log:
-        with open(args.log, "a") as f:
-            f.write(json.dumps(row) + "\n")
-
-
-start, steps, iteration = time.time(), 0, 0
-while steps < args.timesteps:
-    result = algo.train()
-    iteration += 1
-    steps = int(result["num_env_steps_sampled_lifetime"])
-    runners = result.get("env_runners", {})
-    if iteration % 10 == 0 or steps >= args.timesteps:
-        wall = time.time() - start
-        log({"iteration": iteration, "steps": steps, "wall_s": round(wall, 1),
-             "steps_per_s": round(steps / wall, 1),
-             "episode_return_mean": runners.get("episode_return_mean"),
-             "episode_len_mean": runners.get("episode_len_mean"),
-             "training_success_last_200": runners.get("success")})
-train_s = time.time() - start
-
-# The trained policy outside RLlib: the env runner's observation filter (frozen) and the
-# module's deterministic action (the Gaussian's mean, clipped to the action space).
-runner = algo.env_runner
-filters = [c for c in runner._env_to_module.connectors if isinstance(c, MeanStdFilter)]
-obs_filter = next(iter(filters[0]._filters.values()))
-module = algo.get_module()
-
-
-def act(obs):
-    x = obs_filter(np.asarray(obs, dtype=np.float32)[None, :], update=False)
-    with torch.no_grad():
-        out = module.forward_inference({"obs": torch.as_tensor(np.asarray(x, dtype=np.float32))})
-    mean = out["action_dist_inputs"][0, : out["action_dist_inputs"].shape[1] // 2].numpy()
-    return np.clip(mean.astype(np.float64), -1.0, 1.0)
-
-
-name = "RLlib PPO residual"
-fairgrasp.compare(policies={name: {"policy": act, "recipe": args.recipe}}, presets=[args.preset],
-                  episodes=args.episodes, seed=args.eval_seed, out=args.out, force=args.force)
-with open(f"{args.out}/compare.json") as f:
-    comparison = json.load(f)
-results = {r["method"]: r for r in comparison["results"]}
-trained, script = results[name], results["scripted baseline"]
-print(f"{name}: {trained['successes']}/{args.episodes} = {100 * trained['success_rate']:.1f} % "
-      f"(95 % CI {100 * trained['ci_low']:.1f}–{100 * trained['ci_high']:.1f} %)")
-print(f"open-loop script: {script['successes']}/{args.episodes} = {100 * script['success_rate']:.1f} % "
-      f"(95 % CI {100 * script['ci_low']:.1f}–{100 * script['ci_high']:.1f} %)")
-log({"preset": args.preset, "seed": args.seed, "timesteps": steps, "train_wall_s": round(train_s, 1),
-     "steps_per_s": round(steps / train_s, 1), "episodes": args.episodes, "eval_seed": args.eval_seed,
-     "trained": trained["successes"], "ci95": [trained["ci_low"], trained["ci_high"]],
-     "trained_outcomes": trained["outcomes"], "script": script["successes"],
-     "difference_points": round(100 * (trained["success_rate"] - script["success_rate"]), 1),
-     "report": args.out})
-ray.shutdown()
+if __name__ == "__main__":
+    main()

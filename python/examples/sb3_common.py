@@ -1,6 +1,7 @@
 """What the SB3 examples share: SB3 PPO with a recipe's hyperparameters, the trained model as a
 policy ``fairgrasp.evaluate`` and ``fairgrasp.compare`` take (held-out scenarios: the sets of
-``fairgrasp eval --seed``, with Rust's 95 % Wilson intervals), and one line of a result."""
+``fairgrasp eval --seed``, with Rust's 95 % Wilson intervals). A result's line is
+``fairgrasp.compare.describe``. Nothing here imports SB3 or torch until a model is built."""
 
 import os
 
@@ -84,7 +85,3 @@ def policy_act(model, normalizer=None):
     return act
 
 
-def fmt(result):
-    """``k/n = x % (95 % CI lo–hi %)`` of a ``fairgrasp.evaluate`` result."""
-    k, n = result["successes"], result["episodes"]
-    return f"{k}/{n} = {100 * k / n:.1f} % (95 % CI {100 * result['ci_low']:.1f}–{100 * result['ci_high']:.1f} %)"

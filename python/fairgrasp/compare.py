@@ -15,6 +15,7 @@ the notebook, replays of the Rust methods), written whole or not at all.
 """
 
 import json
+import os
 
 from . import _native
 from .presets import current_preset
@@ -61,3 +62,56 @@ def compare(policies=None, presets=None, episodes=100, seed=0, out="report", *, 
     command = f"fairgrasp.compare(policies={list(policies)}, presets={presets}, episodes={episodes}, seed={seed})"
     return list(_native.compare(presets, int(episodes), int(seed), out, json.dumps(methods),
                                 bool(force), arm, threads, bool(shipped), command))
+
+
+def read_comparison(out):
+    """The ``compare.json`` of the report folder ``out``, as a dict."""
+    with open(os.path.join(os.fspath(out), "compare.json")) as f:
+        return json.load(f)
+
+
+def scripts_of(comparison, preset):
+    """The results of the task's scripts on ``preset`` in ``comparison`` (``compare.json`` as a
+    dict), in the comparison's run order: the methods without a policy folder, which Rust's
+    table of controls runs first, the task's open-loop script first (``scripted baseline`` on a
+    lift preset, ``place script`` on a place preset). Nothing here knows their names."""
+    order = {name: i for i, name in enumerate(comparison["methods"])}
+    found = [r for r in comparison["results"] if r["preset"] == preset and r.get("policy") is None]
+    return sorted(found, key=lambda r: order[r["method"]])
+
+
+def versus_script(comparison, method, preset):
+    """``method``'s result on ``preset`` beside the task's open-loop script's (the first of
+    ``scripts_of``): a dict with ``method`` and ``script`` (their ``compare.json`` results) and
+    ``difference_points``, the method's success rate minus the script's in percentage points
+    (of success within the takt on a task with a takt, which is what its paired tests count).
+    A method or preset the comparison does not have is a ValueError naming what it has."""
+    found = [r for r in comparison["results"] if r["method"] == method and r["preset"] == preset]
+    scripts = scripts_of(comparison, preset)
+    if not found or not scripts:
+        raise ValueError(
+            f"the comparison has no {'script' if found else repr(method)} on preset {preset!r}: its "
+            f"methods are {comparison['methods']}, its presets {comparison['presets']}"
+        )
+    trained, script = found[0], scripts[0]
+    key = "within_takt_rate" if trained.get("takt_s") is not None else "success_rate"
+    return {
+        "method": trained,
+        "script": script,
+        "difference_points": round(100 * (trained[key] - script[key]), 1),
+    }
+
+
+def describe(result):
+    """``k/n = x % (95 % CI lo–hi %)`` of a ``compare.json`` or ``evaluate`` result, and on a
+    task with a takt also its success within the takt and its mean cycle time."""
+    k, n = result["successes"], result["episodes"]
+    text = (f"{k}/{n} = {100 * k / n:.1f} % "
+            f"(95 % CI {100 * result['ci_low']:.1f}–{100 * result['ci_high']:.1f} %)")
+    if result.get("takt_s") is not None:
+        cycle = result.get("mean_cycle_time_s")
+        text += (f"; within the {result['takt_s']:g} s takt {result['successes_within_takt']}/{n} = "
+                 f"{100 * result['within_takt_rate']:.1f} % (95 % CI {100 * result['within_takt_ci_low']:.1f}–"
+                 f"{100 * result['within_takt_ci_high']:.1f} %), mean cycle "
+                 + ("–" if cycle is None else f"{cycle:.1f} s"))
+    return text

@@ -15,6 +15,7 @@ refused with the list of valid ones.
 
 from . import _native
 from .env import FairGraspEnv
+from .presets import current_preset
 from .vector import VectorEnv
 
 
@@ -26,6 +27,13 @@ def recipe_names():
 def recipe_keys():
     """The keys an override may have."""
     return list(_native.recipe_keys())
+
+
+def task_residual_recipe(preset):
+    """The shipped recipe of the task-space residual for the shipped preset ``preset``: the
+    lift task's (``residual_miscalibrated``) on a lift preset, the place task's on a place
+    preset; an unknown preset is a ValueError."""
+    return _native.task_residual_recipe(current_preset(preset))
 
 
 def make(recipe, *, render_mode=None, evaluation=False, **overrides):
