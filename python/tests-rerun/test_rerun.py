@@ -99,9 +99,10 @@ def test_bad_input_is_refused_with_the_file_named(tmp_path):
         fr.save(bad, tmp_path / "x.rrd")
     empty = tmp_path / "empty.json"
     empty.write_text('{"fairgrasp_replay_json": 1, "methods": []}', encoding="utf-8")
-    with pytest.raises(fr.ReplayFileError, match="`methods` must be a non-empty list"):
+    with pytest.raises(fr.ReplayFileError,
+                       match="empty.json: methods: expected a list of 1–32 entries, got 0 entries"):
         fr.save(empty, tmp_path / "x.rrd")
-    with pytest.raises(fr.ReplayFileError, match=r"methods\[0\].method: missing"):
+    with pytest.raises(fr.ReplayFileError, match=r"the episodes given: methods\[0\].method: missing"):
         fr.save({"methods": [{"trajectory": {"rows": [{}]}}]}, tmp_path / "x.rrd")
     with pytest.raises(ValueError, match="spacing_m = nan"):
         fr.save(empty, tmp_path / "x.rrd", spacing_m=float("nan"))
