@@ -1,5 +1,7 @@
 //! The Ray Tune sweep (`python/fairgrasp/tune.py`, tested by `python/tests-ray`, pytest) on a
-//! local Ray with 2 CPUs: Rust trainings as Tune trials under ASHA. Run through
+//! local Ray with 2 CPUs: Rust trainings as Tune trials under ASHA; a trial whose training
+//! diverges or is killed reported with its reason, a sweep whose driver is killed resumed with its
+//! finished trial kept, bad arguments refused before Ray starts. Run through
 //! `scripts/python-package-test.sh` in a venv of its own (`target/python-ray-venv`, created on
 //! the first run from `scripts/requirements-ray.txt`: Ray Tune 2.60.0 beside the package's
 //! pins), with the extension `cargo test --workspace` has just built and this build's

@@ -26,10 +26,20 @@ records are in ``<out>/tune/``. The table (``<out>/sweep.json`` and ``<out>/swee
 atomically) has per trial its config, status (``completed``, ``stopped by ASHA``, ``failed``) and
 the reason, the evaluations reported, the best and last reported success, the final evaluation of a
 completed trial (its ``eval.json``), and its wall time; the best config is the trial with the
-highest success any evaluation reported.
+highest success any evaluation reported. A failed trial's reason is the trainer's own message
+(``fairgrasp train failed (exit status 1) after 2 evaluations: update 5 failed: … diverged …``)
+or the signal that killed it.
 
-Every trial config is checked by the binary before Ray starts (a misspelt key or a bad value is
-refused naming the trial, with the binary's message). Needs ``pip install "ray[tune]==2.60.0"``.
+A killed sweep (or one ended by Ctrl-C) continues with ``resume=True`` (``--resume``) and the same
+arguments: the request in ``<out>/sweep_request.json`` must match (a recipe, seed, grid, fixed
+value or ASHA setting that differs is refused by name), finished trials (completed, failed by the
+trainer's own error, stopped by ASHA) are kept untouched, and the others run again, each
+continuing from its run folder's last checkpoint (``fairgrasp train --resume``), in a new Tune
+experiment (``<out>/tune-resume-N``). ASHA's rungs then hold only the trials that run again.
+
+Every argument, and every trial config (by the binary: a misspelt key or a bad value is refused
+naming the trial, with the binary's message), is checked before Ray starts. Needs ``pip install
+"ray[tune]==2.60.0"``.
 """
 
 import argparse
@@ -71,7 +81,7 @@ def recipe_path(recipe):
     recipe = os.fspath(recipe)
     if recipe.endswith(".toml") or os.sep in recipe:
         if not os.path.isfile(recipe):
-            raise SweepError(f"recipe {recipe}: no such file")
+            raise SweepError(f"recipe {recipe}: {'not a regular file' if os.path.exists(recipe) else 'no such file'}")
         return os.path.abspath(recipe)
     for folder in (_EXPERIMENTS, os.path.join("assets", "experiments")):
         path = os.path.join(folder, recipe + ".toml")
@@ -93,12 +103,21 @@ def parse_value(text):
         raise SweepError(f"value {text!r}: neither a TOML value nor a bare word") from None
 
 
+_DOTTED_KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)*")
+
+
+def check_key(where, key):
+    """Refuses (SweepError naming ``where``) anything but a dotted recipe key (``ppo.learning_rate``)."""
+    if not isinstance(key, str) or not _DOTTED_KEY.fullmatch(key):
+        raise SweepError(f"{where}: not a dotted recipe key such as ppo.learning_rate")
+
+
 def parse_assignment(text, *, many=False):
     """``key=value`` (``many``: ``key=v1,v2,...``; a TOML array as one value needs ``key=[..]``
     with ``many`` off) → (dotted key, value or list of values)."""
     key, sep, value = text.partition("=")
     key = key.strip()
-    if not sep or not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)*", key) or not value.strip():
+    if not sep or not _DOTTED_KEY.fullmatch(key) or not value.strip():
         raise SweepError(f"{text!r}: expected key=value with a dotted key such as ppo.learning_rate=3e-4")
     if many:
         values = [parse_value(v.strip()) for v in _split_top(value)]
@@ -301,57 +320,113 @@ def _stop_requested():
 
 
 def _trial(config, *, base, binary, trials_dir, poll_s):
-    from ray import tune
-
-    seed, overrides = config["seed"], dict(config.get("set", {}))
+    """One Tune trial: trains its config (resuming its run folder when that holds a checkpoint,
+    as after a killed sweep), reports each evaluation of ``metrics.csv`` to Tune, and records how
+    it ended in ``trial.json`` (completed, or failed with the trainer's own message) or
+    ``stopped.json`` (stopped by Tune)."""
+    seed, overrides = config["trial"]["seed"], dict(config["trial"]["set"])
     name = trial_name(seed, overrides)
     folder = os.path.join(trials_dir, name)
     run_dir = os.path.join(folder, "run")
     os.makedirs(folder, exist_ok=True)
     config_path = os.path.join(folder, "config.toml")
     _write_atomic(config_path, to_toml(trial_config(base, seed, overrides)))
-    start = time.time()
-    with open(os.path.join(folder, "train.log"), "w") as log:
-        proc = subprocess.Popen([binary, "train", "--config", config_path, "--run-dir", run_dir],
-                                stdout=log, stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
+    for stale in ("trial.json", "stopped.json"):  # an earlier attempt's (a trainer killed by a signal)
+        if os.path.exists(os.path.join(folder, stale)):
+            os.replace(os.path.join(folder, stale), os.path.join(folder, stale + ".earlier"))
+    command = [binary, "train", "--config", config_path, "--run-dir", run_dir]
+    if os.path.isdir(os.path.join(run_dir, "checkpoints", "latest")):
+        command.append("--resume")
+    start, log_path = time.time(), os.path.join(folder, "train.log")
+    with open(log_path, "a") as log:  # appended: an earlier attempt's log stays
+        log.write(f"--- {time.strftime('%Y-%m-%d %H:%M:%S')}: {' '.join(command[1:])}\n")
+        log.flush()
+        log_start = log.tell()
+        proc = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
     _write_atomic(os.path.join(folder, "pid"), f"{proc.pid}\n")
-    offset, header, reported, status = 0, None, 0, None
+    ended, reported = None, 0
     try:
-        while True:
-            exited = proc.poll() is not None
-            rows, offset, header = read_evaluations(os.path.join(run_dir, "metrics.csv"), offset, header)
-            for row in rows:
-                reported += 1
-                tune.report({**row, "evaluations": reported, "trial": name})
-            if exited:
-                break
-            if _stop_requested():
-                status = "stopped"
-                return
-            time.sleep(poll_s)
-        wall = time.time() - start
-        if proc.returncode != 0:
-            with open(os.path.join(folder, "train.log")) as f:
-                tail = f.read().strip().splitlines()[-5:]
-            status = "failed"
+        reported = _follow(proc, run_dir, name, poll_s)
+        if reported is None:
+            ended = "stopped"
+            return
+        _record_end(folder, proc.returncode, reported, time.time() - start, run_dir, log_path, log_start)
+        ended = "recorded"
+    except Exception as e:  # the trainer's failure (trial.json written) or the trial's own
+        if not os.path.exists(os.path.join(folder, "trial.json")):
             _write_atomic(os.path.join(folder, "trial.json"), json.dumps(
-                {"status": "failed", "reason": f"fairgrasp train exited with {proc.returncode}: {' '.join(tail)}",
-                 "wall_s": round(wall, 2)}, indent=1))
-            raise RuntimeError(f"trial {name}: fairgrasp train exited with {proc.returncode}: {' / '.join(tail)}")
-        with open(os.path.join(run_dir, "eval.json")) as f:
-            final = json.load(f)
-        status = "completed"
-        _write_atomic(os.path.join(folder, "trial.json"), json.dumps(
-            {"status": "completed", "reason": f"trained its {reported} evaluations to the end",
-             "wall_s": round(wall, 2), "final": {k: final[k] for k in
-                                                ("episodes", "successes", "success_rate", "ci_low", "ci_high")}},
-            indent=1))
+                {"status": "failed", "reason": f"the trial itself failed: {type(e).__name__}: {e}",
+                 "exit": None, "evaluations": reported or 0, "wall_s": round(time.time() - start, 2)}, indent=1))
+        ended = "recorded"
+        raise
     finally:
         # Stopped by Tune (or an error): end the training before the trial's process goes.
         code = terminate(proc)
-        if status != "completed" and status != "failed":
+        if ended != "recorded":
             _write_atomic(os.path.join(folder, "stopped.json"), json.dumps(
                 {"exit": code, "after_s": round(time.time() - start, 2), "evaluations_reported": reported}))
+
+
+def _follow(proc, run_dir, name, poll_s):
+    """Reports each new evaluation row of the run's ``metrics.csv`` to Tune until the training
+    exits (returns the number reported) or Tune asks the trial to stop (returns None)."""
+    from ray import tune
+
+    offset, header, reported = 0, None, 0
+    while True:
+        exited = proc.poll() is not None
+        rows, offset, header = read_evaluations(os.path.join(run_dir, "metrics.csv"), offset, header)
+        for row in rows:
+            reported += 1
+            tune.report({**row, "evaluations": reported, "trial": name})
+        if exited:
+            return reported
+        if _stop_requested():
+            return None
+        time.sleep(poll_s)
+
+
+def _record_end(folder, code, reported, wall, run_dir, log_path, log_start):
+    """Writes ``trial.json`` for a training that exited by itself: completed (with its final
+    evaluation, ``eval.json``), or failed with its reason (raised too, so Tune marks it)."""
+    if code != 0:
+        reason = failure_reason(code, reported, _log_since(log_path, log_start))
+        _write_atomic(os.path.join(folder, "trial.json"), json.dumps(
+            {"status": "failed", "reason": reason, "exit": code, "evaluations": reported,
+             "wall_s": round(wall, 2)}, indent=1))
+        raise RuntimeError(f"trial {os.path.basename(folder)}: {reason}")
+    with open(os.path.join(run_dir, "eval.json")) as f:
+        final = json.load(f)
+    _write_atomic(os.path.join(folder, "trial.json"), json.dumps(
+        {"status": "completed", "reason": f"trained its {reported} evaluations to the end", "exit": 0,
+         "evaluations": reported, "wall_s": round(wall, 2),
+         "final": {k: final[k] for k in ("episodes", "successes", "success_rate", "ci_low", "ci_high")}},
+        indent=1))
+
+
+def _log_since(path, offset):
+    """What ``path`` holds from byte ``offset`` on (the last 64 kB), as text."""
+    with open(path, "rb") as f:
+        f.seek(max(offset, os.path.getsize(path) - 65536))
+        return f.read().decode(errors="replace")
+
+
+def failure_reason(code, evaluations, log_text):
+    """Why a training ended with exit status ``code`` (negative: the signal that killed it), in
+    words: the trainer's own ``error: …`` message when it printed one, else the log's last
+    lines."""
+    if code < 0:
+        try:
+            signame = signal.Signals(-code).name
+        except ValueError:
+            signame = "an unknown signal"
+        return (f"fairgrasp train was killed by {signame} (signal {-code}) after {evaluations} evaluations, "
+                "from outside the sweep (the OOM killer, a user); its run folder keeps its last checkpoint, "
+                "and a resumed sweep (--resume) continues it")
+    lines = [line.strip() for line in log_text.splitlines() if line.strip()]
+    errors = [line[len("error:"):].strip() for line in lines if line.startswith("error:")]
+    said = errors[-1] if errors else (" / ".join(lines[-3:]) or "it printed nothing")
+    return f"fairgrasp train failed (exit status {code}) after {evaluations} evaluations: {said}"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -384,9 +459,11 @@ def _recording_asha(log_path, **kwargs):
 
 
 def _expected_evaluations(config):
+    """The evaluations a training of ``config`` makes: one every ``eval_every`` updates and one
+    after the last update (``rl/src/run/train.rs``), so ⌈updates / eval_every⌉."""
     per_update = int(config.get("n_envs", 8)) * int(config.get("ppo", {}).get("n_steps", 128))
     updates = math.ceil(int(config.get("total_timesteps", 1)) / max(1, per_update))
-    return max(1, updates // max(1, int(config.get("eval_every", 10))))
+    return max(1, math.ceil(updates / max(1, int(config.get("eval_every", 10)))))
 
 
 def _moved_aside(path):
@@ -397,48 +474,142 @@ def _moved_aside(path):
     return f"{path}.replaced-{n}"
 
 
+#: The sweep's request, written into OUT when it starts: what a resumed sweep (``resume=True``,
+#: ``--resume``) must ask for again.
+REQUEST_FILE = "sweep_request.json"
+#: The largest recipe read [bytes] (the trainer's own bound, ``MAX_CONFIG_BYTES``).
+MAX_RECIPE_BYTES = 1 << 20
+
+
 def sweep(recipe, out, *, seeds=(0,), grid=None, fixed=None, binary=None, cpus_per_trial=None,
-          num_cpus=None, grace_period=1, reduction_factor=2, address=None, force=False, poll_s=0.5,
-          verbose=0):
+          num_cpus=None, grace_period=1, reduction_factor=2, address=None, force=False, resume=False,
+          poll_s=0.5, verbose=0):
     """Trains ``recipe`` for every seed × combination of ``grid`` (``{"ppo.learning_rate": [..],
     ...}``), each with ``fixed`` overrides, as Ray Tune trials under ASHA on ``eval_success``.
     Returns the table (also in ``out/sweep.json``): ``trials`` (one dict per trial), ``best``,
     ``wall_s``, ``out``. ``cpus_per_trial``: the CPUs Tune reserves per trial (default: the
     config's ``threads``); ``num_cpus``: of the local Ray instance started here when Ray is not
     running yet (``address``: an existing cluster). ``force``: an ``out`` that holds files is moved
-    aside to ``out.replaced-N`` (never deleted); without it such an ``out`` is refused."""
-    seeds = list(seeds)
-    if not seeds or any(not isinstance(s, int) or isinstance(s, bool) or not 0 <= s <= 2**53 - 1 for s in seeds):
+    aside to ``out.replaced-N`` (never deleted); without it such an ``out`` is refused.
+    ``resume``: continue the sweep in ``out`` (killed, or ended by Ctrl-C): the same request is
+    required (anything that differs is refused by name), its finished trials (completed, failed by
+    the trainer's own error, stopped by ASHA) are kept as they are, and the others run again,
+    each continuing its run folder's last checkpoint. Every argument, and every trial's config
+    (by the binary), is checked before Ray starts."""
+    request = _checked_request(recipe, seeds, grid, fixed, grace_period, reduction_factor, poll_s,
+                               verbose, num_cpus, force, resume)
+    binary = find_binary(binary)
+    base = read_recipe(request["recipe"])
+    for key, value in request["fixed"].items():
+        set_key(base, key, value)
+    request["config"] = base
+    trials = _checked_trials(binary, base, request["seeds"], request["grid"])
+    cpus_per_trial = _checked_cpus(cpus_per_trial, trials, num_cpus, address)
+    max_t = max(_expected_evaluations(t["config"]) for t in trials.values()) + 1
+    if grace_period > max_t:
+        raise SweepError(f"grace_period {grace_period}: more than the {max_t - 1} evaluations a trial makes")
+    out = os.path.abspath(os.fspath(out))
+    _prepare_out(out, request, force, resume)
+    trials_dir = os.path.join(out, "trials")
+    os.makedirs(trials_dir, exist_ok=True)
+    stops = _read_stops(os.path.join(out, "asha_stops.jsonl"))
+    kept = {name: row for name, t in trials.items() if (row := _finished_row(name, t, trials_dir, stops, binary))}
+    pending = [t for name, t in trials.items() if name not in kept]
+    scheduler = {"name": "ASHA", "metric": METRIC, "time_attr": "evaluations", "grace_period": grace_period,
+                 "reduction_factor": reduction_factor, "max_t": max_t}
+    start = time.time()
+    results, ray_cpus = [], None
+    if pending:
+        results, ray_cpus = _run_tune(pending, out, base, binary, scheduler, cpus_per_trial, num_cpus,
+                                      address, poll_s, verbose)
+    wall = time.time() - start
+    stops = _read_stops(os.path.join(out, "asha_stops.jsonl"))
+    rows = list(kept.values()) + [_result_row(r, trials, trials_dir, stops, binary) for r in results]
+    rows.sort(key=lambda r: (json.dumps(r["set"], sort_keys=True), r["seed"]))
+    table = {
+        "recipe": os.fspath(recipe), "out": out, "binary": binary,
+        "seeds": request["seeds"], "grid": request["grid"], "fixed": request["fixed"], "scheduler": scheduler,
+        "cpus_per_trial": cpus_per_trial, "ray_cpus": ray_cpus, "wall_s": round(wall, 2),
+        "kept": len(kept), "trials": rows, "best": _best(rows, results),
+    }
+    _write_atomic(os.path.join(out, "sweep.json"), json.dumps(table, indent=1))
+    _write_atomic(os.path.join(out, "sweep.md"), format_table(table))
+    return table
+
+
+def _checked_request(recipe, seeds, grid, fixed, grace_period, reduction_factor, poll_s, verbose, num_cpus,
+                     force, resume):
+    """The sweep's arguments checked (SweepError naming the argument, the value and what is
+    allowed), as the request recorded in OUT: recipe path, seeds, grid, fixed, ASHA's settings."""
+    try:
+        seeds = list(seeds)
+    except TypeError:
+        raise SweepError(f"seeds {seeds!r}: give a list of integers") from None
+    if not seeds or any(type(s) is not int or not 0 <= s <= 2**53 - 1 for s in seeds):
         raise SweepError(f"seeds {seeds}: give one or more integers in 0–9007199254740991")
     if len(set(seeds)) != len(seeds):
         raise SweepError(f"seeds {seeds}: a seed is given twice")
-    grid = dict(grid or {})
-    fixed = dict(fixed or {})
+    grid, fixed = _checked_overrides("grid", grid), _checked_overrides("fixed", fixed)
     for key, values in grid.items():
         if not isinstance(values, (list, tuple)) or not values:
             raise SweepError(f"grid {key}: give a non-empty list of values, not {values!r}")
+        if len({json.dumps(v, sort_keys=True) for v in values}) != len(values):
+            raise SweepError(f"grid {key}: a value is given twice in {list(values)!r}")
         if key in fixed or key == "seed":
             raise SweepError(f"grid {key}: also fixed or the seed (sweep seeds with seeds=)")
     if "seed" in fixed:
         raise SweepError("fixed seed: give the seeds with seeds=")
-    combos = [dict(zip(grid, values)) for values in itertools.product(*grid.values())]
-    if len(seeds) * len(combos) > MAX_TRIALS:
-        raise SweepError(f"{len(seeds)} seeds × {len(combos)} combinations = {len(seeds) * len(combos)} trials: "
+    combos = math.prod(len(v) for v in grid.values())
+    if len(seeds) * combos > MAX_TRIALS:
+        raise SweepError(f"{len(seeds)} seeds × {combos} combinations = {len(seeds) * combos} trials: "
                          f"at most {MAX_TRIALS}")
-    if not (isinstance(grace_period, int) and grace_period >= 1):
+    if not (type(grace_period) is int and grace_period >= 1):
         raise SweepError(f"grace_period {grace_period!r}: evaluations before ASHA may stop a trial, an integer ≥ 1")
-    if not (isinstance(reduction_factor, (int, float)) and 1 < reduction_factor <= 100):
+    if not (type(reduction_factor) in (int, float) and 1 < reduction_factor <= 100):
         raise SweepError(f"reduction_factor {reduction_factor!r}: must be in (1, 100]")
-    if not (isinstance(poll_s, (int, float)) and 0.01 <= poll_s <= 60):
+    if not (type(poll_s) in (int, float) and 0.01 <= poll_s <= 60):
         raise SweepError(f"poll_s {poll_s!r}: must be in 0.01–60 s")
-    binary = find_binary(binary)
-    with open(recipe_path(recipe), "rb") as f:
-        base = tomllib.load(f)
-    for key, value in fixed.items():
-        set_key(base, key, value)
+    if verbose not in (0, 1, 2) or type(verbose) is not int:
+        raise SweepError(f"verbose {verbose!r}: must be 0, 1 or 2")
+    if num_cpus is not None and not (type(num_cpus) is int and 1 <= num_cpus <= 4096):
+        raise SweepError(f"num_cpus {num_cpus!r}: the local Ray instance's CPUs, an integer in 1–4096")
+    if force and resume:
+        raise SweepError("force and resume: choose one (force moves an old sweep aside, resume continues it)")
+    return {"recipe": recipe_path(recipe), "seeds": seeds, "grid": json.loads(json.dumps(grid)),
+            "fixed": json.loads(json.dumps(fixed)), "grace_period": grace_period,
+            "reduction_factor": reduction_factor}
 
-    # Every trial's config checked by the binary before Ray starts.
-    configs = {}
+
+def _checked_overrides(what, overrides):
+    """``grid`` or ``fixed`` as a dict whose keys are dotted recipe keys."""
+    if overrides is None:
+        return {}
+    if not isinstance(overrides, dict):
+        raise SweepError(f"{what} {overrides!r}: give a dict of dotted recipe keys (ppo.learning_rate) to values")
+    for key in overrides:
+        check_key(f"{what} {key!r}", key)
+    return dict(overrides)
+
+
+def read_recipe(path):
+    """The recipe at ``path`` as a dict (SweepError naming the file when it is not a regular
+    file of at most MAX_RECIPE_BYTES holding TOML)."""
+    if not os.path.isfile(path):
+        raise SweepError(f"recipe {path}: not a regular file")
+    size = os.path.getsize(path)
+    if size > MAX_RECIPE_BYTES:
+        raise SweepError(f"recipe {path}: {size} bytes, more than the {MAX_RECIPE_BYTES} a recipe may have")
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as e:
+        raise SweepError(f"recipe {path}: not a TOML file: {e}") from None
+
+
+def _checked_trials(binary, base, seeds, grid):
+    """Every trial (``{name: {"seed", "set", "config"}}``) with its config checked by the binary."""
+    combos = [dict(zip(grid, values)) for values in itertools.product(*grid.values())]
+    trials = {}
     with tempfile.TemporaryDirectory(prefix="fairgrasp-tune-configs-") as scratch:
         for seed in seeds:
             for combo in combos:
@@ -447,140 +618,216 @@ def sweep(recipe, out, *, seeds=(0,), grid=None, fixed=None, binary=None, cpus_p
                 path = os.path.join(scratch, name + ".toml")
                 _write_atomic(path, to_toml(config))
                 check_config(binary, path, name)
-                configs[name] = config
-    out = os.path.abspath(os.fspath(out))
+                trials[name] = {"seed": seed, "set": combo, "config": config}
+    return trials
+
+
+def _checked_cpus(cpus_per_trial, trials, num_cpus, address):
+    """The CPUs Tune reserves per trial (default: the configs' ``threads``), refused when no trial
+    could ever start on the local Ray instance (Tune would wait for CPUs forever)."""
+    if cpus_per_trial is None:
+        cpus_per_trial = max(int(t["config"].get("threads", 1)) for t in trials.values())
+    if not (type(cpus_per_trial) in (int, float) and 0 < cpus_per_trial <= 1024):
+        raise SweepError(f"cpus_per_trial {cpus_per_trial!r}: must be in (0, 1024]")
+    if address is None:
+        import ray
+
+        available = ray.cluster_resources().get("CPU", 0) if ray.is_initialized() else (num_cpus or os.cpu_count())
+        if cpus_per_trial > available:
+            raise SweepError(f"cpus_per_trial {cpus_per_trial:g}: more than the {available:g} CPUs of the local Ray "
+                             "instance, so no trial could start (lower --cpus-per-trial, or --set threads=1)")
+    return cpus_per_trial
+
+
+def _prepare_out(out, request, force, resume):
+    """A new sweep: ``out`` made (refused if it holds files, or moved aside with ``force``) and the
+    request written into it. A resumed one: the request in ``out`` must be this one."""
+    path = os.path.join(out, REQUEST_FILE)
+    if resume:
+        earlier = _read_json(path)
+        if earlier is None:
+            raise SweepError(f"out {out}: no sweep to resume (no readable {REQUEST_FILE}); start it without --resume")
+        differences = request_differences({**earlier, "recipe": None}, {**request, "recipe": None})
+        if differences:
+            raise SweepError(f"out {out}: the sweep there was started with another request, so it is not resumed: "
+                             + "; ".join(differences))
+        return
     if os.path.exists(out) and (not os.path.isdir(out) or os.listdir(out)):
         if not force:
-            raise SweepError(f"out {out}: holds files (a sweep's?); choose a new folder or pass force=True "
-                             "(--force) to move it aside")
+            raise SweepError(f"out {out}: holds files (a sweep's?); choose a new folder, pass resume=True "
+                             "(--resume) to continue the sweep there, or force=True (--force) to move it aside")
         _moved_aside(out)
     os.makedirs(out, exist_ok=True)
-    trials_dir = os.path.join(out, "trials")
-    os.makedirs(trials_dir, exist_ok=True)
+    _write_atomic(path, json.dumps(request, indent=1))
 
-    if cpus_per_trial is None:
-        cpus_per_trial = max(int(c.get("threads", 1)) for c in configs.values())
-    if not (isinstance(cpus_per_trial, (int, float)) and 0 < cpus_per_trial <= 1024):
-        raise SweepError(f"cpus_per_trial {cpus_per_trial!r}: must be in (0, 1024]")
-    max_t = max(_expected_evaluations(c) for c in configs.values()) + 1
-    if grace_period > max_t:
-        raise SweepError(f"grace_period {grace_period}: more than the {max_t - 1} evaluations a trial makes")
 
+def request_differences(earlier, now):
+    """What differs between two sweep requests, one ``field: earlier → now`` per leaf (the
+    recipe's config flattened to dotted keys)."""
+    def flat(value, prefix):
+        if isinstance(value, dict) and value:
+            return {k: v for key, sub in value.items() for k, v in flat(sub, f"{prefix}.{key}").items()}
+        return {prefix: value}
+    a = flat(json.loads(json.dumps(earlier)), "")
+    b = flat(json.loads(json.dumps(now)), "")
+    return [f"{k[1:]}: {json.dumps(a.get(k, '(none)'))} → {json.dumps(b.get(k, '(none)'))}"
+            for k in sorted(set(a) | set(b)) if a.get(k, "(none)") != b.get(k, "(none)")]
+
+
+def _run_tune(pending, out, base, binary, scheduler, cpus_per_trial, num_cpus, address, poll_s, verbose):
+    """Runs the ``pending`` trials as one Tune experiment (``OUT/tune``, or ``OUT/tune-resume-N``
+    for a resumed sweep: an earlier run's records are never written over). Returns Tune's results
+    and the Ray instance's CPUs."""
     import ray
     from ray import tune
 
     if not ray.is_initialized():
         ray.init(address=address, num_cpus=None if address else num_cpus, include_dashboard=False,
                  log_to_driver=verbose > 0)
-    decisions = os.path.join(out, "asha_stops.jsonl")
-    open(decisions, "w").close()
-    scheduler = _recording_asha(decisions, time_attr="evaluations", max_t=max_t, grace_period=grace_period,
-                                reduction_factor=reduction_factor)
+    name, n = "tune", 0
+    while os.path.exists(os.path.join(out, name)):
+        n += 1
+        name = f"tune-resume-{n}"
+    settings = {k: scheduler[k] for k in ("max_t", "grace_period", "reduction_factor")}
+    asha = _recording_asha(os.path.join(out, "asha_stops.jsonl"), time_attr="evaluations", **settings)
     trainable = tune.with_resources(
-        tune.with_parameters(_trial, base=base, binary=binary, trials_dir=trials_dir, poll_s=float(poll_s)),
+        tune.with_parameters(_trial, base=base, binary=binary, trials_dir=os.path.join(out, "trials"),
+                             poll_s=float(poll_s)),
         {"cpu": cpus_per_trial},
     )
-    param_space = {"seed": tune.grid_search(seeds)}
-    if grid:
-        param_space["set"] = {k: tune.grid_search(list(v)) for k, v in grid.items()}
-    start = time.time()
     tuner = tune.Tuner(
         trainable,
-        param_space=param_space,
-        tune_config=tune.TuneConfig(metric=METRIC, mode="max", scheduler=scheduler, num_samples=1,
-                                    reuse_actors=False),
-        run_config=tune.RunConfig(storage_path=out, name="tune", verbose=verbose,
+        param_space={"trial": tune.grid_search([{"seed": t["seed"], "set": t["set"]} for t in pending])},
+        tune_config=tune.TuneConfig(metric=METRIC, mode="max", scheduler=asha, num_samples=1, reuse_actors=False),
+        run_config=tune.RunConfig(storage_path=out, name=name, verbose=verbose,
                                   failure_config=tune.FailureConfig(max_failures=0)),
     )
-    results = tuner.fit()
-    wall = time.time() - start
+    return tuner.fit(), ray.cluster_resources().get("CPU")
 
+
+def _read_stops(path):
+    """ASHA's decisions to stop a trial (``asha_stops.jsonl``), by trial; a torn last line (a
+    killed sweep) is skipped."""
     stops = {}
-    with open(decisions) as f:
-        for line in f:
-            d = json.loads(line)
-            stops[d["trial"]] = d
-    rows = []
-    for result in results:
-        seed, combo = result.config["seed"], dict(result.config.get("set", {}))
-        name = trial_name(seed, combo)
-        folder = os.path.join(trials_dir, name)
-        reported = []
-        df = result.metrics_dataframe
-        if df is not None and METRIC in df:
-            reported = [float(v) for v in df[METRIC].dropna()]
-        info = {}
-        if os.path.exists(os.path.join(folder, "trial.json")):
-            with open(os.path.join(folder, "trial.json")) as f:
-                info = json.load(f)
-        # A training still running (its trial's process went without terminating it): end it.
-        pid_file = os.path.join(folder, "pid")
-        leftover = False
-        if os.path.exists(pid_file):
-            with open(pid_file) as f:
-                pid = int(f.read())
-            leftover = _alive_child(pid, binary)
-            if leftover:
-                os.kill(pid, signal.SIGKILL)
-        if name in stops and info.get("status") != "completed":
-            stop = stops[name]
-            rung = stop.get("rung") or {}
-            status = "stopped by ASHA"
-            reason = (f"after {stop['evaluations']} evaluations ({stop['timesteps']} steps) its success "
-                      f"{stop[METRIC]:.3f} was below the cutoff {rung.get('cutoff')} of ASHA's rung at "
-                      f"{rung.get('milestone', float('nan')):g} evaluations ({rung.get('trials_at_rung')} trials there)")
-            ended = _read_json(os.path.join(folder, "stopped.json"))
-            if ended:
-                reason += f"; its training was ended (exit status {ended['exit']}) after {ended['after_s']} s"
-            else:
-                # Ray ended the trial's process before its `finally` wrote stopped.json: the
-                # training got SIGTERM from the kernel (PR_SET_PDEATHSIG); its exit status is lost.
-                reason += f"; {ENDED_WITH_ITS_TRIAL}"
-        elif info:
-            status, reason = info["status"], info["reason"]
-        else:
-            status = "failed" if result.error else "unknown"
-            reason = str(result.error) if result.error else "no record"
-        events = sorted(f for f in os.listdir(os.path.join(folder, "run")) if f.startswith("events.out.tfevents")) \
-            if os.path.isdir(os.path.join(folder, "run")) else []
-        rows.append({
-            "trial": name, "seed": seed, "set": combo, "status": status, "reason": reason,
-            "evaluations": len(reported), "reported": reported,
-            "best_success": max(reported) if reported else None,
-            "last_success": reported[-1] if reported else None,
-            "final": info.get("final"), "wall_s": info.get("wall_s", _wall_of(folder)),
-            "run_dir": os.path.join(folder, "run"), "event_files": events,
-            "left_running": leftover,
-        })
-    rows.sort(key=lambda r: (json.dumps(r["set"], sort_keys=True), r["seed"]))
+    try:
+        with open(path) as f:
+            for line in f:
+                try:
+                    d = json.loads(line)
+                    stops[d["trial"]] = d
+                except (ValueError, KeyError, TypeError):
+                    continue
+    except FileNotFoundError:
+        pass
+    return stops
+
+
+def _finished_row(name, trial, trials_dir, stops, binary):
+    """The table row of a trial an earlier run of this sweep finished (completed, failed by the
+    trainer's own error, or stopped by ASHA), or None if it must run (again): never started, or
+    its training was ended by a signal (the sweep killed, the OOM killer)."""
+    folder = os.path.join(trials_dir, name)
+    info = _read_json(os.path.join(folder, "trial.json")) or {}
+    finished = info.get("status") == "completed" or (info.get("status") == "failed" and (info.get("exit") or 0) > 0)
+    if not finished and name not in stops:
+        return None
+    count = info.get("evaluations") if finished else stops[name]["evaluations"]
+    rows, _, _ = read_evaluations(os.path.join(folder, "run", "metrics.csv"))
+    reported = [r[METRIC] for r in rows][:count]
+    return {**_trial_row(name, trial, folder, reported, stops, binary, None), "kept": True}
+
+
+def _result_row(result, trials, trials_dir, stops, binary):
+    """The table row of a trial this run trained, from Tune's result and the trial's records."""
+    name = trial_name(result.config["trial"]["seed"], dict(result.config["trial"]["set"]))
+    df = result.metrics_dataframe
+    reported = [float(v) for v in df[METRIC].dropna()] if df is not None and METRIC in df else []
+    return _trial_row(name, trials[name], os.path.join(trials_dir, name), reported, stops, binary, result.error)
+
+
+def _trial_row(name, trial, folder, reported, stops, binary, error):
+    """One trial's row: its config, status and reason, what Tune got, its final evaluation."""
+    info = _read_json(os.path.join(folder, "trial.json")) or {}
+    leftover = _end_leftover(folder, binary)
+    if name in stops and info.get("status") != "completed":
+        status, reason = "stopped by ASHA", _stop_reason(stops[name], folder)
+    elif info:
+        status, reason = info["status"], info["reason"]
+    else:
+        status = "failed" if error else "unknown"
+        reason = _error_reason(error) if error else "no record (the sweep was ended before the trial?)"
+    run = os.path.join(folder, "run")
+    events = sorted(f for f in os.listdir(run) if f.startswith("events.out.tfevents")) if os.path.isdir(run) else []
+    return {
+        "trial": name, "seed": trial["seed"], "set": trial["set"], "status": status,
+        "reason": reason, "evaluations": len(reported), "reported": reported,
+        "best_success": max(reported) if reported else None, "last_success": reported[-1] if reported else None,
+        "final": info.get("final"), "wall_s": info.get("wall_s", _wall_of(folder)), "run_dir": run,
+        "event_files": events, "left_running": leftover, "kept": False,
+    }
+
+
+def _stop_reason(stop, folder):
+    """Why ASHA stopped a trial, and how its training ended."""
+    rung = stop.get("rung") or {}
+    reason = (f"after {stop['evaluations']} evaluations ({stop['timesteps']} steps) its success "
+              f"{stop[METRIC]:.3f} was below the cutoff {rung.get('cutoff')} of ASHA's rung at "
+              f"{rung.get('milestone', float('nan')):g} evaluations ({rung.get('trials_at_rung')} trials there)")
+    ended = _read_json(os.path.join(folder, "stopped.json"))
+    if ended:
+        return reason + f"; its training was ended (exit status {ended['exit']}) after {ended['after_s']} s"
+    # Ray ended the trial's process before its `finally` wrote stopped.json: the training got
+    # SIGTERM from the kernel (PR_SET_PDEATHSIG); its exit status is lost.
+    return reason + f"; {ENDED_WITH_ITS_TRIAL}"
+
+
+def _error_reason(error):
+    """Tune's error of a trial that left no record, as one line: its last non-empty line."""
+    lines = [line.strip() for line in str(error).splitlines() if line.strip()]
+    return (lines[-1] if lines else type(error).__name__)[:500]
+
+
+def _end_leftover(folder, binary):
+    """Kills the trial's training if it still runs (its trial's process went without ending it);
+    returns whether it did."""
+    pid_file = os.path.join(folder, "pid")
+    if not os.path.exists(pid_file):
+        return False
+    try:
+        with open(pid_file) as f:
+            pid = int(f.read())
+    except (OSError, ValueError):
+        return False
+    if _alive_child(pid, binary, os.path.join(folder, "run")):
+        os.kill(pid, signal.SIGKILL)
+        return True
+    return False
+
+
+def _best(rows, results):
+    """The trial with the highest success any evaluation reported, and Tune's own best of the
+    trials this run trained."""
     scored = [r for r in rows if r["best_success"] is not None]
-    best = max(scored, key=lambda r: r["best_success"]) if scored else None
+    if not scored:
+        return None
+    best = max(scored, key=lambda r: r["best_success"])
     tune_best = None
     try:
-        b = results.get_best_result(metric=METRIC, mode="max", scope="all")
-        tune_best = trial_name(b.config["seed"], dict(b.config.get("set", {})))
+        b = results.get_best_result(metric=METRIC, mode="max", scope="all") if results else None
+        tune_best = b and trial_name(b.config["trial"]["seed"], dict(b.config["trial"]["set"]))
     except RuntimeError:
         pass
-    table = {
-        "recipe": recipe, "out": out, "binary": binary, "seeds": seeds, "grid": grid, "fixed": fixed,
-        "scheduler": {"name": "ASHA", "metric": METRIC, "time_attr": "evaluations", "grace_period": grace_period,
-                      "reduction_factor": reduction_factor, "max_t": max_t},
-        "cpus_per_trial": cpus_per_trial, "ray_cpus": ray.cluster_resources().get("CPU"),
-        "wall_s": round(wall, 2), "trials": rows,
-        "best": None if best is None else {"trial": best["trial"], "seed": best["seed"], "set": best["set"],
-                                           "best_success": best["best_success"], "tune_best_trial": tune_best},
-    }
-    _write_atomic(os.path.join(out, "sweep.json"), json.dumps(table, indent=1))
-    _write_atomic(os.path.join(out, "sweep.md"), format_table(table))
-    return table
+    return {"trial": best["trial"], "seed": best["seed"], "set": best["set"], "best_success": best["best_success"],
+            "tune_best_trial": tune_best}
 
 
 #: The reason's ending for a stopped trial whose training's exit was not recorded.
 ENDED_WITH_ITS_TRIAL = "its training was ended with its trial's process (exit status not recorded)"
 
 
-def _alive_child(pid, binary):
-    """Whether ``pid`` is still a running ``fairgrasp`` process (not a reused pid)."""
+def _alive_child(pid, binary, run_dir):
+    """Whether ``pid`` is still the running ``fairgrasp train`` of ``run_dir`` (not a reused pid,
+    nor another training: a kept trial's pid file may be old)."""
     try:
         with open(f"/proc/{pid}/cmdline", "rb") as f:
             cmd = f.read().split(b"\0")
@@ -588,7 +835,8 @@ def _alive_child(pid, binary):
             state = f.read().rsplit(")", 1)[1].split()[0]
     except OSError:
         return False
-    return state != "Z" and bool(cmd) and os.path.basename(cmd[0].decode()) == os.path.basename(binary)
+    return (state != "Z" and bool(cmd) and os.path.basename(cmd[0].decode(errors="replace")) == os.path.basename(binary)
+            and os.fsencode(run_dir) in cmd)
 
 
 def _read_json(path):
@@ -626,12 +874,14 @@ def format_table(table):
         lines.append("| " + " | ".join(cells) + " |")
     lines.append("")
     for r in table["trials"]:
-        lines.append(f"- {r['trial']}: {r['status']}: {r['reason']}")
+        kept = " (kept from an earlier run of the sweep)" if r["kept"] else ""
+        lines.append(f"- {r['trial']}: {r['status']}{kept}: {r['reason']}")
     best = table["best"]
     lines.append("")
     lines.append(f"Best: {best['trial']} (seed {best['seed']}, {best['set']}), {_pct(best['best_success'])} at its "
                  f"best evaluation." if best else "Best: none (no trial reported an evaluation).")
-    lines.append(f"Wall time: {table['wall_s']:.1f} s on {table['ray_cpus']} CPUs, {table['cpus_per_trial']} per trial.")
+    lines.append(f"Wall time: {table['wall_s']:.1f} s on {table['ray_cpus']} CPUs, {table['cpus_per_trial']} per trial"
+                 + (f"; {table['kept']} trials kept from an earlier run." if table["kept"] else "."))
     return "\n".join(lines) + "\n"
 
 
@@ -656,6 +906,9 @@ def main(argv=None):
     parser.add_argument("--reduction-factor", type=float, default=2.0, help="ASHA's reduction factor")
     parser.add_argument("--address", default=None, help="an existing Ray cluster (e.g. auto)")
     parser.add_argument("--force", action="store_true", help="move an --out that holds files aside to OUT.replaced-N")
+    parser.add_argument("--resume", action="store_true",
+                        help="continue the sweep in --out (killed or interrupted) with the same arguments: its "
+                             "finished trials are kept, the others continue from their last checkpoint")
     parser.add_argument("--verbose", type=int, default=0, choices=[0, 1, 2], help="Tune's console output")
     args = parser.parse_args(argv)
     try:
@@ -664,7 +917,7 @@ def main(argv=None):
         table = sweep(args.recipe, args.out, seeds=args.seeds, grid=grid, fixed=fixed, binary=args.bin,
                       num_cpus=args.cpus, cpus_per_trial=args.cpus_per_trial, grace_period=args.grace_period,
                       reduction_factor=args.reduction_factor, address=args.address, force=args.force,
-                      verbose=args.verbose)
+                      resume=args.resume, verbose=args.verbose)
     except SweepError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
