@@ -11,7 +11,8 @@
 #   --workspace` builds; tests/python_package.rs passes it) the package is staged from python/
 #   with that library into target/python-package-stage, put on PYTHONPATH, so nothing is compiled
 #   again; without it, `maturin develop --profile dev` builds and installs the package into the
-#   venv (both by scripts/stage-package.sh). `pip install ./python` builds a release wheel.
+#   venv (both by scripts/stage-package.sh), with the trainer either way, as the tests need.
+#   `pip install ./python` and scripts/build-wheel.sh build release wheels without it.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 venv="${FAIRGRASP_PY_VENV:-$root/target/python-package-venv}"

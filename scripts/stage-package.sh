@@ -7,8 +7,10 @@
 #   target/debug/deps/; a relative path is read from the current folder): DEST/fairgrasp is
 #   replaced by the package's .py files and LIB as _native.abi3.so, so nothing is compiled.
 #   DEST defaults to the venv's site-packages; a folder elsewhere is for PYTHONPATH.
-#   LIB empty (""): `maturin develop --profile dev` builds the extension and installs the
-#   package into VENV (needs maturin in VENV); --quiet is passed on to maturin.
+#   LIB empty (""): `maturin develop --profile dev --features train` builds the extension with
+#   the trainer, as the workspace's test build has it (pyproject.toml leaves it out of maturin's
+#   builds by default), and installs the package into VENV (needs maturin in VENV); --quiet is
+#   passed on to maturin.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 maturin_args=()
@@ -30,5 +32,5 @@ if [[ -n "$lib" ]]; then
     cp "$lib" "$dest/fairgrasp/_native.abi3.so"
 else
     VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" "$venv/bin/maturin" develop "${maturin_args[@]}" \
-        --profile dev --manifest-path "$root/python/Cargo.toml"
+        --profile dev --features train --manifest-path "$root/python/Cargo.toml"
 fi

@@ -10,7 +10,9 @@ folder (``config.toml``, ``metrics.csv``, ``checkpoints/``, ``eval.json``).
 ``config``: a shipped recipe's name (``fairgrasp.recipe_names()``) or a training config's path;
 ``overrides``: any of the config's keys (``seed``, ``total_timesteps``, ``preset``,
 ``ppo={"learning_rate": 1e-4}``, ...; tables merge key by key; a misspelt key is refused with the
-valid ones). Needs the extension built with the cargo feature ``train`` (the default).
+valid ones). Needs the extension built with the trainer, which links burn (minutes of compiling)
+and which ``pip install ./python`` and the wheel of ``scripts/build-wheel.sh`` leave out unless
+asked for (``HOW_TO_GET_THE_TRAINER`` says how); the test build (``cargo test --workspace``) has it.
 """
 
 import json
@@ -19,6 +21,25 @@ import sys
 
 from . import _native
 from .presets import current_preset
+
+
+#: How to get an extension with the trainer, in the error ``train`` raises without one.
+HOW_TO_GET_THE_TRAINER = (
+    'pip install ./python --config-settings=build-args="--features train" '
+    "(from a clone of the repository; or scripts/build-wheel.sh --features train, then pip install "
+    "the wheel it prints)"
+)
+
+
+def require_trainer(native=None):
+    """Raises RuntimeError saying how to get the trainer when the extension ``native`` (default:
+    this package's) was built without it (``HAS_TRAIN`` false)."""
+    if not getattr(_native if native is None else native, "HAS_TRAIN", False):
+        raise RuntimeError(
+            "fairgrasp.train: this build of fairgrasp has no Rust trainer (it was built without the "
+            "cargo feature `train`, which compiles burn; the envs, evaluate, compare and load_policy "
+            f"work without it). To train from Python, reinstall with it: {HOW_TO_GET_THE_TRAINER}"
+        )
 
 
 def _bar(p):
@@ -36,11 +57,7 @@ def train(config, run_dir, *, resume=False, force=False, progress=None, **overri
     ``progress``: a callable given a dict after every update (``timesteps``, ``total``,
     ``stage``, ``eval``, ``episodes``, ``success``, ``mean_return``), or ``True`` for a one-line
     bar on stderr. Returns the final evaluation as a dict (``eval.json``'s report)."""
-    if not getattr(_native, "HAS_TRAIN", False):
-        raise RuntimeError(
-            "this build of fairgrasp has no trainer: build the extension with the cargo feature "
-            "`train` (maturin develop --features train)"
-        )
+    require_trainer()
     callback = _bar if progress is True else progress
     if "preset" in overrides:
         overrides["preset"] = current_preset(overrides["preset"])

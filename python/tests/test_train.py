@@ -2,6 +2,7 @@
 network's weights, bit for bit, and the same evaluation as the CLI on the same config), progress after
 every update, misspelt overrides refused with the valid keys."""
 
+import importlib
 import json
 import os
 import shutil
@@ -87,3 +88,31 @@ def test_a_resume_from_another_folder_trains_on_the_runs_copy_of_its_preset(tmp,
     fairgrasp.train("residual_miscalibrated", run, resume=True, **dict(tiny, total_timesteps=1024))
     with open(os.path.join(run, "metrics.csv")) as f:
         assert len(f.read().strip().splitlines()) == 1 + 4
+
+
+def test_the_test_builds_extension_has_the_trainer():
+    """`cargo test --workspace` builds the extension with the cargo feature `train` (a default of
+    python/Cargo.toml; only maturin's builds leave it out): these tests train with it."""
+    assert fairgrasp._native.HAS_TRAIN is True
+
+
+def test_without_the_trainer_train_says_how_to_get_it(tmp):
+    """An extension built without `train` (pip install ./python, the default wheel) refuses
+    `fairgrasp.train` naming the install command that brings it, and writes nothing."""
+    module = importlib.import_module("fairgrasp.train")
+
+    class NoTrainer:
+        HAS_TRAIN = False
+
+    with pytest.raises(RuntimeError, match=r"has no Rust trainer.*pip install \./python "
+                                           r"--config-settings=build-args=\"--features train\""):
+        module.require_trainer(NoTrainer())
+    run = os.path.join(tmp, "r")
+    original = module._native
+    module._native = NoTrainer()
+    try:
+        with pytest.raises(RuntimeError, match="scripts/build-wheel.sh --features train"):
+            fairgrasp.train("residual_miscalibrated", run, **TINY)
+    finally:
+        module._native = original
+    assert not os.path.exists(run)
