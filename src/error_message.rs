@@ -20,6 +20,25 @@ pub fn render(err: &anyhow::Error) -> String {
         }
         message.push_str(&cause);
     }
+    with_notes(without_repeated_paths(&message))
+}
+
+/// The message `error: …` prints when the output cannot be written to stdout: `reason` as
+/// the OS gave it, with the file stdout goes to (`target`, a regular file: `> out.json`) and,
+/// on a full disk, which disk it is, as every other full disk is named. A device (`/dev/full`)
+/// or a pipe is no disk: only the reason is given.
+pub fn stdout_failure(target: Option<&Path>, reason: &str) -> String {
+    match target {
+        Some(file) => with_notes(format!(
+            "cannot write the output to stdout, {}: {reason}",
+            file.display()
+        )),
+        None => bounded_message(&format!("cannot write the output to stdout: {reason}")),
+    }
+}
+
+/// `message` with the notes it calls for (a full disk, a dangling link), bounded.
+fn with_notes(mut message: String) -> String {
     for note in [full_disk_note(&message), dangling_link_note(&message)]
         .into_iter()
         .flatten()
@@ -28,6 +47,27 @@ pub fn render(err: &anyhow::Error) -> String {
         message.push_str(&note);
     }
     bounded_message(&message)
+}
+
+/// `message` without a `PATH: ` that the part after it repeats or names a file under
+/// (`…/episodes: …/episodes/a.json.gz: No space left…` says the folder once): an error that
+/// names its file, wrapped by one that names the file's folder, reads as one.
+fn without_repeated_paths(message: &str) -> String {
+    let parts: Vec<&str> = message.split(": ").collect();
+    let mut kept: Vec<&str> = Vec::with_capacity(parts.len());
+    for (i, part) in parts.iter().enumerate() {
+        let repeated = parts.get(i + 1).is_some_and(|next| {
+            part.contains('/')
+                && (next == part
+                    || next
+                        .strip_prefix(part)
+                        .is_some_and(|rest| rest.starts_with('/')))
+        });
+        if !repeated {
+            kept.push(part);
+        }
+    }
+    kept.join(": ")
 }
 
 /// The paths a message names: its words that hold a `/` or end in `:` (a file named first),
@@ -253,6 +293,49 @@ mod tests {
         std::os::unix::fs::symlink(&dir, &link).unwrap();
         assert_eq!(dangling_link_note(&message), None);
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn a_folder_named_before_a_file_in_it_is_said_once() {
+        let full = "No space left on device (os error 28)";
+        assert_eq!(
+            without_repeated_paths(&format!(
+                "/d/r.partial-1/episodes: /d/r.partial-1/episodes: {full}"
+            )),
+            format!("/d/r.partial-1/episodes: {full}")
+        );
+        assert_eq!(
+            without_repeated_paths(&format!("/d/episodes: /d/episodes/a.json.gz: {full}")),
+            format!("/d/episodes/a.json.gz: {full}")
+        );
+        // A sibling whose name starts alike, a word that is no path, a wrapping context: kept.
+        for kept in [
+            format!("/d/episodes: /d/episodes_old/a.csv: {full}"),
+            format!("preset `fixed`: preset `fixed`: {full}"),
+            format!("--out /d/r: /d/r/a.md: {full}"),
+        ] {
+            assert_eq!(without_repeated_paths(&kept), kept);
+        }
+    }
+
+    #[test]
+    fn stdout_onto_a_full_disk_names_the_file_and_the_disk_but_a_device_is_no_disk() {
+        let reason = "No space left on device (os error 28)";
+        let tmp = std::fs::canonicalize("/tmp").unwrap();
+        let file = tmp.join("out.json");
+        let message = stdout_failure(Some(&file), reason);
+        assert!(
+            message.starts_with(&format!(
+                "cannot write the output to stdout, {}: {reason}; the disk holding {} ran out of space (",
+                file.display(),
+                tmp.display()
+            )),
+            "{message}"
+        );
+        assert_eq!(
+            stdout_failure(None, reason),
+            format!("cannot write the output to stdout: {reason}")
+        );
     }
 
     #[test]

@@ -7,6 +7,7 @@ mod streams;
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
+use std::io::Write;
 use std::process::ExitCode;
 
 use fairgrasp_types::text::cut_long_words;
@@ -38,7 +39,9 @@ fn main() -> ExitCode {
     let (code, succeeded) = match run {
         Ok(code) => (code, true),
         Err(err) => {
-            eprintln!("error: {}", error_message::render(&err));
+            // Never a panic: a stderr that cannot be written (a full disk) stays empty, and
+            // the exit code still says the command failed.
+            let _ = writeln!(std::io::stderr(), "error: {}", error_message::render(&err));
             // A usage error found after parsing exits as clap's own do.
             if err.downcast_ref::<cli::UsageError>().is_some() {
                 (ExitCode::from(2), false)

@@ -64,18 +64,19 @@ impl CompareOutput {
     /// [`Trajectory::save_compact`]), and the charts' episodes also as `<stem>.csv`.
     pub fn save_episodes(&self, out: &Path) -> Result<(), CompareError> {
         let dir = out.join("episodes");
-        let io = |source| CompareError::Io {
-            path: dir.clone(),
-            source,
+        // The error names the file that could not be written.
+        let io = |name: String| {
+            let path = dir.join(name);
+            move |source| CompareError::Io { path, source }
         };
         for e in &self.episodes {
-            e.trajectory.save_compact(&dir, &e.stem).map_err(io)?;
+            e.trajectory
+                .save_compact(&dir, &e.stem)
+                .map_err(io(format!("{}.json.gz", e.stem)))?;
             if e.csv {
-                fairgrasp_types::write_atomic(
-                    &dir.join(format!("{}.csv", e.stem)),
-                    e.trajectory.to_csv().as_bytes(),
-                )
-                .map_err(io)?;
+                let name = format!("{}.csv", e.stem);
+                fairgrasp_types::write_atomic(&dir.join(&name), e.trajectory.to_csv().as_bytes())
+                    .map_err(io(name))?;
             }
         }
         Ok(())
