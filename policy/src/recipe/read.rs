@@ -160,3 +160,65 @@ impl Recipe {
         contradictions::check(self)
     }
 }
+
+/// Every leaf of a TOML value as `(dotted.path, value)`.
+fn flatten(value: &toml::Value, path: &str, out: &mut Vec<(String, String)>) {
+    match value {
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                let p = if path.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{path}.{k}")
+                };
+                flatten(v, &p, out);
+            }
+        }
+        other => out.push((path.to_string(), other.to_string())),
+    }
+}
+
+/// One leaf in which two TOML values differ: its dotted path and its value in each (`(unset)`
+/// where one of them has none).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LeafChange {
+    pub path: String,
+    pub before: String,
+    pub now: String,
+}
+
+impl std::fmt::Display for LeafChange {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {} → {}", self.path, self.before, self.now)
+    }
+}
+
+/// Every leaf in which `new` differs from `old` (two recipes, or two env configs, as TOML
+/// values), in the order of the paths: how a resume names what changed since a run or a
+/// tuning started.
+pub fn leaf_differences(old: &toml::Value, new: &toml::Value) -> Vec<LeafChange> {
+    let leaves = |v: &toml::Value| {
+        let mut out = Vec::new();
+        flatten(v, "", &mut out);
+        out
+    };
+    let (old, new) = (leaves(old), leaves(new));
+    let find = |list: &[(String, String)], key: &str| {
+        list.iter()
+            .find(|(k, _)| k == key)
+            .map_or("(unset)".to_string(), |(_, v)| v.clone())
+    };
+    let mut keys: Vec<&String> = old.iter().chain(&new).map(|(k, _)| k).collect();
+    keys.sort();
+    keys.dedup();
+    keys.into_iter()
+        .filter_map(|k| {
+            let (before, now) = (find(&old, k), find(&new, k));
+            (before != now).then(|| LeafChange {
+                path: k.clone(),
+                before,
+                now,
+            })
+        })
+        .collect()
+}

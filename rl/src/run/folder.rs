@@ -13,18 +13,20 @@ use std::path::{Path, PathBuf};
 
 use crate::run::checkpoint;
 use crate::run::error::{TrainError, io};
+use crate::run::inputs::INPUTS_RECORD;
 use crate::run::snapshot::ENV_SNAPSHOT;
 
 /// The lock file inside a run folder (holds the training process's pid while it runs).
 pub const LOCK_FILE: &str = ".lock";
 
 /// The names a run writes at the top of its folder (anything else is the user's).
-const RUN_FILES: [&str; 8] = [
+const RUN_FILES: [&str; 9] = [
     "config.toml",
     "metrics.csv",
     "checkpoints",
     "eval.json",
     ENV_SNAPSHOT,
+    INPUTS_RECORD,
     "config_changes.log",
     "metrics.rejected.csv",
     LOCK_FILE,
@@ -72,8 +74,12 @@ pub fn inspect(run_dir: &Path) -> FolderState {
         .filter(|n| n != LOCK_FILE)
         .collect();
     names.sort();
-    // A fresh start that stopped after copying its preset file and before config.toml.
-    if names.is_empty() || names == [ENV_SNAPSHOT] {
+    // A fresh start that stopped after copying its preset file or recording its inputs, and
+    // before config.toml.
+    if names
+        .iter()
+        .all(|n| n == ENV_SNAPSHOT || n == INPUTS_RECORD)
+    {
         return FolderState::Empty;
     }
     if !run_dir.join("config.toml").is_file() {

@@ -8,8 +8,12 @@
 //! the student (the same agent, but for the squeeze); it labels only the output entries both
 //! use, so a teacher without the squeeze has no say in the student's squeeze.
 //!
-//! A teacher is named, not copied: a resumed run loads it again from the same name (a run folder
-//! as a teacher follows that run's `best`; a shipped name follows the binary's policy).
+//! A teacher is named, not copied: a resumed run loads it again from the same name. The run
+//! records the folder each name gave and its checksum when it started
+//! ([`crate::run::inputs`]): a resume on which a name gives another folder (a relative path from
+//! another working directory) or another checkpoint (a teacher run's `best` replaced since, a
+//! shipped policy changed in another build) is refused naming the teacher, unless the change is
+//! accepted (`--accept-config-changes`).
 
 use fairgrasp_env::EnvConfig;
 use fairgrasp_policy::actor::Actor;

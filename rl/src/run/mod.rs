@@ -7,7 +7,9 @@
 //!   [`tensorboard`]: the same values as TensorBoard event files.
 //! - [`checkpoint`]: saving and loading a network with its metadata, atomically and checked.
 //! - [`folder`]: what a run folder holds and who may train in it; [`resume`]: continuing a run
-//!   safely; [`snapshot`]: the run's copy of its preset file; [`crash`]: the kill tests' fault injection.
+//!   safely; [`snapshot`]: the run's copy of its preset file; [`inputs`]: the run's record of
+//!   the presets and teachers its recipe names, which a resume is held to; [`crash`]: the kill
+//!   tests' fault injection.
 //! - [`evaluate`]: a checkpoint as a policy, evaluated on a preset.
 //! - [`kickstart`]: a run's teachers (one trained policy per preset it trains on).
 //! - [`shipped`]: the policies built into the binary (`fairgrasp_policy::shipped`, re-exported).
@@ -18,6 +20,7 @@ pub mod crash;
 pub mod error;
 pub mod evaluate;
 pub mod folder;
+pub mod inputs;
 pub mod kickstart;
 pub mod metrics;
 pub mod resume;

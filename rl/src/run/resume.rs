@@ -9,11 +9,13 @@
 
 use std::path::Path;
 
+use fairgrasp_policy::recipe::read;
 use fairgrasp_types::write_atomic;
 
 use crate::run::checkpoint::{self, CheckpointMeta};
 use crate::run::config::TrainConfig;
 use crate::run::error::{TrainError, io};
+use crate::run::inputs::{self, InputsRecord};
 use crate::run::snapshot::{ENV_SNAPSHOT, env_snapshot_of};
 
 /// Fields a resume may change without `--accept-config-changes`: how long to run and on how many
@@ -37,41 +39,103 @@ pub struct ResumeOptions {
     pub force: bool,
 }
 
+/// The config the run in `run_dir` trains with, held to what it started with: the preset file
+/// from the run's copy ([`training_config`]), the config checked against the run's
+/// `config.toml` and what the recipe names against the run's record of it
+/// ([`crate::run::inputs`]) when resuming. Writes (`config.toml` on a resume, `env.toml`,
+/// `inputs.toml`) only once every check has passed: a refused resume changes nothing.
+pub fn config_for_run(
+    config: &TrainConfig,
+    run_dir: &Path,
+    resume: bool,
+    accept_changes: bool,
+) -> Result<TrainConfig, TrainError> {
+    let config = training_config(config, run_dir, resume)?;
+    let now = InputsRecord::now(&config)?;
+    if resume {
+        let changed = inputs::changes_since_start(run_dir, &now)?;
+        check_config(run_dir, &config, &changed, accept_changes)?;
+    }
+    save_env_snapshot(&config, run_dir)?;
+    now.save(run_dir)?;
+    Ok(config)
+}
+
 /// The config a run trains with. A run started from a preset file (`preset = "….toml"`) keeps
-/// a copy of it as `RUN/env.toml`, and a resume trains on that copy, from whatever folder it is
-/// started (a relative `preset` would otherwise name another file there); a preset file there
-/// that differs from the copy is not used, and a note says so.
-pub fn with_env_snapshot(
+/// a copy of it as `RUN/env.toml` ([`save_env_snapshot`]), and a resume trains on that copy,
+/// from whatever folder it is started (a relative `preset` would otherwise name another file
+/// there); a preset file there that differs from the copy is not used, and a note names the
+/// first field that differs. A resume whose recipe names another preset than the run's
+/// `config.toml` (a change [`check_config`] refuses unless accepted) trains on the file named.
+/// Writes nothing.
+pub fn training_config(
     config: &TrainConfig,
     run_dir: &Path,
     resume: bool,
 ) -> Result<TrainConfig, TrainError> {
     let mut config = config.clone();
     config.env_snapshot = None;
-    if !config.preset.ends_with(".toml") {
-        config.validate().map_err(TrainError::Config)?;
-        return Ok(config);
-    }
-    let read = |p: &Path| {
-        fairgrasp_types::fs::read_bounded(p, fairgrasp_types::fs::MAX_CONFIG_BYTES).map_err(io(p))
-    };
-    let snapshot = run_dir.join(ENV_SNAPSHOT);
-    if resume && let Some(kept) = env_snapshot_of(&config.preset, run_dir) {
-        if read(Path::new(&config.preset)).ok() != read(&kept).ok() {
+    let same_preset = || saved_config(run_dir).is_ok_and(|saved| saved.preset == config.preset);
+    if resume
+        && let Some(kept) = env_snapshot_of(&config.preset, run_dir)
+        && same_preset()
+    {
+        if let Some(difference) = file_difference(&kept, Path::new(&config.preset)) {
             eprintln!(
-                "note: the run trains on its own copy of its preset ({}, saved when it started); {} here differs or is missing and is not used",
+                "note: the run trains on its own copy of its preset ({}, saved when it started); {} here {difference} and is not used",
                 kept.display(),
                 config.preset
             );
         }
         config.env_snapshot = Some(kept);
-        config.validate().map_err(TrainError::Config)?;
-    } else {
-        config.validate().map_err(TrainError::Config)?;
-        let bytes = read(Path::new(&config.preset))?;
-        write_atomic(&snapshot, &bytes).map_err(io(&snapshot))?;
     }
+    config.validate().map_err(TrainError::Config)?;
     Ok(config)
+}
+
+/// How the preset file `here` differs from the run's copy `kept`: `None` if it reads the same,
+/// else `is missing` or `differs (field: copy → here)`.
+fn file_difference(kept: &Path, here: &Path) -> Option<String> {
+    let read =
+        |p: &Path| fairgrasp_types::fs::read_bounded(p, fairgrasp_types::fs::MAX_CONFIG_BYTES);
+    let (Ok(copy), Ok(file)) = (read(kept), read(here)) else {
+        return Some("is missing or unreadable".into());
+    };
+    if copy == file {
+        return None;
+    }
+    let env = |p: &Path| {
+        fairgrasp_env::config::presets::load(&p.to_string_lossy())
+            .ok()
+            .and_then(|e| toml::Table::try_from(&e).ok())
+    };
+    let field = match (env(kept), env(here)) {
+        (Some(a), Some(b)) => crate::run::inputs::first_difference(&a, &b)
+            .unwrap_or_else(|| "only in its text: the same env".into()),
+        _ => "it is not a valid env file".into(),
+    };
+    Some(format!("differs ({field})"))
+}
+
+/// Keeps the run's copy of the preset file `config` trains on (`RUN/env.toml`), unless it
+/// already trains on that copy: at a fresh start, and when a resume accepted another preset.
+pub fn save_env_snapshot(config: &TrainConfig, run_dir: &Path) -> Result<(), TrainError> {
+    if !config.preset.ends_with(".toml") || config.env_snapshot.is_some() {
+        return Ok(());
+    }
+    let preset = Path::new(&config.preset);
+    let bytes = fairgrasp_types::fs::read_bounded(preset, fairgrasp_types::fs::MAX_CONFIG_BYTES)
+        .map_err(io(preset))?;
+    let snapshot = run_dir.join(ENV_SNAPSHOT);
+    write_atomic(&snapshot, &bytes).map_err(io(&snapshot))
+}
+
+/// The run's own config (`RUN/config.toml`), as saved.
+fn saved_config(run_dir: &Path) -> Result<TrainConfig, TrainError> {
+    let path = run_dir.join("config.toml");
+    let text = fairgrasp_types::fs::read_text_bounded(&path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
+        .map_err(io(&path))?;
+    toml::from_str(&text).map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))
 }
 
 /// The seed a resume trains with when none is given again: the one the run in `run_dir` was
@@ -86,94 +150,81 @@ pub fn run_seed(run_dir: &Path, given: u64) -> Result<u64, TrainError> {
     }
 }
 
-/// Every leaf of a TOML value as `dotted.path = value`.
-fn flatten(value: &toml::Value, path: &str, out: &mut Vec<(String, String)>) {
-    match value {
-        toml::Value::Table(t) => {
-            for (k, v) in t {
-                let p = if path.is_empty() {
-                    k.clone()
-                } else {
-                    format!("{path}.{k}")
-                };
-                flatten(v, &p, out);
-            }
-        }
-        other => out.push((path.to_string(), other.to_string())),
-    }
-}
-
 /// The differences between the run's saved config and the new one, as `field: old → new`
 /// (fields in `FREELY_CHANGED` left out).
 pub fn config_differences(
     saved: &TrainConfig,
     new: &TrainConfig,
 ) -> Result<Vec<String>, TrainError> {
-    let leaves = |c: &TrainConfig| -> Result<Vec<(String, String)>, TrainError> {
-        let mut out = Vec::new();
-        let v = toml::Value::try_from(c)
-            .map_err(|e| TrainError::Config(format!("comparing configs: {e}")))?;
-        flatten(&v, "", &mut out);
-        Ok(out)
+    let value = |c: &TrainConfig| {
+        toml::Value::try_from(c).map_err(|e| TrainError::Config(format!("comparing configs: {e}")))
     };
-    let (old, new) = (leaves(saved)?, leaves(new)?);
-    let find = |list: &[(String, String)], key: &str| {
-        list.iter()
-            .find(|(k, _)| k == key)
-            .map_or("(unset)".to_string(), |(_, v)| v.clone())
-    };
-    let mut keys: Vec<&String> = old.iter().chain(&new).map(|(k, _)| k).collect();
-    keys.sort();
-    keys.dedup();
-    Ok(keys
+    Ok(read::leaf_differences(&value(saved)?, &value(new)?)
         .into_iter()
-        .filter(|k| !FREELY_CHANGED.contains(&k.as_str()))
-        .filter_map(|k| {
-            let (a, b) = (find(&old, k), find(&new, k));
-            (a != b).then(|| format!("{k}: {a} → {b}"))
-        })
+        .filter(|c| !FREELY_CHANGED.contains(&c.path.as_str()))
+        .map(|c| c.to_string())
         .collect())
 }
 
-/// Checks a resume's config against the run's `config.toml`: refuses differences unless
-/// accepted, never accepts a change of the network's shape, and records accepted ones.
-pub fn check_config(run_dir: &Path, config: &TrainConfig, accept: bool) -> Result<(), TrainError> {
+/// Checks a resume against the run: its config against the run's `config.toml`, and
+/// `inputs_changed`, what the recipe names that reads differently than when the run started
+/// ([`crate::run::inputs`]). Refuses differences unless accepted, never accepts a change of the
+/// network's shape, and records accepted ones in `config_changes.log`; `config.toml` is
+/// rewritten to say what runs now.
+pub fn check_config(
+    run_dir: &Path,
+    config: &TrainConfig,
+    inputs_changed: &[String],
+    accept: bool,
+) -> Result<(), TrainError> {
     let path = run_dir.join("config.toml");
-    let text = fairgrasp_types::fs::read_text_bounded(&path, fairgrasp_types::fs::MAX_CONFIG_BYTES)
-        .map_err(io(&path))?;
-    let saved: TrainConfig = toml::from_str(&text)
-        .map_err(|e| TrainError::Config(format!("{}: {e}", path.display())))?;
-    let diffs = config_differences(&saved, config)?;
+    let diffs = config_differences(&saved_config(run_dir)?, config)?;
     let write_config = || {
         let toml = toml::to_string_pretty(config)
             .map_err(|e| TrainError::Config(format!("config.toml: {e}")))?;
         write_atomic(&path, toml.as_bytes()).map_err(io(&path))
     };
-    if diffs.is_empty() {
+    if diffs.is_empty() && inputs_changed.is_empty() {
         // Only the freely changed fields (if any) differ: config.toml says what runs now.
         return write_config();
     }
-    let list = diffs.join("; ");
-    let shape: Vec<&String> = diffs
+    let shape: Vec<&str> = diffs
         .iter()
         .filter(|d| FIXED_FIELDS.iter().any(|f| d.starts_with(f)))
+        .map(String::as_str)
         .collect();
     if !shape.is_empty() {
         return Err(TrainError::Config(format!(
             "cannot resume {} with a different network shape or [agent] ({}): the checkpoint's weights and agent are the old ones; start a new run folder instead",
             run_dir.display(),
-            shape
-                .iter()
-                .map(|s| s.as_str())
-                .collect::<Vec<_>>()
-                .join("; ")
+            shape.join("; ")
         )));
+    }
+    let mut what = Vec::new();
+    if !diffs.is_empty() {
+        what.push(format!(
+            "the config differs from the run's config.toml ({})",
+            diffs.join("; ")
+        ));
+    }
+    if !inputs_changed.is_empty() {
+        what.push(format!(
+            "what the recipe names is not what the run started with ({})",
+            inputs_changed.join("; ")
+        ));
     }
     if !accept {
         return Err(TrainError::Config(format!(
-            "the config differs from the run's config.toml ({list}); pass --accept-config-changes to continue with the new values (recorded in config_changes.log), or resume with the old config"
+            "{}; pass --accept-config-changes to continue with the new values (recorded in config_changes.log), or resume with the old config from the folder the run was started in",
+            what.join(", and ")
         )));
     }
+    let list = diffs
+        .iter()
+        .chain(inputs_changed)
+        .map(String::as_str)
+        .collect::<Vec<_>>()
+        .join("; ");
     let log = run_dir.join("config_changes.log");
     let mut previous = std::fs::read_to_string(&log).unwrap_or_default();
     let stamp = std::time::SystemTime::now()

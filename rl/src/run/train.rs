@@ -258,10 +258,7 @@ pub fn train_with(
     };
     let (lock, start) = claim_run_folder(run_dir, options)?;
     let resume = start == Start::Resume;
-    let config = &resume::with_env_snapshot(config, run_dir, resume)?;
-    if resume {
-        resume::check_config(run_dir, config, options.accept_config_changes)?;
-    }
+    let config = &resume::config_for_run(config, run_dir, resume, options.accept_config_changes)?;
     let mut run = open_run(config, run_dir, resume, lock, kickstart)?;
     if !resume {
         run.save_latest()?;
