@@ -187,7 +187,11 @@ fn a_resumed_tuning_must_be_the_same_tuning() {
     )
     .unwrap();
     let e = tune(&other, &dir).err().unwrap().to_string();
-    assert!(e.contains("preset's config"), "{e}");
+    // The refusal names the field that differs, with both values.
+    assert!(
+        e.contains("preset's config") && e.contains("task.place.wall_height = 0.012"),
+        "{e}"
+    );
     let record = std::fs::read_to_string(dir.join("tune.json")).unwrap();
     std::fs::write(
         dir.join("tune.json"),
@@ -269,4 +273,146 @@ fn a_fragment_that_conflicts_with_the_preset_is_refused() {
         .unwrap()
         .to_string();
     assert!(e.contains("[control.tuned"), "{e}");
+}
+
+/// A `trials.csv` edited or cut by hand is refused on resume, naming the file, the line and
+/// what is wrong with it, and the refusal writes nothing (the file and `tuned.toml` stay).
+#[test]
+fn a_trials_csv_edited_by_hand_is_refused_naming_the_line_and_the_field() {
+    let dir = folder("edited");
+    let spec = spiral_tuning(8_000);
+    tune(&spec, &dir).unwrap();
+    let good = csv(&dir);
+    let lines: Vec<&str> = good.lines().collect();
+    assert!(lines.len() >= 3, "two trials at least: {good}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let column = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    // `good` with the cell `name` of line `line` (1 = the header) set to `value`.
+    let with = |line: usize, name: &str, value: &str| {
+        let mut rows: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+        let mut cells: Vec<&str> = lines[line - 1].split(',').collect();
+        cells[column(name)] = value;
+        rows[line - 1] = cells.join(",");
+        rows.join("\n") + "\n"
+    };
+    let pitch = lines[1]
+        .split(',')
+        .nth(column("pitch"))
+        .unwrap()
+        .to_string();
+    let other_pitch = if pitch == "0.005" { "0.004" } else { "0.005" };
+    let mut swapped: Vec<&str> = lines.clone();
+    swapped.swap(1, 2);
+    let cases: Vec<(&str, String, Vec<String>)> = vec![
+        (
+            "cut",
+            good[..good.len() - 3].to_string(),
+            vec![format!("line {}", lines.len()), "cut short".into()],
+        ),
+        (
+            "NaN",
+            with(2, "objective", "NaN"),
+            vec![
+                "line 2".into(),
+                "objective `NaN` is not a finite number".into(),
+            ],
+        ),
+        (
+            "extra column",
+            good.replacen(lines[1], &format!("{},7", lines[1]), 1),
+            vec![
+                "line 2".into(),
+                format!("{} fields, expected {}", header.len() + 1, header.len()),
+            ],
+        ),
+        (
+            "out of order",
+            swapped.join("\n") + "\n",
+            vec!["line 2".into(), "trial `1`, expected 0".into()],
+        ),
+        (
+            "objective",
+            with(2, "objective", "0.99"),
+            vec!["line 2".into(), "objective 0.99 is neither".into()],
+        ),
+        (
+            "more successes than episodes",
+            with(2, "successes", "99"),
+            vec!["line 2".into(), "successes 99".into()],
+        ),
+        (
+            "value",
+            with(2, "pitch", other_pitch),
+            vec![
+                format!("trial 0: pitch = {other_pitch} in the file"),
+                format!("asks for {pitch} again"),
+            ],
+        ),
+    ];
+    let fragment = std::fs::read(dir.join("tuned.toml")).unwrap();
+    for (what, text, needles) in cases {
+        std::fs::write(dir.join("trials.csv"), &text).unwrap();
+        let e = tune(&spec, &dir)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(e.contains("trials.csv"), "{what}: {e}");
+        for n in needles {
+            assert!(e.contains(&n), "{what}: `{n}` not in `{e}`");
+        }
+        assert_eq!(csv(&dir), text, "{what}: the refused file was rewritten");
+        assert_eq!(
+            std::fs::read(dir.join("tuned.toml")).unwrap(),
+            fragment,
+            "{what}"
+        );
+    }
+    // Put back as it was, it resumes.
+    std::fs::write(dir.join("trials.csv"), &good).unwrap();
+    tune(&spec, &dir).unwrap();
+    assert_eq!(csv(&dir), good);
+}
+
+/// A tuning of a preset file goes on with the preset its folder recorded, whatever the file
+/// of that name holds now, and says how that file differs.
+#[test]
+fn a_resumed_tuning_of_a_preset_file_runs_on_the_recorded_preset() {
+    let dir = folder("file");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.with_extension("toml");
+    std::fs::write(&file, bad_start().to_toml()).unwrap();
+    let name = file.to_str().unwrap();
+    assert!(
+        fairgrasp_evaluate::tune::folder::recorded_preset_file(&dir, name)
+            .unwrap()
+            .is_none()
+    );
+    let ranges = [("pitch".to_string(), None)];
+    let spec = |config: EnvConfig| {
+        TuneSpec::new(name, config, "force_search", &ranges, 11, 12, 3_000, 0).unwrap()
+    };
+    tune(&spec(bad_start()), &dir).unwrap();
+    let mut edited = bad_start();
+    edited.task.place.search.speed = 0.02;
+    std::fs::write(&file, edited.to_toml()).unwrap();
+    let (recorded, note) = fairgrasp_evaluate::tune::folder::recorded_preset_file(&dir, name)
+        .unwrap()
+        .unwrap();
+    assert_eq!(recorded, bad_start());
+    let note = note.unwrap();
+    assert!(
+        note.contains("task.place.search.speed: 0.05 → 0.02"),
+        "{note}"
+    );
+    // The edited file itself is another tuning: refused naming the field.
+    let e = tune(&spec(edited), &dir).err().unwrap().to_string();
+    assert!(
+        e.contains("task.place.search.speed = 0.05 (tune.json)"),
+        "{e}"
+    );
+    std::fs::remove_file(&file).unwrap();
+    let (_, note) = fairgrasp_evaluate::tune::folder::recorded_preset_file(&dir, name)
+        .unwrap()
+        .unwrap();
+    assert!(note.unwrap().contains("missing"));
 }

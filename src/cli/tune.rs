@@ -8,10 +8,12 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use clap::Args;
+use fairgrasp_env::EnvConfig;
 use fairgrasp_evaluate::tune::spec::{MAX_BUDGET, MAX_EPISODES_PER_TRIAL};
-use fairgrasp_evaluate::tune::{TuneEvent, TuneSpec, run_tune};
+use fairgrasp_evaluate::tune::{TuneError, TuneEvent, TuneSpec, folder, run_tune};
 use fairgrasp_types::ArmSimulation;
 
+use crate::cli::UsageError;
 use crate::cli::baseline::preset_config;
 
 /// The place residual's training budget \[env steps\]: what a control tuned against it gets.
@@ -90,11 +92,27 @@ fn param_range(text: &str) -> Result<(String, Option<[f64; 2]>), String> {
     Ok((name.to_string(), Some([num(lo)?, num(hi)?])))
 }
 
+/// The preset's config the tuning runs on: a resumed tuning of a preset file runs on the preset
+/// its folder recorded (a note says when the file here differs), anything else reads the preset.
+fn tuning_preset(a: &TuneArgs) -> anyhow::Result<EnvConfig> {
+    if let Some(dir) = a.out.as_deref().filter(|_| !a.list)
+        && let Some((config, note)) = folder::recorded_preset_file(dir, &a.preset)?
+    {
+        if let Some(note) = note {
+            eprintln!("note: {note}");
+        }
+        return Ok(config);
+    }
+    preset_config(&a.preset, ArmSimulation::Servo)
+}
+
 pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
-    let config = preset_config(&a.preset, ArmSimulation::Servo)?;
+    let config = tuning_preset(a)?;
     if a.list {
         return list(&config, &a.control);
     }
+    // A request that cannot run (a control or parameter the preset has not, a range outside
+    // what it accepts) is a usage error: exit code 2, as clap's own.
     let spec = TuneSpec::new(
         &a.preset,
         config,
@@ -104,7 +122,11 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
         a.episodes,
         a.budget,
         a.optimiser_seed,
-    )?;
+    )
+    .map_err(|e| match e {
+        TuneError::Request(m) => anyhow::Error::new(UsageError(m)),
+        other => other.into(),
+    })?;
     let dir = a.out.clone().expect("clap requires --out without --list");
     let threads = a
         .threads
@@ -190,13 +212,14 @@ fn report(e: &TuneEvent<'_>, episodes: &AtomicUsize, live: bool, per_trial: usiz
 }
 
 /// Prints the control's parameters.
-fn list(config: &fairgrasp_env::EnvConfig, name: &str) -> anyhow::Result<ExitCode> {
+fn list(config: &EnvConfig, name: &str) -> anyhow::Result<ExitCode> {
     let task = config.task.kind;
     let Some(c) = fairgrasp_planner::controls::control(task, name) else {
-        anyhow::bail!(
+        return Err(UsageError(format!(
             "--control {name}: not a control of this preset's task; choose one of {}",
             fairgrasp_planner::controls::control_names(task).join(", ")
-        );
+        ))
+        .into());
     };
     let now = (c.values)(config);
     println!("{} ({}): {} parameters", c.cli, c.report, c.params.len());

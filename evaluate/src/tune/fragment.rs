@@ -81,8 +81,10 @@ pub fn apply(
     path: &Path,
 ) -> Result<&'static Control, TuneError> {
     let text = read_text_bounded(path, MAX_CONFIG_BYTES).map_err(|e| TuneError::io(path, e))?;
-    let fragment: toml::Table =
-        toml::from_str(&text).map_err(|e| TuneError::file(path, format!("not TOML: {e}")))?;
+    let fragment: toml::Table = toml::from_str(&text).map_err(|e| {
+        let where_and_why = fairgrasp_env::config::validate::toml_error_message(&text, &e);
+        TuneError::file(path, format!("not TOML: {where_and_why}"))
+    })?;
     let refuse = |m: String| TuneError::file(path, m);
     let notes = fragment
         .get("control")

@@ -108,11 +108,11 @@ impl Session<'_> {
     /// Trial `index` at `values`: read back from the folder, or run and saved; its objective.
     fn trial(&self, index: usize, values: ParamValues) -> Result<f64, TuneError> {
         if let Some(old) = self.previous.get(index) {
-            if old.values != values {
+            if let Some(why) = replay_mismatch(old, &values, self.generation.get()) {
                 return Err(TuneError::file(
                     &self.csv,
                     format!(
-                        "trial {index} holds other settings than the optimiser asks for again: the folder's trials are not this tuning's"
+                        "trial {index}: {why}: the folder's trials are not this tuning's (edited by hand?); restore trials.csv, or delete the rows from this one on to run them again"
                     ),
                 ));
             }
@@ -169,6 +169,27 @@ impl Session<'_> {
             None => Ok(()),
         }
     }
+}
+
+/// How a trial read back from the folder differs from the one the optimiser asks for again
+/// (`values` in generation `generation`), naming the first parameter that differs; `None` if
+/// it is the same trial.
+fn replay_mismatch(old: &Trial, values: &ParamValues, generation: usize) -> Option<String> {
+    if old.generation != generation {
+        return Some(format!(
+            "generation {} in the file, the optimiser is at {generation}",
+            old.generation
+        ));
+    }
+    values.iter().find_map(|(name, v)| {
+        let saved = old.values.get(name);
+        (saved != Some(v)).then(|| {
+            format!(
+                "{name} = {} in the file, the optimiser asks for {v} again",
+                saved.map_or("(missing)".to_string(), f64::to_string)
+            )
+        })
+    })
 }
 
 /// Runs (or resumes) the tuning `spec` in the folder `dir` on `threads` threads.

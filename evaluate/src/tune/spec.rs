@@ -9,6 +9,8 @@ use fairgrasp_planner::controls::{Control, Param, ParamValues, Scale, control, c
 use fairgrasp_types::fs::{MAX_CONFIG_BYTES, read_text_bounded, write_atomic};
 use serde::{Deserialize, Serialize};
 
+use fairgrasp_policy::recipe::read::leaf_differences;
+
 use crate::tune::error::TuneError;
 
 /// The most env steps one tuning may spend (a billion: days on 2 cores).
@@ -259,20 +261,20 @@ impl SpecRecord {
     }
 
     /// The first thing in which `saved` (a folder's) differs from `self` (the request), as
-    /// (what, before, now).
+    /// (what, before, now); for the preset's config, the first field that differs.
     pub fn first_difference(&self, saved: &SpecRecord) -> Option<(&'static str, String, String)> {
         let pairs: [(&'static str, String, String); 7] = [
             ("preset", saved.preset.clone(), self.preset.clone()),
             ("control", saved.control.clone(), self.control.clone()),
             (
                 "objective",
-                format!("{:?}", saved.objective),
-                format!("{:?}", self.objective),
+                saved.objective.describe().to_string(),
+                self.objective.describe().to_string(),
             ),
             (
                 "parameter list",
-                format!("{:?}", saved.params),
-                format!("{:?}", self.params),
+                params_text(&saved.params),
+                params_text(&self.params),
             ),
             (
                 "scenario seed",
@@ -294,11 +296,41 @@ impl SpecRecord {
             return Some(d);
         }
         (saved.preset_config != self.preset_config).then(|| {
-            (
-                "preset's config",
-                "the config saved in tune.json".to_string(),
-                "the preset as it reads now (edited since?)".to_string(),
-            )
+            let parse = |t: &str| toml::from_str::<toml::Value>(t).ok();
+            let field = match (parse(&saved.preset_config), parse(&self.preset_config)) {
+                (Some(old), Some(new)) => leaf_differences(&old, &new).into_iter().next(),
+                _ => None,
+            };
+            match field {
+                Some(c) => (
+                    "preset's config",
+                    format!("{} = {} (tune.json)", c.path, c.before),
+                    format!(
+                        "{} = {} (the preset as it reads now: edited since, or another file of that name)",
+                        c.path, c.now
+                    ),
+                ),
+                None => (
+                    "preset's config",
+                    "the config saved in tune.json".to_string(),
+                    "the preset as it reads now (edited since?)".to_string(),
+                ),
+            }
         })
     }
+
+    /// The preset config the tuning was started on, as recorded.
+    pub fn preset_env(&self, path: &Path) -> Result<EnvConfig, TuneError> {
+        EnvConfig::from_toml_str(&self.preset_config)
+            .map_err(|e| TuneError::file(path, format!("preset_config: not a valid preset: {e}")))
+    }
+}
+
+/// A parameter list as `name [lo, hi], …`.
+fn params_text(params: &[(String, [f64; 2])]) -> String {
+    let list: Vec<String> = params
+        .iter()
+        .map(|(n, [lo, hi])| format!("{n} [{lo}, {hi}]"))
+        .collect();
+    format!("({})", list.join(", "))
 }

@@ -74,12 +74,23 @@ pub fn save(path: &Path, trials: &[Trial], names: &[&str]) -> Result<(), TuneErr
     write_atomic(path, to_csv(trials, names).as_bytes()).map_err(|e| TuneError::io(path, e))
 }
 
-/// Reads the trials of `path` (parameters `names`); every row must be whole, numbered in order
-/// and carry numbers; an error names the file, the line and the column.
+/// Reads the trials of `path` (parameters `names`); every row must be whole (the file is
+/// written whole, so a last line without its line end was cut), numbered in order, carry
+/// finite numbers in their ranges and an objective that is its counts' rate; an error names
+/// the file, the line, the column, the value and what it may be.
 pub fn load(path: &Path, names: &[&str]) -> Result<Vec<Trial>, TuneError> {
     let bytes = read_bounded(path, MAX_DATA_BYTES).map_err(|e| TuneError::io(path, e))?;
     let text = String::from_utf8(bytes)
         .map_err(|_| TuneError::file(path, "not UTF-8 text".to_string()))?;
+    if !text.is_empty() && !text.ends_with('\n') {
+        let line = text.lines().count();
+        return Err(TuneError::file(
+            path,
+            format!(
+                "line {line}: cut short (no line end; the file is always written whole): restore it, or delete that line to run the trial again"
+            ),
+        ));
+    }
     let mut lines = text.lines();
     let expected = header(names);
     match lines.next() {
@@ -108,7 +119,10 @@ fn parse_row(line: &str, names: &[&str], index: usize) -> Result<Trial, String> 
     let cells: Vec<&str> = line.split(',').collect();
     let want = names.len() + 8;
     if cells.len() != want {
-        return Err(format!("{} fields, expected {want}", cells.len()));
+        return Err(format!(
+            "{} fields, expected {want} (the header's columns)",
+            cells.len()
+        ));
     }
     let num = |k: usize, what: &str| -> Result<f64, String> {
         let v: f64 = cells[k]
@@ -117,7 +131,7 @@ fn parse_row(line: &str, names: &[&str], index: usize) -> Result<Trial, String> 
         if v.is_finite() {
             Ok(v)
         } else {
-            Err(format!("{what} `{}` is not finite", cells[k]))
+            Err(format!("{what} `{}` is not a finite number", cells[k]))
         }
     };
     let count = |k: usize, what: &str| -> Result<u64, String> {
@@ -140,14 +154,12 @@ fn parse_row(line: &str, names: &[&str], index: usize) -> Result<Trial, String> 
     let successes = count(k + 2, "successes")? as usize;
     let within_takt = count(k + 3, "within_takt")? as usize;
     if successes > episodes || within_takt > successes {
-        return Err(
-            "successes must be at most the episodes, and within_takt at most the successes".into(),
-        );
+        return Err(format!(
+            "successes {successes}, within_takt {within_takt} of {episodes} episodes: successes must be at most the episodes, and within_takt at most the successes"
+        ));
     }
     let objective = num(k + 4, "objective")?;
-    if !(-1.0..=1.0).contains(&objective) {
-        return Err(format!("objective {objective} is not in [-1, 1]"));
-    }
+    check_objective(objective, episodes, successes, within_takt)?;
     Ok(Trial {
         index,
         generation: count(1, "generation")? as usize,
@@ -162,4 +174,36 @@ fn parse_row(line: &str, names: &[&str], index: usize) -> Result<Trial, String> 
             _ => Some(num(k + 5, "mean_cycle_time_s")?),
         },
     })
+}
+
+/// A trial's objective is the rate of its successes or of its successes within the takt
+/// (whichever the tuning maximises), or −1 for a setting the preset refused (no episodes).
+fn check_objective(
+    objective: f64,
+    episodes: usize,
+    successes: usize,
+    within_takt: usize,
+) -> Result<(), String> {
+    if !(-1.0..=1.0).contains(&objective) {
+        return Err(format!("objective {objective} is not in [-1, 1]"));
+    }
+    if episodes == 0 {
+        return if objective == -1.0 {
+            Ok(())
+        } else {
+            Err(format!(
+                "objective {objective} with 0 episodes: a trial that ran nothing scores -1"
+            ))
+        };
+    }
+    let n = episodes as f64;
+    let rates = [within_takt as f64 / n, successes as f64 / n];
+    if rates.contains(&objective) {
+        Ok(())
+    } else {
+        Err(format!(
+            "objective {objective} is neither successes/episodes ({}) nor within_takt/episodes ({}) of its row",
+            rates[1], rates[0]
+        ))
+    }
 }
