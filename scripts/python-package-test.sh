@@ -10,7 +10,7 @@
 #   The extension: with FAIRGRASP_NATIVE_LIB=path/to/lib_native.so (what `cargo test
 #   --workspace` builds; tests/python_package.rs passes it) the package is staged from python/
 #   with that library into target/python-package-stage, put on PYTHONPATH, so nothing is compiled
-#   again; without it, `maturin develop --profile dev` builds and installs the package into the
+#   again; without it, `maturin develop --profile dev --features train` builds and installs it into the
 #   venv (both by scripts/stage-package.sh), with the trainer either way, as the tests need.
 #   `pip install ./python` and scripts/build-wheel.sh build release wheels without it.
 set -euo pipefail
