@@ -7,7 +7,8 @@ pub enum ConfigError {
     Invalid {
         field: String,
         value: String,
-        rule: &'static str,
+        /// What the value must be, e.g. `must be in [0, 0.05] s`.
+        rule: std::borrow::Cow<'static, str>,
     },
     #[error("{path}: {message}")]
     File { path: String, message: String },

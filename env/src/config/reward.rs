@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::check;
+use crate::config::check::{Bounds, check, check_in};
 use crate::config::error::ConfigError;
 
 /// Weights of the distance reward (`task.reward = "distance"`): paid `success` on success,
@@ -74,39 +74,25 @@ impl StagedReward {
         // Weights beyond these make the per-step reward (and PPO's value targets) overflow long
         // before they mean anything: 1e308 trained to NaN and the error named the learning rate.
         let w = self;
-        for (value, field, rule) in [
-            (
-                w.reach,
-                "task.staged.reach",
-                "must be in [0, 1000] (default 1)",
-            ),
-            (
-                w.grasp,
-                "task.staged.grasp",
-                "must be in [0, 1000] (default 1)",
-            ),
-            (
-                w.lift,
-                "task.staged.lift",
-                "must be in [0, 1000] (default 1)",
-            ),
+        let weight = Bounds::closed(0.0, 1000.0);
+        for (value, field, bounds, note) in [
+            (w.reach, "task.staged.reach", weight, "(default 1)"),
+            (w.grasp, "task.staged.grasp", weight, "(default 1)"),
+            (w.lift, "task.staged.lift", weight, "(default 1)"),
             (
                 w.reach_sharpness,
                 "task.staged.reach_sharpness",
-                "must be in [0, 1000] 1/m (default 5)",
+                weight.unit("1/m"),
+                "(default 5)",
             ),
             (
                 w.lift_sharpness,
                 "task.staged.lift_sharpness",
-                "must be in [0, 1000] 1/m (default 50)",
+                weight.unit("1/m"),
+                "(default 50)",
             ),
         ] {
-            check(
-                value.is_finite() && (0.0..=1000.0).contains(&value),
-                field,
-                value,
-                rule,
-            )?;
+            check_in(value, field, bounds, note)?;
         }
         check(
             w.reach + w.grasp + w.lift > 0.0,
@@ -118,12 +104,7 @@ impl StagedReward {
             (w.success, "task.staged.success"),
             (w.collision, "task.staged.collision"),
         ] {
-            check(
-                value.is_finite() && value.abs() <= 1e4,
-                field,
-                value,
-                "must be a number in [-10000, 10000]",
-            )?;
+            check_in(value, field, Bounds::closed(-1e4, 1e4), "")?;
         }
         Ok(())
     }

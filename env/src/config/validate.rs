@@ -1,10 +1,11 @@
 //! Loading and checking an [`EnvConfig`]: TOML in and out, and refusals that name the field.
 
+use std::f64::consts::TAU;
 use std::path::Path;
 
 use fairgrasp_kinematics::Pose;
 
-use crate::config::check::{Lowest, check, check_range};
+use crate::config::check::{Bounds, check, check_in, check_range};
 use crate::config::env_config::{EnvConfig, SIMULATED_ARM};
 pub use crate::config::error::ConfigError;
 pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
@@ -23,7 +24,11 @@ pub fn base_tilt(base_in_world: &Pose) -> f64 {
 /// Refuses any non-finite number or out-of-range integer in a configuration, naming the field.
 pub fn check_all_finite(config: &impl serde::Serialize) -> Result<(), ConfigError> {
     match first_bad_number(config) {
-        Some((field, value, rule)) => Err(ConfigError::Invalid { field, value, rule }),
+        Some((field, value, rule)) => Err(ConfigError::Invalid {
+            field,
+            value,
+            rule: rule.into(),
+        }),
         None => Ok(()),
     }
 }
@@ -34,6 +39,14 @@ pub const MAX_SUBSTEPS: usize = 200;
 pub const MAX_SOLVER_ITERATIONS: usize = 100;
 /// The longest episode the env accepts \[steps\].
 pub const MAX_EPISODE_STEPS: usize = 100_000;
+/// Where a body may stand on a coordinate, world frame \[m\]: within the largest table's side.
+const ON_THE_TABLE: Bounds = Bounds::closed(-10.0, 10.0).unit("m");
+/// A grip force \[N\]: the gripper's own and the control's.
+const GRIP_FORCE: Bounds = Bounds::above_to(0.0, 100.0).unit("N");
+/// A distance's range \[m\].
+pub(crate) const DISTANCE: Bounds = Bounds::at_least(0.0).unit("m");
+/// An angle about the vertical \[rad\]: from −π up.
+pub(crate) const ANGLE_FROM_MINUS_PI: Bounds = Bounds::at_least(-std::f64::consts::PI).unit("rad");
 
 impl EnvConfig {
     /// Reads a TOML file; missing fields take their defaults, unknown fields are refused.
@@ -90,58 +103,58 @@ impl EnvConfig {
     /// `[physics]`: the time step, substeps, solver iterations and contact stiffness.
     fn validate_physics(&self) -> Result<(), ConfigError> {
         let p = &self.physics;
-        check(
-            p.dt > 0.0 && p.dt <= 0.05,
-            "physics.dt",
+        check_in(
             p.dt,
-            "must be in (0, 0.05] s",
+            "physics.dt",
+            Bounds::above_to(0.0, 0.05).unit("s"),
+            "",
         )?;
-        check(
-            (1..=MAX_SUBSTEPS).contains(&p.substeps),
-            "physics.substeps",
+        check_in(
             p.substeps,
-            "must be in 1..=200",
+            "physics.substeps",
+            Bounds::closed(1.0, MAX_SUBSTEPS as f64),
+            "",
         )?;
-        check(
-            (1..=MAX_SOLVER_ITERATIONS).contains(&p.solver_iterations),
-            "physics.solver_iterations",
+        check_in(
             p.solver_iterations,
-            "must be in 1..=100",
+            "physics.solver_iterations",
+            Bounds::closed(1.0, MAX_SOLVER_ITERATIONS as f64),
+            "",
         )?;
-        check(
-            p.contact_natural_frequency > 0.0 && p.contact_natural_frequency <= 10_000.0,
-            "physics.contact_natural_frequency",
+        check_in(
             p.contact_natural_frequency,
-            "must be in (0, 10000] Hz (default 120)",
+            "physics.contact_natural_frequency",
+            Bounds::above_to(0.0, 10_000.0).unit("Hz"),
+            "(default 120)",
         )
     }
 
     /// `[arm]`: the action's scales, then where the arm stands ([`Self::validate_mount`]).
     fn validate_arm(&self) -> Result<(), ConfigError> {
         let a = &self.arm;
-        check(
-            a.action_scale > 0.0 && a.action_scale <= 3.15,
-            "arm.action_scale",
+        check_in(
             a.action_scale,
-            "must be in (0, 3.15] rad/s (the FR3 velocity limit)",
+            "arm.action_scale",
+            Bounds::above_to(0.0, 3.15).unit("rad/s"),
+            "(the FR3 velocity limit)",
         )?;
-        check(
-            a.max_acceleration > 0.0 && a.max_acceleration <= 1000.0,
-            "arm.max_acceleration",
+        check_in(
             a.max_acceleration,
-            "must be in (0, 1000] rad/s² (default 10)",
+            "arm.max_acceleration",
+            Bounds::above_to(0.0, 1000.0).unit("rad/s²"),
+            "(default 10)",
         )?;
-        check(
-            a.tcp_speed > 0.0 && a.tcp_speed <= 1.0,
-            "arm.tcp_speed",
+        check_in(
             a.tcp_speed,
-            "must be in (0, 1] m/s",
+            "arm.tcp_speed",
+            Bounds::above_to(0.0, 1.0).unit("m/s"),
+            "",
         )?;
-        check(
-            a.tcp_yaw_rate > 0.0 && a.tcp_yaw_rate <= 3.2,
-            "arm.tcp_yaw_rate",
+        check_in(
             a.tcp_yaw_rate,
-            "must be in (0, 3.2] rad/s (the FR3's wrist velocity limit)",
+            "arm.tcp_yaw_rate",
+            Bounds::above_to(0.0, 3.2).unit("rad/s"),
+            "(the FR3's wrist velocity limit)",
         )?;
         self.validate_mount()
     }
@@ -150,12 +163,25 @@ impl EnvConfig {
     /// home joints within the [`SIMULATED_ARM`]'s limits.
     fn validate_mount(&self) -> Result<(), ConfigError> {
         let a = &self.arm;
-        check(
-            a.base_xyz.iter().chain(&a.base_rpy).all(|v| v.is_finite()),
-            "arm.base_xyz/base_rpy",
-            (a.base_xyz, a.base_rpy),
-            "must be finite",
-        )?;
+        for (v, field) in
+            a.base_xyz
+                .iter()
+                .zip(["arm.base_xyz[0]", "arm.base_xyz[1]", "arm.base_xyz[2]"])
+        {
+            check_in(*v, field, ON_THE_TABLE, "(the largest table's side)")?;
+        }
+        for (v, field) in
+            a.base_rpy
+                .iter()
+                .zip(["arm.base_rpy[0]", "arm.base_rpy[1]", "arm.base_rpy[2]"])
+        {
+            check_in(
+                *v,
+                field,
+                Bounds::closed(-TAU, TAU).unit("rad"),
+                "(one turn either way)",
+            )?;
+        }
         let tilt = base_tilt(&Pose::from_xyz_rpy(a.base_xyz, a.base_rpy));
         check(
             tilt <= MAX_BASE_TILT + 1e-9,
@@ -164,35 +190,42 @@ impl EnvConfig {
             "tilts the base more than 15° from upright: a wedge mount may tilt at most 15° \
              (roll and pitch together), with any yaw",
         )?;
-        check(
-            SIMULATED_ARM.model().in_limits(&a.home_joints, 0.0),
-            "arm.home_joints",
-            a.home_joints,
-            "must be within the FR3 joint limits",
-        )
+        let fields = [
+            "arm.home_joints[0]",
+            "arm.home_joints[1]",
+            "arm.home_joints[2]",
+            "arm.home_joints[3]",
+            "arm.home_joints[4]",
+            "arm.home_joints[5]",
+        ];
+        for ((q, joint), field) in a
+            .home_joints
+            .iter()
+            .zip(&SIMULATED_ARM.model().joints)
+            .zip(fields)
+        {
+            let limits = Bounds::closed(joint.lower, joint.upper).unit("rad");
+            check_in(*q, field, limits, "(the FR3's joint limits)")?;
+        }
+        Ok(())
     }
 
     /// `[gripper]` and the grip force of `[control]`.
     fn validate_gripper(&self) -> Result<(), ConfigError> {
         let g = &self.gripper;
-        check(
-            g.force > 0.0 && g.force <= 100.0,
-            "gripper.force",
-            g.force,
-            "must be in (0, 100] N",
-        )?;
-        check(
-            (0.0..=10.0).contains(&g.pad_friction),
-            "gripper.pad_friction",
+        check_in(g.force, "gripper.force", GRIP_FORCE, "")?;
+        check_in(
             g.pad_friction,
-            "must be in [0, 10]",
+            "gripper.pad_friction",
+            Bounds::closed(0.0, 10.0),
+            "",
         )?;
         if let Some(force) = self.control.grip_force {
-            check(
-                force > 0.0 && force <= 100.0,
-                "control.grip_force",
+            check_in(
                 force,
-                "must be in (0, 100] N (gripper.force's range)",
+                "control.grip_force",
+                GRIP_FORCE,
+                "(gripper.force's range)",
             )?;
         }
         Ok(())
@@ -201,68 +234,71 @@ impl EnvConfig {
     /// `[scene]`: the table and the cube.
     fn validate_scene(&self) -> Result<(), ConfigError> {
         let s = &self.scene;
-        check(
-            (0.0..=2.0).contains(&s.table_height),
-            "scene.table_height",
+        check_in(
             s.table_height,
-            "must be in [0, 2] m",
+            "scene.table_height",
+            Bounds::closed(0.0, 2.0).unit("m"),
+            "",
         )?;
-        check(
-            s.table_size.iter().all(|v| *v > 0.2 && *v <= 10.0),
-            "scene.table_size",
-            s.table_size,
-            "each side must be in (0.2, 10] m",
-        )?;
-        check(
-            (0.0..=10.0).contains(&s.table_friction),
-            "scene.table_friction",
+        for (side, field) in s
+            .table_size
+            .iter()
+            .zip(["scene.table_size[0]", "scene.table_size[1]"])
+        {
+            check_in(*side, field, Bounds::above_to(0.2, 10.0).unit("m"), "")?;
+        }
+        check_in(
             s.table_friction,
-            "must be in [0, 10]",
+            "scene.table_friction",
+            Bounds::closed(0.0, 10.0),
+            "",
         )?;
-        check(
-            s.cube_size >= 0.01 && s.cube_size <= 0.08,
-            "scene.cube_size",
+        check_in(
             s.cube_size,
-            "must be in [0.01, 0.08] m (the gripper opens 0.085 m)",
+            "scene.cube_size",
+            Bounds::closed(0.01, 0.08).unit("m"),
+            "(the gripper opens 0.085 m)",
         )?;
-        check(
-            s.cube_mass > 0.0 && s.cube_mass <= 3.0,
-            "scene.cube_mass",
+        check_in(
             s.cube_mass,
-            "must be in (0, 3] kg (the FR3's payload)",
+            "scene.cube_mass",
+            Bounds::above_to(0.0, 3.0).unit("kg"),
+            "(the FR3's payload)",
         )?;
-        check(
-            (0.0..=10.0).contains(&s.cube_friction),
-            "scene.cube_friction",
+        check_in(
             s.cube_friction,
-            "must be in [0, 10]",
-        )
+            "scene.cube_friction",
+            Bounds::closed(0.0, 10.0),
+            "",
+        )?;
+        for (v, field) in s
+            .cube_xy
+            .iter()
+            .zip(["scene.cube_xy[0]", "scene.cube_xy[1]"])
+        {
+            check_in(*v, field, ON_THE_TABLE, "(the largest table's side)")?;
+        }
+        Ok(())
     }
 
     /// The randomisation's ranges and noise levels (`[randomization]`; the families' fields are
     /// `validate_families`').
     fn validate_randomization(&self) -> Result<(), ConfigError> {
         let r = &self.randomization;
-        check_range(&r.radius, "randomization.radius", Lowest::Zero)?;
-        check_range(&r.angle, "randomization.angle", Lowest::MinusPi)?;
+        check_range(&r.radius, "randomization.radius", DISTANCE)?;
+        check_range(&r.angle, "randomization.angle", ANGLE_FROM_MINUS_PI)?;
         if let Some(f) = &r.friction {
-            check_range(f, "randomization.friction", Lowest::Zero)?;
+            check_range(f, "randomization.friction", Bounds::at_least(0.0))?;
         }
         if let Some(m) = &r.mass_scale {
-            check_range(m, "randomization.mass_scale", Lowest::Zero)?;
-            check(
-                m[0] > 0.0,
-                "randomization.mass_scale",
-                m,
-                "must be positive",
-            )?;
+            check_range(m, "randomization.mass_scale", Bounds::above(0.0))?;
         }
         // Noise beyond this puts the start joints outside anything a scenario means.
-        check(
-            r.joint_noise.is_finite() && (0.0..=0.5).contains(&r.joint_noise),
-            "randomization.joint_noise",
+        check_in(
             r.joint_noise,
-            "must be in [0, 0.5] rad (default 0.05 on the randomised presets)",
+            "randomization.joint_noise",
+            Bounds::closed(0.0, 0.5).unit("rad"),
+            "(default 0.05 on the randomised presets)",
         )?;
         check_perception_noise(r.observed_position_noise, r.observed_yaw_noise)
     }
@@ -270,30 +306,39 @@ impl EnvConfig {
     /// The task's fields (`[task]`, the staged reward's weights, `[task.place]`).
     fn validate_task(&self) -> Result<(), ConfigError> {
         let t = &self.task;
-        check(
-            (1..=MAX_EPISODE_STEPS).contains(&t.max_steps),
-            "task.max_steps",
+        check_in(
             t.max_steps,
-            "must be in 1..=100000",
+            "task.max_steps",
+            Bounds::closed(1.0, MAX_EPISODE_STEPS as f64),
+            "",
         )?;
-        check(
-            t.lift_height > 0.0 && t.lift_height <= 2.0,
-            "task.lift_height",
+        check_in(
             t.lift_height,
-            "must be in (0, 2] m (default 0.03; a height the arm cannot reach means no success)",
+            "task.lift_height",
+            Bounds::above_to(0.0, 2.0).unit("m"),
+            "(default 0.03; a height the arm cannot reach means no success)",
         )?;
-        check(
-            t.protective_stop_force.is_finite() && t.protective_stop_force > 0.0,
-            "task.protective_stop_force",
+        check_in(
             t.protective_stop_force,
-            "must be a finite force in (0, inf) N (default 35 N)",
+            "task.protective_stop_force",
+            Bounds::above(0.0).unit("N"),
+            "(default 35 N)",
         )?;
         t.staged.check()?;
-        check(
-            (-10.0..=0.0).contains(&t.distance.time),
-            "task.time_reward",
+        let reward = Bounds::closed(-1e4, 1e4);
+        check_in(t.distance.success, "task.success_reward", reward, "")?;
+        check_in(t.distance.collision, "task.collision_reward", reward, "")?;
+        check_in(
+            t.distance.distance,
+            "task.distance_reward",
+            reward.unit("1/m"),
+            "",
+        )?;
+        check_in(
             t.distance.time,
-            "must be in [-10, 0] per step (a cost; default 0)",
+            "task.time_reward",
+            Bounds::closed(-10.0, 0.0).unit("per step"),
+            "(a cost; default 0)",
         )?;
         crate::task::place::settings::check_place(&t.place, self.scene.cube_size)?;
         if let Some(mix) = &t.place.mix {

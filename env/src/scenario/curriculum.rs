@@ -7,6 +7,7 @@ use std::collections::VecDeque;
 use serde::{Deserialize, Serialize};
 
 use crate::config::RandomizationConfig;
+use crate::config::check::{Bounds, check_in};
 
 /// Curriculum settings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -42,15 +43,21 @@ impl Default for CurriculumConfig {
 impl CurriculumConfig {
     /// Checks the settings; the message names the field.
     pub fn validate(&self) -> Result<(), String> {
-        if !(self.threshold > 0.0 && self.threshold <= 1.0) {
-            return Err(format!(
-                "curriculum.threshold = {}: must be in (0, 1]",
-                self.threshold
-            ));
-        }
-        if self.window == 0 {
-            return Err("curriculum.window = 0: must be at least 1 episode".into());
-        }
+        check_in(
+            self.threshold,
+            "curriculum.threshold",
+            Bounds::above_to(0.0, 1.0),
+            "",
+        )
+        .and_then(|()| {
+            check_in(
+                self.window,
+                "curriculum.window",
+                Bounds::closed(1.0, 1e6).unit("episodes"),
+                "",
+            )
+        })
+        .map_err(|e| e.to_string())?;
         let ok = self.position_steps.iter().all(|f| *f > 0.0 && *f < 1.0)
             && self.position_steps.windows(2).all(|w| w[0] < w[1]);
         if !ok {

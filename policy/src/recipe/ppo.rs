@@ -1,6 +1,7 @@
 //! A recipe's `[ppo]` table: PPO's hyper-parameters, with SB3's defaults, and the checks a run
 //! needs before it starts (the algorithm is `fairgrasp-rl`'s `ppo`).
 
+use fairgrasp_env::config::{Bounds, SettingNumber, bounds_rule};
 use serde::{Deserialize, Serialize};
 
 /// Every PPO hyper-parameter; defaults are SB3's (the seed recipe's).
@@ -82,7 +83,8 @@ pub enum PpoConfigError {
     Invalid {
         field: &'static str,
         value: String,
-        rule: &'static str,
+        /// What the value must be, e.g. `must be in (0, 1]`.
+        rule: String,
     },
 }
 
@@ -105,86 +107,58 @@ impl PpoConfig {
     /// Checks the configuration for `n_envs` environments: every number finite and in its
     /// range, the rollout's size overflow-checked and capped at [`MAX_ROLLOUT`].
     pub fn validate(&self, n_envs: usize) -> Result<(), PpoConfigError> {
-        let bad = |field, value: String, rule| Err(PpoConfigError::Invalid { field, value, rule });
-        let counts = [
-            (self.n_steps, "n_steps", "must be in 1..=1000000"),
-            (self.batch_size, "batch_size", "must be in 1..=1000000"),
-            (self.n_epochs, "n_epochs", "must be in 1..=1000"),
-        ];
-        for (value, field, rule) in counts {
-            let max = if field == "n_epochs" { 1000 } else { 1_000_000 };
-            if !(1..=max).contains(&value) {
-                return bad(field, value.to_string(), rule);
-            }
-        }
-        if !(self.learning_rate > 0.0 && self.learning_rate <= 1.0) {
-            return bad(
-                "learning_rate",
-                self.learning_rate.to_string(),
-                "must be in (0, 1] (SB3's default 3e-4)",
-            );
-        }
-        if !(0.0..1.0).contains(&self.anneal_from) {
-            return bad(
-                "anneal_from",
-                self.anneal_from.to_string(),
-                "must be in [0, 1): the fraction of training before the learning rate decays",
-            );
-        }
-        let unit = [
-            (self.gamma, "gamma", "must be in [0, 1]"),
-            (self.gae_lambda, "gae_lambda", "must be in [0, 1]"),
-            (
-                self.clip_coef,
-                "clip_coef",
-                "must be in (0, 1] (default 0.2)",
-            ),
-        ];
-        for (value, field, rule) in unit {
-            let low_ok = if field == "clip_coef" {
-                value > 0.0
-            } else {
-                value >= 0.0
-            };
-            if !(low_ok && value <= 1.0) {
-                return bad(field, value.to_string(), rule);
-            }
-        }
-        let weights = [
-            (self.ent_coef, "ent_coef", "must be in [0, 100]"),
-            (self.vf_coef, "vf_coef", "must be in [0, 100]"),
-        ];
-        for (value, field, rule) in weights {
-            if !(0.0..=100.0).contains(&value) {
-                return bad(field, value.to_string(), rule);
-            }
-        }
-        if !(self.max_grad_norm > 0.0 && self.max_grad_norm <= 1e6) {
-            return bad(
-                "max_grad_norm",
-                self.max_grad_norm.to_string(),
-                "must be in (0, 1e6] (default 0.5)",
-            );
-        }
-        if let Some(kl) = self.target_kl
-            && !(kl > 0.0 && kl <= 100.0)
-        {
-            return bad(
+        let count = Bounds::closed(1.0, 1e6);
+        let unit_interval = Bounds::closed(0.0, 1.0);
+        let weight = Bounds::closed(0.0, 100.0);
+        in_bounds("n_steps", self.n_steps, count, "")?;
+        in_bounds("batch_size", self.batch_size, count, "")?;
+        in_bounds("n_epochs", self.n_epochs, Bounds::closed(1.0, 1000.0), "")?;
+        in_bounds(
+            "learning_rate",
+            self.learning_rate,
+            Bounds::above_to(0.0, 1.0),
+            "(SB3's default 3e-4)",
+        )?;
+        in_bounds(
+            "anneal_from",
+            self.anneal_from,
+            Bounds::from_below(0.0, 1.0),
+            "(the fraction of training before the learning rate decays)",
+        )?;
+        in_bounds("gamma", self.gamma, unit_interval, "")?;
+        in_bounds("gae_lambda", self.gae_lambda, unit_interval, "")?;
+        in_bounds(
+            "clip_coef",
+            self.clip_coef,
+            Bounds::above_to(0.0, 1.0),
+            "(default 0.2)",
+        )?;
+        in_bounds("ent_coef", self.ent_coef, weight, "")?;
+        in_bounds("vf_coef", self.vf_coef, weight, "")?;
+        in_bounds(
+            "max_grad_norm",
+            self.max_grad_norm,
+            Bounds::above_to(0.0, 1e6),
+            "(default 0.5)",
+        )?;
+        if let Some(kl) = self.target_kl {
+            in_bounds(
                 "target_kl",
-                kl.to_string(),
-                "must be in (0, 100], or left out for no early stop",
-            );
+                kl,
+                Bounds::above_to(0.0, 100.0),
+                "(or left out for no early stop)",
+            )?;
         }
         let rollout = self
             .n_steps
             .checked_mul(n_envs)
             .filter(|r| *r <= MAX_ROLLOUT);
         let Some(rollout) = rollout else {
-            return bad(
-                "n_steps × n_envs",
-                format!("{} × {}", self.n_steps, n_envs),
-                "must be at most 4194304 samples per rollout (2^22, about 0.5 GB)",
-            );
+            return Err(PpoConfigError::Invalid {
+                field: "n_steps × n_envs",
+                value: format!("{} × {}", self.n_steps, n_envs),
+                rule: "must be at most 4194304 samples per rollout (2^22, about 0.5 GB)".into(),
+            });
         };
         if !rollout.is_multiple_of(self.batch_size) {
             return Err(PpoConfigError::UnevenMinibatches {
@@ -196,4 +170,22 @@ impl PpoConfig {
         }
         Ok(())
     }
+}
+
+/// `Ok` when `value` lies within `bounds`, else the refusal naming `field`, the value as written
+/// and both bounds (then `note`).
+fn in_bounds(
+    field: &'static str,
+    value: impl SettingNumber,
+    bounds: Bounds,
+    note: &'static str,
+) -> Result<(), PpoConfigError> {
+    if bounds.contains(value.as_f64()) {
+        return Ok(());
+    }
+    Err(PpoConfigError::Invalid {
+        field,
+        value: format!("{value:?}"),
+        rule: bounds_rule(&bounds, note),
+    })
 }

@@ -4,7 +4,7 @@
 use fairgrasp_kinematics::Pose;
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::check;
+use crate::config::check::{Bounds, check_in};
 use crate::config::error::ConfigError;
 
 /// A camera extrinsic that is off by a fixed rigid transform (the same for every episode of the
@@ -40,25 +40,26 @@ impl CameraOffset {
 
     /// Refuses an error that is not finite or beyond its bounds, naming the field.
     pub fn check(&self) -> Result<(), ConfigError> {
-        check(
-            self.origin.iter().all(|v| v.is_finite() && v.abs() <= 2.0),
-            "randomization.camera_offset.origin",
-            self.origin,
-            "must be finite and within 2 m of the base [m]",
-        )?;
-        check(
-            self.xyz
-                .iter()
-                .all(|v| v.is_finite() && v.abs() <= MAX_CAMERA_SHIFT),
-            "randomization.camera_offset.xyz",
-            self.xyz,
-            "each component must be finite and within ±0.05 m",
-        )?;
-        check(
-            self.yaw.is_finite() && self.yaw.abs() <= MAX_CAMERA_YAW,
-            "randomization.camera_offset.yaw",
+        let origin = Bounds::closed(-2.0, 2.0).unit("m");
+        for (v, field) in self.origin.iter().zip([
+            "randomization.camera_offset.origin[0]",
+            "randomization.camera_offset.origin[1]",
+        ]) {
+            check_in(*v, field, origin, "(within 2 m of the base)")?;
+        }
+        let shift = Bounds::closed(-MAX_CAMERA_SHIFT, MAX_CAMERA_SHIFT).unit("m");
+        for (v, field) in self.xyz.iter().zip([
+            "randomization.camera_offset.xyz[0]",
+            "randomization.camera_offset.xyz[1]",
+            "randomization.camera_offset.xyz[2]",
+        ]) {
+            check_in(*v, field, shift, "")?;
+        }
+        check_in(
             self.yaw,
-            "must be finite and within ±0.2618 rad (15°)",
+            "randomization.camera_offset.yaw",
+            Bounds::closed(-MAX_CAMERA_YAW, MAX_CAMERA_YAW).unit("rad"),
+            "(15°)",
         )
     }
 }

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::check;
+use crate::config::check::{Bounds, check, check_in};
 use crate::config::error::ConfigError;
 
 /// Which family's error a scenario of the mix carries.
@@ -91,12 +91,7 @@ pub(crate) fn check_error_mix(mix: &ErrorMix, drawn: [bool; 3]) -> Result<(), Co
             ErrorFamily::GraspError => "task.place.mix.grasp_error",
             ErrorFamily::Tilted => "task.place.mix.tilted",
         };
-        check(
-            w.is_finite() && (0.0..=1000.0).contains(&w),
-            field,
-            w,
-            "must be a weight in [0, 1000]",
-        )?;
+        check_in(w, field, Bounds::closed(0.0, 1000.0), "(a weight)")?;
     }
     check(
         mix.weights().iter().sum::<f64>() > 0.0,

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{Lowest, check, check_range};
+use crate::config::check::{Bounds, check, check_in, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
 
@@ -31,24 +31,22 @@ impl NudgeConfig {
     /// `task.max_steps` (the push must come before the episode ends), `position` is
     /// `randomization.position` (the push stays in the position's radius range).
     pub fn check(&self, max_steps: usize, position: bool) -> Result<(), ConfigError> {
-        check_range(&self.distance, "randomization.nudge.distance", Lowest::Zero)?;
-        check(
-            self.distance[0] > 0.0 && self.distance[1] <= MAX_NUDGE,
+        check_range(
+            &self.distance,
             "randomization.nudge.distance",
-            self.distance,
-            "must lie in (0, 0.15] m",
+            Bounds::above_to(0.0, MAX_NUDGE).unit("m"),
         )?;
-        check(
-            self.step[0] <= self.step[1] && self.step[1] < max_steps,
+        // The push comes before the episode's last step (task.max_steps).
+        check_range(
+            &self.step,
             "randomization.nudge.step",
-            self.step,
-            "min must not exceed max, and max must be below task.max_steps",
+            Bounds::from_below(0.0, max_steps as f64).unit("steps"),
         )?;
-        check(
-            self.min_tcp_distance.is_finite() && self.min_tcp_distance >= MIN_TCP_DISTANCE,
-            "randomization.nudge.min_tcp_distance",
+        check_in(
             self.min_tcp_distance,
-            "must be at least 0.12 m (5 cm of gap plus the cube and the open fingers)",
+            "randomization.nudge.min_tcp_distance",
+            Bounds::at_least(MIN_TCP_DISTANCE).unit("m"),
+            "(5 cm of gap plus the cube and the open fingers)",
         )?;
         check(
             position,

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::check;
+use crate::config::check::{Bounds, check_in};
 use crate::config::error::ConfigError;
 
 /// A wrist camera (`[randomization] wrist_camera = { range }`): once the TCP is within `range`
@@ -21,11 +21,11 @@ pub const MAX_WRIST_RANGE: f64 = 0.5;
 impl WristCamera {
     /// Refuses a range that is not in (0, [`MAX_WRIST_RANGE`]], naming the field.
     pub fn check(&self) -> Result<(), ConfigError> {
-        check(
-            self.range.is_finite() && self.range > 0.0 && self.range <= MAX_WRIST_RANGE,
-            "randomization.wrist_camera.range",
+        check_in(
             self.range,
-            "must be in (0, 0.5] m",
+            "randomization.wrist_camera.range",
+            Bounds::above_to(0.0, MAX_WRIST_RANGE).unit("m"),
+            "",
         )
     }
 }

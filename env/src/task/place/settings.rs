@@ -9,9 +9,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{Lowest, check, check_range};
+use crate::config::check::{Bounds, check, check_in, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
+use crate::config::validate::{ANGLE_FROM_MINUS_PI, DISTANCE};
 use crate::scenario::error_mix::settings::ErrorMix;
 use crate::scenario::grip_tilt::settings::check_grip_tilt;
 
@@ -249,65 +250,22 @@ pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigE
 
 /// The pocket's sizes, the seated and clear criteria, the grasp, where the fixture stands.
 fn check_fixture(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
-    for (value, field, lo, hi, rule) in [
-        (
-            p.clearance,
-            "task.place.clearance",
-            0.0,
-            0.02,
-            "must be in (0, 0.02] m",
-        ),
-        (
-            p.wall_height,
-            "task.place.wall_height",
-            0.0,
-            0.05,
-            "must be in (0, 0.05] m",
-        ),
-        (
-            p.wall_thickness,
-            "task.place.wall_thickness",
-            0.0,
-            0.05,
-            "must be in (0, 0.05] m",
-        ),
-        (
-            p.seated_height,
-            "task.place.seated_height",
-            0.0,
-            0.02,
-            "must be in (0, 0.02] m",
-        ),
-        (
-            p.max_tilt,
-            "task.place.max_tilt",
-            0.0,
-            0.5,
-            "must be in (0, 0.5] rad",
-        ),
-        (
-            p.clear_height,
-            "task.place.clear_height",
-            0.0,
-            0.3,
-            "must be in (0, 0.3] m",
-        ),
+    for (value, field, high, unit) in [
+        (p.clearance, "task.place.clearance", 0.02, "m"),
+        (p.wall_height, "task.place.wall_height", 0.05, "m"),
+        (p.wall_thickness, "task.place.wall_thickness", 0.05, "m"),
+        (p.seated_height, "task.place.seated_height", 0.02, "m"),
+        (p.max_tilt, "task.place.max_tilt", 0.5, "rad"),
+        (p.clear_height, "task.place.clear_height", 0.3, "m"),
         (
             p.min_distance_from_cube,
             "task.place.min_distance_from_cube",
-            0.0,
             1.0,
-            "must be in (0, 1] m",
+            "m",
         ),
-        (
-            p.takt,
-            "task.place.takt",
-            0.0,
-            3600.0,
-            "must be in (0, 3600] s",
-        ),
+        (p.takt, "task.place.takt", 3600.0, "s"),
     ] {
-        check(value > lo && value <= hi, field, value, rule)?;
+        check_in(value, field, Bounds::above_to(0.0, high).unit(unit), "")?;
     }
     check(
         p.grasp_height.abs() < 0.5 * cube_size,
@@ -315,33 +273,39 @@ fn check_fixture(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
         p.grasp_height,
         "must hold the cube: less than half its edge above or below its centre",
     )?;
-    check(
-        p.fixture_xy.iter().all(|v| v.abs() <= 2.0),
-        "task.place.fixture_xy",
-        p.fixture_xy,
-        "must be within 2 m of the base [m]",
-    )?;
-    check_range(&p.fixture_radius, "task.place.fixture_radius", Lowest::Zero)?;
+    for (v, field) in p
+        .fixture_xy
+        .iter()
+        .zip(["task.place.fixture_xy[0]", "task.place.fixture_xy[1]"])
+    {
+        check_in(
+            *v,
+            field,
+            Bounds::closed(-2.0, 2.0).unit("m"),
+            "(within 2 m of the base)",
+        )?;
+    }
+    check_range(&p.fixture_radius, "task.place.fixture_radius", DISTANCE)?;
     check_range(
         &p.fixture_angle,
         "task.place.fixture_angle",
-        Lowest::MinusPi,
+        ANGLE_FROM_MINUS_PI,
     )
 }
 
 /// How well the cell knows the fixture's pose.
 fn check_observation_noise(p: &PlaceConfig) -> Result<(), ConfigError> {
-    check(
-        (0.0..=0.05).contains(&p.observed_position_noise),
-        "task.place.observed_position_noise",
+    check_in(
         p.observed_position_noise,
-        "must be in [0, 0.05] m",
+        "task.place.observed_position_noise",
+        Bounds::closed(0.0, 0.05).unit("m"),
+        "",
     )?;
-    check(
-        (0.0..=0.5).contains(&p.observed_yaw_noise),
-        "task.place.observed_yaw_noise",
+    check_in(
         p.observed_yaw_noise,
-        "must be in [0, 0.5] rad",
+        "task.place.observed_yaw_noise",
+        Bounds::closed(0.0, 0.5).unit("rad"),
+        "",
     )
 }
 
@@ -349,12 +313,10 @@ fn check_observation_noise(p: &PlaceConfig) -> Result<(), ConfigError> {
 fn check_contact_conditions(p: &PlaceConfig) -> Result<(), ConfigError> {
     check_grip_tilt(&p.grip_tilt)?;
     if let Some(friction) = &p.fixture_friction {
-        check_range(friction, "task.place.fixture_friction", Lowest::Zero)?;
-        check(
-            friction[1] <= 2.0,
-            "task.place.fixture_friction",
+        check_range(
             friction,
-            "must be within [0, 2] (a friction coefficient)",
+            "task.place.fixture_friction",
+            Bounds::closed(0.0, 2.0),
         )?;
     }
     Ok(())
@@ -368,58 +330,22 @@ fn check_search(p: &PlaceConfig) -> Result<(), ConfigError> {
     check_one_search(&p.switch.pose, "task.place.switch.pose", p.wall_height)?;
     check_one_search(&p.switch.tilted, "task.place.switch.tilted", p.wall_height)?;
     let q = &p.square;
-    for (value, field, lo, hi, rule) in [
-        (
-            q.offset,
-            "task.place.square.offset",
-            0.05,
-            0.3,
-            "must be in [0.05, 0.3] m",
-        ),
-        (
-            q.speed,
-            "task.place.square.speed",
-            0.001,
-            0.05,
-            "must be in [0.001, 0.05] m/s",
-        ),
-        (
-            q.force,
-            "task.place.square.force",
-            0.5,
-            30.0,
-            "must be in [0.5, 30] N",
-        ),
-        (
-            q.press,
-            "task.place.square.press",
-            -0.01,
-            0.01,
-            "must be in [-0.01, 0.01] m",
-        ),
-        (
-            q.hold,
-            "task.place.square.hold",
-            0.0,
-            3.0,
-            "must be in [0, 3] s",
-        ),
-        (
-            q.squeeze,
-            "task.place.square.squeeze",
-            0.2,
-            100.0,
-            "must be in [0.2, 100] N",
-        ),
+    for (value, field, low, high, unit) in [
+        (q.offset, "task.place.square.offset", 0.05, 0.3, "m"),
+        (q.speed, "task.place.square.speed", 0.001, 0.05, "m/s"),
+        (q.force, "task.place.square.force", 0.5, 30.0, "N"),
+        (q.press, "task.place.square.press", -0.01, 0.01, "m"),
+        (q.hold, "task.place.square.hold", 0.0, 3.0, "s"),
+        (q.squeeze, "task.place.square.squeeze", 0.2, 100.0, "N"),
         (
             p.switch.tilt_band,
             "task.place.switch.tilt_band",
             0.0001,
             0.01,
-            "must be in [0.0001, 0.01] m",
+            "m",
         ),
     ] {
-        check((lo..=hi).contains(&value), field, value, rule)?;
+        check_in(value, field, Bounds::closed(low, high).unit(unit), "")?;
     }
     Ok(())
 }
@@ -432,18 +358,18 @@ fn check_one_search(s: &SearchParams, table: &str, wall_height: f64) -> Result<(
             "" => b.field.to_string(),
             t => b.field.replace("task.place.search", t),
         };
-        check((b.lo..=b.hi).contains(&value), &field, value, b.rule)?;
+        check_in(value, &field, Bounds::closed(b.lo, b.hi).unit(b.unit), "")?;
     }
     if let Some(band) = s.floor_band {
         let field = match table {
             "" => "task.place.search.floor_band".to_string(),
             t => format!("{t}.floor_band"),
         };
-        check(
-            band > 0.0 && band <= wall_height,
-            &field,
+        check_in(
             band,
-            "must be in (0, task.place.wall_height] m",
+            &field,
+            Bounds::above_to(0.0, wall_height).unit("m"),
+            "(up to task.place.wall_height)",
         )?;
     }
     Ok(())
@@ -456,8 +382,8 @@ pub struct SearchBound {
     /// Lowest and highest value accepted, in the field's unit.
     pub lo: f64,
     pub hi: f64,
-    /// The rule as an error states it.
-    pub rule: &'static str,
+    /// The unit of `lo` and `hi`, as a refusal states it.
+    pub unit: &'static str,
     /// Reads it from settings.
     pub get: fn(&SearchParams) -> f64,
 }
@@ -468,42 +394,42 @@ pub const SEARCH_BOUNDS: [SearchBound; 6] = [
         field: "task.place.search.descend_speed",
         lo: 0.001,
         hi: 0.05,
-        rule: "must be in [0.001, 0.05] m/s",
+        unit: "m/s",
         get: |s| s.descend_speed,
     },
     SearchBound {
         field: "task.place.search.contact_force",
         lo: 0.1,
         hi: 30.0,
-        rule: "must be in [0.1, 30] N",
+        unit: "N",
         get: |s| s.contact_force,
     },
     SearchBound {
         field: "task.place.search.admittance",
         lo: 0.0001,
         hi: 0.05,
-        rule: "must be in [0.0001, 0.05] m/s per N",
+        unit: "m/s per N",
         get: |s| s.admittance,
     },
     SearchBound {
         field: "task.place.search.pitch",
         lo: 0.0005,
         hi: 0.02,
-        rule: "must be in [0.0005, 0.02] m per turn",
+        unit: "m per turn",
         get: |s| s.pitch,
     },
     SearchBound {
         field: "task.place.search.speed",
         lo: 0.001,
         hi: 0.1,
-        rule: "must be in [0.001, 0.1] m/s",
+        unit: "m/s",
         get: |s| s.speed,
     },
     SearchBound {
         field: "task.place.search.max_radius",
         lo: 0.001,
         hi: 0.05,
-        rule: "must be in [0.001, 0.05] m",
+        unit: "m",
         get: |s| s.max_radius,
     },
 ];

@@ -1,0 +1,430 @@
+//! Every range check states its real bounds. Each number of every shipped preset (with all its
+//! defaults written out) and of every shipped recipe is set far outside any range; the refusal's
+//! `must be in …` gives the bounds the check claims. Then the number is set just outside each
+//! finite end: the refusal must name the field, the value and both bounds; and at the end itself
+//! (or just inside an open one) no refusal may say it is outside them. A number that no value
+//! can make refused, or one refused without stated bounds, must be listed below with the reason.
+
+use std::collections::BTreeSet;
+
+use fairgrasp_env::config::{EnvConfig, presets};
+use fairgrasp_policy::recipe::Recipe;
+
+/// Numbers with no range of their own (a count or seed of any size, its type refusing a
+/// negative), and why; a name ending in `.` covers the table.
+const UNBOUNDED: [(&str, &str); 4] = [
+    ("seed", "any seed is a seed"),
+    (
+        "eval_every",
+        "how often a run evaluates: any count of updates",
+    ),
+    (
+        "critic_warmup_updates",
+        "updates that train only the critic: any count",
+    ),
+    (
+        "control.tuned.",
+        "the record of how a setting was found, read by people, never by the env",
+    ),
+];
+
+/// Numbers whose rule joins several fields (stated in the message), and the rule's words.
+const RULES_OF_SEVERAL_FIELDS: [(&str, &str); 2] = [
+    ("task.place.grasp_height", "must hold the cube"),
+    ("task.staged", "reach + grasp + lift must be positive"),
+];
+
+/// Refusals that state no bounds and need none: the order of a pair's ends, and a negative
+/// number in an unsigned field (its type is its lower bound).
+const NOT_ABOUT_BOUNDS: [&str; 2] = ["min must not exceed max", "expected u"];
+
+/// One number of a TOML document: its dotted path (`a.b[1]`) and whether it is an integer.
+#[derive(Clone, Debug)]
+struct Leaf {
+    path: Vec<Step>,
+    integer: bool,
+}
+
+#[derive(Clone, Debug)]
+enum Step {
+    Key(String),
+    Index(usize),
+}
+
+impl Leaf {
+    /// `a.b[1]`.
+    fn name(&self) -> String {
+        let mut out = String::new();
+        for step in &self.path {
+            match step {
+                Step::Key(k) if out.is_empty() => out += k,
+                Step::Key(k) => out += &format!(".{k}"),
+                Step::Index(i) => out += &format!("[{i}]"),
+            }
+        }
+        out
+    }
+
+    /// The field as a refusal names it: without the index of a pair's end.
+    fn field_without_index(&self) -> String {
+        let name = self.name();
+        match name.rfind('[') {
+            Some(i) => name[..i].to_string(),
+            None => name,
+        }
+    }
+
+    /// A pair's end (`[0]` or `[1]` of a two-number array).
+    fn end_of_pair(&self, doc: &toml::Table) -> Option<usize> {
+        let Some(Step::Index(i)) = self.path.last() else {
+            return None;
+        };
+        let parent = Leaf {
+            path: self.path[..self.path.len() - 1].to_vec(),
+            integer: false,
+        };
+        match get(doc, &parent.path) {
+            Some(toml::Value::Array(a)) if a.len() == 2 => Some(*i),
+            _ => None,
+        }
+    }
+}
+
+fn get<'a>(doc: &'a toml::Table, path: &[Step]) -> Option<&'a toml::Value> {
+    let (Step::Key(first), rest) = path.split_first()? else {
+        return None;
+    };
+    let mut value = doc.get(first)?;
+    for step in rest {
+        value = match (step, value) {
+            (Step::Key(k), toml::Value::Table(t)) => t.get(k)?,
+            (Step::Index(i), toml::Value::Array(a)) => a.get(*i)?,
+            _ => return None,
+        };
+    }
+    Some(value)
+}
+
+fn set(doc: &mut toml::Table, path: &[Step], new: toml::Value) {
+    let (Step::Key(first), rest) = path.split_first().unwrap() else {
+        unreachable!("a leaf's path starts with a key")
+    };
+    let mut value = doc.get_mut(first).unwrap();
+    for step in rest {
+        value = match (step, value) {
+            (Step::Key(k), toml::Value::Table(t)) => t.get_mut(k).unwrap(),
+            (Step::Index(i), toml::Value::Array(a)) => &mut a[*i],
+            _ => unreachable!("the path was read from this document"),
+        };
+    }
+    *value = new;
+}
+
+fn leaves(value: &toml::Value, path: Vec<Step>, out: &mut Vec<Leaf>) {
+    match value {
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                let mut p = path.clone();
+                p.push(Step::Key(k.clone()));
+                leaves(v, p, out);
+            }
+        }
+        toml::Value::Array(a) => {
+            for (i, v) in a.iter().enumerate() {
+                let mut p = path.clone();
+                p.push(Step::Index(i));
+                leaves(v, p, out);
+            }
+        }
+        toml::Value::Integer(_) => out.push(Leaf {
+            path,
+            integer: true,
+        }),
+        toml::Value::Float(_) => out.push(Leaf {
+            path,
+            integer: false,
+        }),
+        _ => {}
+    }
+}
+
+/// An interval as a refusal states it: `[0, 0.05]`, `(0, inf)` or `1..=64`.
+#[derive(Clone, Debug, PartialEq)]
+struct Stated {
+    text: String,
+    low: f64,
+    high: f64,
+    low_open: bool,
+    high_open: bool,
+}
+
+/// The interval after `must be in ` in `message`, if any.
+fn stated_bounds(message: &str) -> Option<Stated> {
+    ["in ", "inside "].iter().find_map(|marker| {
+        message
+            .match_indices(marker)
+            .find_map(|(i, m)| interval(&message[i + m.len()..]))
+    })
+}
+
+/// The interval `rest` starts with, if any.
+fn interval(rest: &str) -> Option<Stated> {
+    let word = rest.split_whitespace().next()?;
+    if let Some((low, high)) = word.split_once("..=")
+        && low.parse::<f64>().is_ok()
+    {
+        let high = high.trim_end_matches([',', ';', ')']);
+        return Some(Stated {
+            text: format!("{low}..={high}"),
+            low: low.parse().ok()?,
+            high: high.parse().ok()?,
+            low_open: false,
+            high_open: false,
+        });
+    }
+    let low_open = rest.starts_with('(');
+    if !low_open && !rest.starts_with('[') {
+        return None;
+    }
+    let close = rest.find([']', ')'])?;
+    let (low, high) = rest[1..close].split_once(", ")?;
+    Some(Stated {
+        text: rest[..=close].to_string(),
+        low: low.parse().ok()?,
+        high: high.parse().ok()?,
+        low_open,
+        high_open: rest.as_bytes()[close] == b')',
+    })
+}
+
+/// What a loader says of a document: None when it loads.
+type Loader<'a> = dyn Fn(&toml::Table) -> Option<String> + 'a;
+
+fn number(leaf: &Leaf, v: f64) -> toml::Value {
+    if leaf.integer {
+        toml::Value::Integer(v as i64)
+    } else {
+        toml::Value::Float(v)
+    }
+}
+
+fn shown(leaf: &Leaf, v: f64) -> String {
+    if leaf.integer {
+        format!("{}", v as i64)
+    } else {
+        format!("{v:?}")
+    }
+}
+
+/// A value just outside `end` (below the low end or above the high end).
+fn just_outside(leaf: &Leaf, end: f64, open: bool, below: bool) -> f64 {
+    let step = if leaf.integer {
+        1.0
+    } else {
+        1e-6 * end.abs().max(1.0)
+    };
+    match (open, below) {
+        (true, _) => end,
+        (false, true) => end - step,
+        (false, false) => end + step,
+    }
+}
+
+/// A value at `end` when it is closed, or just inside it when it is open.
+fn just_inside(leaf: &Leaf, end: f64, open: bool, below: bool) -> f64 {
+    if !open {
+        return end;
+    }
+    let step = if leaf.integer {
+        1.0
+    } else {
+        1e-6 * end.abs().max(1.0)
+    };
+    if below { end + step } else { end - step }
+}
+
+/// Walks one leaf; returns a problem, if any.
+fn walk_leaf(doc: &toml::Table, leaf: &Leaf, load: &Loader) -> Option<String> {
+    let name = leaf.name();
+    let field = leaf.field_without_index();
+    let pair_end = leaf.end_of_pair(doc);
+    let try_value = |v: f64| {
+        let mut d = doc.clone();
+        set(&mut d, &leaf.path, number(leaf, v));
+        load(&d)
+    };
+    // A pair's ends both far away, so that they stay in order.
+    let try_far = |v: f64| {
+        let mut d = doc.clone();
+        let mut path = leaf.path.clone();
+        for end in [0, 1].into_iter().filter(|_| pair_end.is_some()) {
+            *path.last_mut().unwrap() = Step::Index(end);
+            set(&mut d, &path, number(leaf, v));
+        }
+        set(&mut d, &leaf.path, number(leaf, v));
+        load(&d)
+    };
+    // Far beyond any range, and within an f32 (some recipe numbers are f32).
+    let far: &[f64] = if leaf.integer {
+        &[1e12, -1.0]
+    } else {
+        &[1e30, -1e30]
+    };
+    let refusals: Vec<String> = far
+        .iter()
+        .filter_map(|v| try_far(*v))
+        .filter(|m| !NOT_ABOUT_BOUNDS.iter().any(|words| m.contains(words)))
+        .collect();
+    let listed = |table: &'static [(&'static str, &'static str)]| {
+        table
+            .iter()
+            .find(|(f, _)| *f == field || (f.ends_with('.') && field.starts_with(f)))
+            .map(|(_, r)| *r)
+    };
+    let Some(stated) = refusals.iter().find_map(|m| stated_bounds(m)) else {
+        if refusals.is_empty() {
+            return listed(&UNBOUNDED)
+                .is_none()
+                .then(|| format!("{name}: accepts {far:?}, and is not listed as unbounded"));
+        }
+        return match listed(&RULES_OF_SEVERAL_FIELDS) {
+            Some(words)
+                if refusals
+                    .iter()
+                    .all(|m| m.contains(words) || !m.contains(&field)) =>
+            {
+                None
+            }
+            _ => Some(format!(
+                "{name}: refused without stated bounds: {refusals:?}"
+            )),
+        };
+    };
+    let ends = [
+        (stated.low, stated.low_open, true),
+        (stated.high, stated.high_open, false),
+    ];
+    for (i, (end, open, below)) in ends.into_iter().enumerate() {
+        if !end.is_finite() || pair_end.is_some_and(|e| e != i) {
+            continue;
+        }
+        let outside = just_outside(leaf, end, open, below);
+        let value = shown(leaf, outside);
+        match try_value(outside) {
+            None => {
+                return Some(format!(
+                    "{name} = {value} is accepted, outside {}",
+                    stated.text
+                ));
+            }
+            // A negative count is refused by its unsigned type, which states the bound 0.
+            Some(m) if leaf.integer && outside < 0.0 && m.contains("expected u") => {}
+            Some(m)
+                if !(names_field(&m, &field)
+                    && names_value(&m, leaf, outside)
+                    && m.contains(&stated.text)) =>
+            {
+                return Some(format!(
+                    "{name} = {value}: the refusal does not name the field, the value and {}: {m}",
+                    stated.text
+                ));
+            }
+            Some(_) => {}
+        }
+        let inside = just_inside(leaf, end, open, below);
+        if let Some(m) = try_value(inside)
+            && names_field(&m, &field)
+            && stated_bounds(&m).as_ref() == Some(&stated)
+        {
+            return Some(format!(
+                "{name} = {}: inside {} but refused as outside: {m}",
+                shown(leaf, inside),
+                stated.text
+            ));
+        }
+    }
+    None
+}
+
+/// Whether `message` names `field` (`ppo.gamma`), as its path or as `ppo: gamma`.
+fn names_field(message: &str, field: &str) -> bool {
+    let as_section = field
+        .rsplit_once('.')
+        .map(|(table, key)| format!("{table}: {key} ="));
+    [" =", "["]
+        .iter()
+        .any(|next| message.contains(&format!("{field}{next}")))
+        || as_section.is_some_and(|s| message.contains(&s))
+}
+
+/// Whether `message` names `v` as `leaf` holds it (`0.5`, `1e-6`, `0`, `0.0`).
+fn names_value(message: &str, leaf: &Leaf, v: f64) -> bool {
+    message.contains(&shown(leaf, v)) || message.contains(&format!("{v}"))
+}
+
+/// Walks every number of `doc`; returns the problems and how many numbers had stated bounds.
+fn walk(doc: &toml::Table, load: &Loader, seen: &mut BTreeSet<String>) -> Vec<String> {
+    let mut all = Vec::new();
+    leaves(&toml::Value::Table(doc.clone()), Vec::new(), &mut all);
+    all.iter()
+        .filter(|leaf| seen.insert(leaf.name()))
+        .filter_map(|leaf| walk_leaf(doc, leaf, load))
+        .collect()
+}
+
+#[test]
+fn every_preset_number_is_refused_outside_the_bounds_its_message_states() {
+    let load = |d: &toml::Table| {
+        EnvConfig::from_toml_str(&toml::to_string(d).unwrap())
+            .err()
+            .map(|e| e.to_string())
+    };
+    let mut seen = BTreeSet::new();
+    let mut problems = Vec::new();
+    for (name, _, _) in presets::PRESETS {
+        let full = presets::load(name).unwrap().to_toml();
+        let doc: toml::Table = toml::from_str(&full).unwrap();
+        problems.extend(walk(&doc, &load, &mut seen));
+    }
+    assert!(seen.len() > 80, "only {} numbers walked", seen.len());
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn every_recipe_number_is_refused_outside_the_bounds_its_message_states() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("range-messages-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("recipe.toml");
+    let load = |d: &toml::Table| {
+        std::fs::write(&file, toml::to_string(d).unwrap()).unwrap();
+        Recipe::from_toml_file(&file).err().map(|e| e.to_string())
+    };
+    let mut seen = BTreeSet::new();
+    let mut problems = Vec::new();
+    for name in fairgrasp_policy::recipes::names() {
+        let path = format!("assets/experiments/{name}.toml");
+        let recipe = Recipe::from_toml_file(std::path::Path::new(&path)).unwrap();
+        // Every field written out, defaults too.
+        let doc: toml::Table = toml::from_str(&toml::to_string(&recipe).unwrap()).unwrap();
+        problems.extend(walk(&doc, &load, &mut seen));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(seen.len() > 20, "only {} numbers walked", seen.len());
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn the_stated_bounds_are_read_as_written() {
+    let s = stated_bounds("physics.dt = 0.1: must be in (0, 0.05] s").unwrap();
+    assert_eq!(
+        (s.low, s.high, s.low_open, s.high_open),
+        (0.0, 0.05, true, false)
+    );
+    let s = stated_bounds("n_envs = 0: must be in 1..=64").unwrap();
+    assert_eq!((s.low, s.high, s.text.as_str()), (1.0, 64.0, "1..=64"));
+    let s = stated_bounds("x = [-4.0, 1.0]: both ends must be in [-3.141592653589793, inf) rad")
+        .unwrap();
+    assert!(s.high.is_infinite() && s.high_open && s.low == -std::f64::consts::PI);
+    assert_eq!(stated_bounds("x = 1: must be finite"), None);
+}
