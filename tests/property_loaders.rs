@@ -1,8 +1,11 @@
-//! Property tests of every parser and loader: thousands of mutated inputs each (bits flipped,
-//! ranges cut or repeated, structural characters, invalid UTF-8 and hostile numbers inserted,
-//! files truncated), generated from a seeded RNG from valid files (the shipped configs, a shipped
-//! checkpoint, a run's and a comparison's files). For every input: no panic, no allocation beyond
-//! a fixed bound, and either a result or a refusal that names the file. For `metrics.csv`'s
+//! Property tests of every parser and loader (proptest): thousands of generated inputs each —
+//! valid files with one to four edits (bits flipped, ranges cut or repeated, structural
+//! characters, invalid UTF-8 and hostile numbers inserted, files truncated), and arbitrary bytes —
+//! from a fixed seed, so every run feeds the same inputs; a failure is shrunk to a smallest
+//! input. The valid files: the shipped presets (the place cell's too), recipes and training
+//! configs, a shipped checkpoint, a run's metrics, a comparison's files, a tune folder's trials.
+//! For every input: no panic, no allocation beyond a fixed bound, done within a few seconds, and
+//! either a result or a refusal that names the file. For `metrics.csv`'s
 //! repair one more property: no line is lost (every line is kept as a row or set aside). URDF
 //! files are mutated the same way, and URDF paths that are no URDF file (a FIFO, a device, a
 //! folder, links to them or to nothing, a 64 MiB file, a missing or too long name) are refused
@@ -17,6 +20,9 @@ use std::cell::Cell;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use proptest::prelude::*;
+use proptest::sample::Index;
+use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -93,45 +99,110 @@ const FRAGMENTS: [&[u8]; 18] = [
     b"\r\n",
 ];
 
-/// One input derived from `seed` by one to four random edits.
-fn mutate(seed: &[u8], rng: &mut ChaCha8Rng) -> Vec<u8> {
+/// One edit of a file; positions are fractions of its length, so shrinking keeps them valid.
+#[derive(Clone, Debug)]
+enum Edit {
+    /// One bit flipped.
+    FlipBit(Index, u8),
+    /// 1–16 bytes cut out.
+    Cut(Index, usize),
+    /// A fragment of [`FRAGMENTS`] inserted.
+    Insert(Index, Index),
+    /// 1–64 bytes repeated elsewhere.
+    Repeat(Index, usize, Index),
+    /// A digit replaced by a hostile number (`1e308`, `-1`, `nan`, 2^64 − 1, 10^26).
+    HostileNumber(Index, Index),
+    /// The rest cut off.
+    Truncate(Index),
+}
+
+fn edit() -> impl Strategy<Value = Edit> {
+    prop_oneof![
+        (any::<Index>(), 0u8..8).prop_map(|(at, bit)| Edit::FlipBit(at, bit)),
+        (any::<Index>(), 1usize..=16).prop_map(|(at, n)| Edit::Cut(at, n)),
+        (any::<Index>(), any::<Index>()).prop_map(|(at, f)| Edit::Insert(at, f)),
+        (any::<Index>(), 1usize..=64, any::<Index>())
+            .prop_map(|(from, n, to)| Edit::Repeat(from, n, to)),
+        (any::<Index>(), any::<Index>()).prop_map(|(at, f)| Edit::HostileNumber(at, f)),
+        any::<Index>().prop_map(Edit::Truncate),
+    ]
+}
+
+/// `seed` with `edits` applied in order.
+fn apply(seed: &[u8], edits: &[Edit]) -> Vec<u8> {
     let mut bytes = seed.to_vec();
-    for _ in 0..rng.random_range(1..=4) {
-        let at = rng.random_range(0..=bytes.len());
-        match rng.random_range(0..6) {
-            0 if !bytes.is_empty() => {
-                let i = rng.random_range(0..bytes.len());
-                bytes[i] ^= 1 << rng.random_range(0..8);
+    for e in edits {
+        let at = |i: &Index, len: usize| i.index(len + 1);
+        match e {
+            Edit::FlipBit(i, bit) if !bytes.is_empty() => {
+                let i = i.index(bytes.len());
+                bytes[i] ^= 1 << bit;
             }
-            1 => {
-                let end = (at + rng.random_range(1..=16)).min(bytes.len());
-                bytes.drain(at..end);
+            Edit::FlipBit(..) => {}
+            Edit::Cut(i, n) => {
+                let from = at(i, bytes.len());
+                bytes.drain(from..(from + n).min(bytes.len()));
             }
-            2 => {
-                let f = FRAGMENTS[rng.random_range(0..FRAGMENTS.len())];
-                bytes.splice(at..at, f.iter().copied());
+            Edit::Insert(i, f) => {
+                let from = at(i, bytes.len());
+                bytes.splice(
+                    from..from,
+                    FRAGMENTS[f.index(FRAGMENTS.len())].iter().copied(),
+                );
             }
-            3 => {
-                let end = (at + rng.random_range(1..=64)).min(bytes.len());
-                let piece = bytes[at..end].to_vec();
-                let to = rng.random_range(0..=bytes.len());
+            Edit::Repeat(from, n, to) => {
+                let from = at(from, bytes.len());
+                let piece = bytes[from..(from + n).min(bytes.len())].to_vec();
+                let to = at(to, bytes.len());
                 bytes.splice(to..to, piece);
             }
-            4 => {
-                // A number replaced by a hostile one.
+            Edit::HostileNumber(i, f) => {
                 let digits: Vec<usize> = (0..bytes.len())
                     .filter(|&i| bytes[i].is_ascii_digit())
                     .collect();
-                if let Some(&i) = digits.get(rng.random_range(0..digits.len().max(1))) {
-                    let f = FRAGMENTS[rng.random_range(9..14)];
-                    bytes.splice(i..=i, f.iter().copied());
+                if !digits.is_empty() {
+                    let d = digits[i.index(digits.len())];
+                    let hostile = FRAGMENTS[9 + f.index(5)];
+                    bytes.splice(d..=d, hostile.iter().copied());
                 }
             }
-            _ => bytes.truncate(at),
+            Edit::Truncate(i) => {
+                let len = at(i, bytes.len());
+                bytes.truncate(len);
+            }
         }
     }
     bytes
 }
+
+/// What a loader is fed: nine in ten inputs are a valid file with one to four edits, one in
+/// ten is arbitrary bytes (up to 4 KiB).
+fn inputs(seed: Vec<u8>) -> impl Strategy<Value = Vec<u8>> {
+    prop_oneof![
+        9 => prop::collection::vec(edit(), 1..=4).prop_map(move |e| apply(&seed, &e)),
+        1 => prop::collection::vec(any::<u8>(), 0..4096),
+    ]
+}
+
+/// A runner of `cases` inputs from a fixed seed (`what` picks it): the same inputs on every run
+/// and machine; a failure is shrunk to a smallest input and not written to disk.
+fn runner(what: &str, cases: usize) -> TestRunner {
+    let config = Config {
+        cases: cases as u32,
+        failure_persistence: None,
+        max_shrink_iters: 2_000,
+        ..Config::default()
+    };
+    let mut seed = [0u8; 32];
+    for (i, b) in what.bytes().enumerate() {
+        seed[i % 32] ^= b;
+    }
+    TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &seed))
+}
+
+/// The longest one load may take \[s\]: inputs are small, so a slower load is a loop that
+/// depends on a claim in the file (a hang, cut short only by this test's own end).
+const SECONDS_PER_LOAD: f64 = 5.0;
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-props-{name}-{}", std::process::id()));
@@ -140,8 +211,9 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// Writes `cases` mutations of `seed` to `file` one by one and loads each with `load`: no
-/// panic, allocation within the bound, and a refusal naming `named` (when given).
+/// Writes `cases` inputs made from `seed` ([`inputs`]) to `file` one by one and loads each with
+/// `load`: no panic, allocation within the bound, done within [`SECONDS_PER_LOAD`], and a
+/// refusal naming `named` (when given). A failure is shrunk to a smallest input.
 fn check_loader(
     what: &str,
     seed: &[u8],
@@ -150,39 +222,45 @@ fn check_loader(
     named: Option<&Path>,
     load: &dyn Fn() -> Result<(), String>,
 ) {
-    let mut rng = ChaCha8Rng::seed_from_u64(what.len() as u64 * 7_919);
-    let (mut loaded, mut refused) = (0, 0);
-    for case in 0..cases {
-        let input = mutate(seed, &mut rng);
+    let (loaded, refused) = (Cell::new(0), Cell::new(0));
+    let result = runner(what, cases).run(&inputs(seed.to_vec()), |input| {
         std::fs::write(file, &input).unwrap();
+        let start = std::time::Instant::now();
         let (result, peak) =
             measured(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(load)));
-        let shown = || String::from_utf8_lossy(&input[..input.len().min(2_000)]).into_owned();
-        let result =
-            result.unwrap_or_else(|_| panic!("{what}: case {case} panicked on:\n{}", shown()));
-        assert!(
+        let seconds = start.elapsed().as_secs_f64();
+        let shown = String::from_utf8_lossy(&input[..input.len().min(2_000)]).into_owned();
+        let Ok(result) = result else {
+            return Err(TestCaseError::fail(format!("panicked on:\n{shown}")));
+        };
+        prop_assert!(
             peak < ALLOCATION_BOUND,
-            "{what}: case {case} allocated {peak} bytes on:\n{}",
-            shown()
+            "allocated {peak} bytes on:\n{shown}"
+        );
+        prop_assert!(
+            seconds < SECONDS_PER_LOAD,
+            "took {seconds:.1} s on:\n{shown}"
         );
         match result {
-            Ok(()) => loaded += 1,
+            Ok(()) => loaded.set(loaded.get() + 1),
             Err(message) => {
-                refused += 1;
+                refused.set(refused.get() + 1);
                 if let Some(path) = named {
                     let name = path.display().to_string();
-                    assert!(
-                        message.contains(&name),
-                        "{what}: case {case}: `{message}` does not name {name}"
-                    );
+                    prop_assert!(message.contains(&name), "`{message}` does not name {name}");
                 }
             }
         }
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{what}: {e}");
     }
-    println!("{what}: {cases} mutated inputs, {loaded} loaded, {refused} refused");
+    let (loaded, refused) = (loaded.get(), refused.get());
+    println!("{what}: {cases} generated inputs, {loaded} loaded, {refused} refused");
     assert!(
         refused > 0,
-        "{what}: no mutation was refused: the mutations test nothing"
+        "{what}: no input was refused: the inputs test nothing"
     );
 }
 
@@ -205,6 +283,59 @@ fn training_and_env_configs() {
             .map(drop)
             .map_err(|e| e.to_string())
     });
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The place cell's preset (its mix, takt and every control's search settings), a recipe of
+/// `assets/experiments/` (read by `train --config`), and a `fairgrasp tune` folder's
+/// `trials.csv` (read again on every resume).
+#[test]
+fn place_presets_recipes_and_tune_trials() {
+    let dir = scratch("place");
+    let file = dir.join("place_cell.toml");
+    let seed = std::fs::read(Path::new(ROOT).join("assets/configs/place_cell.toml")).unwrap();
+    check_loader(
+        "place_cell preset",
+        &seed,
+        2000,
+        &file,
+        Some(&file),
+        &|| {
+            fairgrasp_env::EnvConfig::from_toml_file(&file)
+                .map(drop)
+                .map_err(|e| e.to_string())
+        },
+    );
+    let file = dir.join("recipe.toml");
+    let seed =
+        std::fs::read(Path::new(ROOT).join("assets/experiments/residual_place_cell.toml")).unwrap();
+    check_loader("recipe", &seed, 2000, &file, Some(&file), &|| {
+        fairgrasp_policy::recipe::Recipe::from_toml_file(&file)
+            .map(drop)
+            .map_err(|e| e.to_string())
+    });
+    let shipped = std::fs::read_to_string(
+        Path::new(ROOT).join("assets/tuned/place_cell/force_search_trials.csv"),
+    )
+    .unwrap();
+    // The header's parameter columns, between `generation` and `episodes`.
+    let header: Vec<&str> = shipped.lines().next().unwrap().split(',').collect();
+    let end = header.iter().position(|c| *c == "episodes").unwrap();
+    let names = header[2..end].to_vec();
+    let seed: String = shipped.lines().take(12).map(|l| format!("{l}\n")).collect();
+    let file = dir.join("trials.csv");
+    check_loader(
+        "tune trials.csv",
+        seed.as_bytes(),
+        2000,
+        &file,
+        Some(&file),
+        &|| {
+            fairgrasp_evaluate::tune::trials::load(&file, &names)
+                .map(drop)
+                .map_err(|e| e.to_string())
+        },
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -428,7 +559,6 @@ fn the_metrics_repair_never_loses_a_line() {
     meta.metrics_row = None;
     let header = metrics_header();
     let seed = std::fs::read(shipped.join("metrics.csv")).unwrap();
-    let mut rng = ChaCha8Rng::seed_from_u64(31);
     let metrics = dir.join("metrics.csv");
     let rejected = dir.join("metrics.rejected.csv");
     let count = |bytes: &[u8]| {
@@ -437,16 +567,12 @@ fn the_metrics_repair_never_loses_a_line() {
             .filter(|l| !l.is_empty())
             .count()
     };
-    for case in 0..1500 {
-        let input = mutate(&seed, &mut rng);
+    let result = runner("metrics repair", 1500).run(&inputs(seed.clone()), |input| {
         std::fs::write(&metrics, &input).unwrap();
         let _ = std::fs::remove_file(&rejected);
         let (result, peak) = measured(|| repair_metrics(&dir, &meta, &header));
-        result.unwrap_or_else(|e| panic!("case {case}: {e}"));
-        assert!(
-            peak < ALLOCATION_BOUND,
-            "case {case}: allocated {peak} bytes"
-        );
+        prop_assert!(result.is_ok(), "{:?}", result.err());
+        prop_assert!(peak < ALLOCATION_BOUND, "allocated {peak} bytes");
         let headers = input
             .split(|b| *b == b'\n')
             .filter(|l| {
@@ -458,11 +584,15 @@ fn the_metrics_repair_never_loses_a_line() {
         let after = std::fs::read(&metrics).unwrap();
         let kept = count(&after) - 1;
         let aside = std::fs::read(&rejected).map_or(0, |b| count(&b));
-        assert!(
+        prop_assert!(
             kept + aside + headers >= count(&input),
-            "case {case}: {} lines in, {kept} kept, {aside} set aside, {headers} headers",
+            "{} lines in, {kept} kept, {aside} set aside, {headers} headers",
             count(&input)
         );
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("metrics repair: {e}");
     }
     std::fs::remove_dir_all(&dir).ok();
 }
