@@ -1,6 +1,6 @@
 //! The run folder's copy of the preset file a run was started with (`RUN/env.toml`): a resume
 //! trains on it wherever it is started, since a relative `preset` names another file elsewhere.
-//! Made and used by `fairgrasp-rl`'s `run::resume::with_env_snapshot`; read by
+//! Made and used by `fairgrasp-rl`'s `run::resume::training_config` and `config_for_run`; read by
 //! [`crate::recipe::Recipe::from_toml_file_in`].
 
 use std::path::{Path, PathBuf};
