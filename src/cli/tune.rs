@@ -132,14 +132,14 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     eprintln!(
-        "tuning `{}` on `{}`: {} over {}, {} episodes per trial of seed {}, a budget of {:.2} M env steps ({})",
+        "tuning `{}` on `{}`: {} over {}, {} episodes per trial of seed {}, a budget of {} ({})",
         spec.control.cli,
         spec.preset,
         spec.objective.describe(),
         spec.names().join(", "),
         spec.episodes,
         spec.scenario_seed,
-        spec.budget as f64 / 1e6,
+        env_steps(spec.budget),
         dir.display()
     );
     let episodes = AtomicUsize::new(0);
@@ -149,7 +149,7 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
     })?;
     let best = &outcome.trials[outcome.best];
     println!(
-        "best: trial {} of {}, {} {:.1} % ({} of {} episodes{}); {:.2} M env steps",
+        "best: trial {} of {}, {} {:.1} % ({} of {} episodes{}); {}",
         best.index,
         outcome.trials.len(),
         spec.objective.describe(),
@@ -161,7 +161,7 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
         best.episodes,
         best.mean_cycle_time_s
             .map_or(String::new(), |c| format!(", mean cycle {c:.1} s")),
-        outcome.note.env_steps as f64 / 1e6
+        env_steps(outcome.note.env_steps)
     );
     for (name, v) in &best.values {
         println!("  {name:<14} {v}");
@@ -178,8 +178,8 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
 fn report(e: &TuneEvent<'_>, episodes: &AtomicUsize, live: bool, per_trial: usize) {
     match e {
         TuneEvent::Resumed { trials, env_steps } => eprintln!(
-            "resuming: {trials} trials ({:.2} M env steps) already in the folder",
-            *env_steps as f64 / 1e6
+            "resuming: {trials} trials ({}) already in the folder",
+            self::env_steps(*env_steps)
         ),
         TuneEvent::TrialStart { .. } => episodes.store(0, Ordering::Relaxed),
         TuneEvent::Episode => {
@@ -198,16 +198,25 @@ fn report(e: &TuneEvent<'_>, episodes: &AtomicUsize, live: bool, per_trial: usiz
                 eprint!("\r");
             }
             eprintln!(
-                "trial {:>3} (gen {:>2}): {:5.1} %   best {:5.1} % (trial {})   {:.2} / {:.2} M env steps",
+                "trial {:>3} (gen {:>2}): {:5.1} %   best {:5.1} % (trial {})   {} of {}",
                 trial.index,
                 trial.generation,
                 100.0 * trial.objective,
                 100.0 * best.objective,
                 best.index,
-                *spent as f64 / 1e6,
-                *budget as f64 / 1e6
+                env_steps(*spent),
+                env_steps(*budget)
             );
         }
+    }
+}
+
+/// A count of env steps as people read it: `1500 env steps`, `3.00 M env steps`.
+fn env_steps(n: u64) -> String {
+    if n < 100_000 {
+        format!("{n} env steps")
+    } else {
+        format!("{:.2} M env steps", n as f64 / 1e6)
     }
 }
 
