@@ -2,7 +2,7 @@
 //! pytest): `fairgrasp replay --json` (this build's binary) records two methods on one scenario,
 //! `fairgrasp.rerun.save` writes the `.rrd`, and Rerun's own reader reads it back (entities and
 //! time range); and the replay JSON loader's property tests
-//! (`python/tests-rerun/test_replay_json_fuzz.py`, Hypothesis, derandomized: about 1 300 cases of
+//! (`python/tests-rerun/test_replay_json_fuzz.py`, Hypothesis, derandomized: about 1 000 cases of
 //! arbitrary bytes and mutations of a real replay, plus truncated, 200 MB, gzip-bomb, FIFO,
 //! folder and missing inputs, each loaded or refused naming the file, within a time and memory
 //! bound). Run through `scripts/python-package-test.sh` in a venv of its own

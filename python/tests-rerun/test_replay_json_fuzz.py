@@ -6,7 +6,8 @@ CASE_S seconds, with a tracemalloc peak under MEMORY_FACTOR × its bytes + MEMOR
 mutated file that loads is then written as a .rrd, or refused the same way.
 
 Hypothesis runs derandomized (the same cases on every run, no example database), so CI is
-deterministic: EXAMPLES cases per property (about 1 300 in all, 30–60 s on 2 cores).
+deterministic: EXAMPLES cases per property (730 in all), plus about 280 fixed cases (every
+truncation step, damaged URDFs, huge and not-a-file inputs): about 70 s on 2 shared cores.
 
 Needs the venv of scripts/requirements-rerun.txt and FAIRGRASP_BIN (set by tests/rerun_file.rs)."""
 
