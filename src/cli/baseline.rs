@@ -11,6 +11,7 @@ use fairgrasp_env::{EnvConfig, TaskKind};
 use fairgrasp_evaluate::tune::fragment;
 use fairgrasp_planner::CameraCalibration;
 use fairgrasp_planner::controls::{self, CONTROLS, Control, ParamValues};
+use fairgrasp_types::output::StagedRecording;
 use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -229,20 +230,25 @@ pub fn evaluate_config<P: Policy>(
     let threads = a
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    if let Some(dir) = &a.record {
-        fairgrasp_types::output::check_record_folder(dir).map_err(anyhow::Error::msg)?;
-    }
+    // Recorded whole or not at all: a failure (a full disk) leaves the folder as it was.
+    let staged = match &a.record {
+        Some(dir) => Some(StagedRecording::start(dir).map_err(anyhow::Error::msg)?),
+        None => None,
+    };
     let bar = progress_bar(u64::from(a.episodes), a.json, method);
     let report = evaluate_seeded(
         config,
         a.seed,
         a.episodes as usize,
         threads,
-        a.record.as_deref(),
+        staged.as_ref().map(StagedRecording::path),
         &|| make(config),
         &|| bar.inc(1),
     )?;
     bar.finish_and_clear();
+    if let Some(staged) = staged {
+        staged.finish().map_err(anyhow::Error::msg)?;
+    }
     if a.json {
         let mut v = report_json(method, &a.preset, a.arm, a.seed, &report)?;
         if let (Some(v), serde_json::Value::Object(extra)) = (v.as_object_mut(), extra) {

@@ -154,9 +154,97 @@ pub fn check_record_folder(dir: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// A recording made whole or not at all: its episodes are written into a staging folder beside
+/// the recording's folder (`DIR.recording-PID`), which takes its place only once every episode
+/// is written ([`StagedRecording::finish`]). A recording that fails (a full disk, an error, a
+/// panic) removes the staging folder when dropped and leaves `DIR` as it was.
+#[derive(Debug)]
+pub struct StagedRecording {
+    target: PathBuf,
+    staging: PathBuf,
+    finished: bool,
+}
+
+impl StagedRecording {
+    /// Checks `dir` ([`check_record_folder`]) and makes the staging folder beside it.
+    pub fn start(dir: &Path) -> Result<StagedRecording, String> {
+        check_record_folder(dir)?;
+        // An existing folder by its real name (`.`, a link): the staging folder goes beside it.
+        let dir = &std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+        let Some(name) = dir.file_name() else {
+            return Err(format!("{}: record into a named folder", dir.display()));
+        };
+        let mut name = name.to_os_string();
+        name.push(format!(".recording-{}", std::process::id()));
+        let staging = dir.with_file_name(name);
+        let _ = std::fs::remove_dir_all(&staging);
+        std::fs::create_dir_all(&staging).map_err(|e| format!("{}: {e}", staging.display()))?;
+        Ok(StagedRecording {
+            target: dir.to_path_buf(),
+            staging,
+            finished: false,
+        })
+    }
+
+    /// The folder the episodes are written into meanwhile.
+    pub fn path(&self) -> &Path {
+        &self.staging
+    }
+
+    /// Puts the recording in its place: the staging folder becomes `DIR` (an empty `DIR` is
+    /// replaced by it).
+    pub fn finish(mut self) -> Result<(), String> {
+        std::fs::rename(&self.staging, &self.target).map_err(|e| {
+            format!(
+                "{}: {e} (moving the finished recording from {})",
+                self.target.display(),
+                self.staging.display()
+            )
+        })?;
+        self.finished = true;
+        Ok(())
+    }
+}
+
+impl Drop for StagedRecording {
+    fn drop(&mut self) {
+        if !self.finished {
+            let _ = std::fs::remove_dir_all(&self.staging);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_staged_recording_appears_whole_or_leaves_the_folder_as_it_was() {
+        let dir = std::env::temp_dir().join(format!("fairgrasp-staged-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let target = dir.join("rec");
+        // Dropped before it finishes: nothing is left, not even the staging folder.
+        let staged = StagedRecording::start(&target).unwrap();
+        std::fs::write(staged.path().join("episode_0000.csv"), "t\n").unwrap();
+        drop(staged);
+        assert!(!target.exists());
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        // Finished into an empty folder the user made: it holds the episodes.
+        std::fs::create_dir(&target).unwrap();
+        let staged = StagedRecording::start(&target).unwrap();
+        std::fs::write(staged.path().join("episode_0000.csv"), "t\n").unwrap();
+        staged.finish().unwrap();
+        assert!(target.join("episode_0000.csv").is_file());
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            1,
+            "no staging folder left"
+        );
+        // A folder that holds a recording is refused before anything is written.
+        assert!(StagedRecording::start(&target).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn only_marked_regular_files_outside_report_folders_are_replaced() {

@@ -137,8 +137,11 @@ pub fn evaluate<P: Policy>(
                             trajectory.as_mut(),
                         )?);
                         if let (Some(dir), Some(t)) = (record, &trajectory) {
-                            t.save(dir, &format!("episode_{:04}", c * chunk + j))
-                                .map_err(|e| EnvError::Io(format!("{}: {e}", dir.display())))?;
+                            let stem = format!("episode_{:04}", c * chunk + j);
+                            t.save(dir, &stem).map_err(|e| {
+                                let file = dir.join(format!("{stem}.csv/.json"));
+                                EnvError::Io(format!("{}: {e}", file.display()))
+                            })?;
                         }
                         progress();
                     }
