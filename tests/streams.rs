@@ -435,7 +435,7 @@ fn every_command_that_writes_files_finishes_them_whole_whichever_reader_goes_awa
             let partial = std::fs::read_dir(&dir)
                 .unwrap()
                 .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-                .find(|n| n.contains(".partial"));
+                .find(|n| n.contains(".partial") || n.contains(".recording-"));
             assert_eq!(partial, None, "{at}");
         }
     }
@@ -453,7 +453,10 @@ fn nothing_half_written(dir: &std::path::Path, filler: &std::path::Path) -> Resu
             if path == filler {
                 continue;
             }
-            if name.contains(".tmp") || name.contains(".partial") {
+            if [".tmp", ".partial", ".recording-"]
+                .iter()
+                .any(|staging| name.contains(staging))
+            {
                 return Err(format!("{} left", path.display()));
             }
             if path.is_dir() {
@@ -560,6 +563,11 @@ fn every_command_on_a_full_disk_says_which_disk_in_one_line_and_leaves_nothing_h
             let mounted = format!("mounted on {}: {shown} in all", disk.0.display());
             assert!(error.contains(&mounted), "{at}");
             assert_eq!(error.matches("No space left on device").count(), 1, "{at}");
+            // A report or a recording is whole or absent (a tuning keeps its whole trials to
+            // resume from).
+            if c.name != "tune" && c.out.exists() {
+                (c.check)(&c.out).unwrap_or_else(|why| panic!("{at}: left, but {why}"));
+            }
         }
     }
     std::fs::remove_dir_all(&work).ok();
