@@ -392,22 +392,7 @@ fn run_with_closing(
 #[test]
 fn every_command_that_writes_files_finishes_them_whole_whichever_reader_goes_away() {
     let dir = scratch("readers");
-    let comparison = dir.join("comparison");
-    let made = command()
-        .args([
-            "compare",
-            "--preset",
-            "fixed",
-            "--episodes",
-            "2",
-            "--threads",
-            "1",
-        ])
-        .arg("--out")
-        .arg(&comparison)
-        .output()
-        .unwrap();
-    assert!(made.status.success(), "{made:?}");
+    let comparison = tiny_comparison(&dir);
     for closing in [
         Closing::Stdout,
         Closing::Both,
@@ -440,6 +425,19 @@ fn every_command_that_writes_files_finishes_them_whole_whichever_reader_goes_awa
         }
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A comparison of two `fixed` episodes in `dir/comparison`, for `report` to read.
+fn tiny_comparison(dir: &std::path::Path) -> std::path::PathBuf {
+    let comparison = dir.join("comparison");
+    let made = command()
+        .args(["compare", "--preset", "fixed", "--episodes", "2"])
+        .args(["--threads", "1", "--out"])
+        .arg(&comparison)
+        .output()
+        .unwrap();
+    assert!(made.status.success(), "{made:?}");
+    comparison
 }
 
 /// Every file under `dir` but `filler` whole: no temporary or staging name, JSON that parses,
@@ -493,22 +491,7 @@ fn fill(disk: &std::path::Path) -> std::path::PathBuf {
 #[test]
 fn every_command_on_a_full_disk_says_which_disk_in_one_line_and_leaves_nothing_half_written() {
     let work = scratch("full-disk-work");
-    let comparison = work.join("comparison");
-    let made = command()
-        .args([
-            "compare",
-            "--preset",
-            "fixed",
-            "--episodes",
-            "2",
-            "--threads",
-            "1",
-        ])
-        .arg("--out")
-        .arg(&comparison)
-        .output()
-        .unwrap();
-    assert!(made.status.success(), "{made:?}");
+    let comparison = tiny_comparison(&work);
     for (size, shown, filled) in [
         ("64k", "64.0 KiB", false),
         ("64k", "64.0 KiB", true),
