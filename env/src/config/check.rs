@@ -114,6 +114,12 @@ impl std::fmt::Display for Bounds {
     }
 }
 
+/// A distance's range \[m\].
+pub(crate) const DISTANCE: Bounds = Bounds::at_least(0.0).unit("m");
+
+/// An angle about the vertical \[rad\]: from −π up.
+pub(crate) const ANGLE_FROM_MINUS_PI: Bounds = Bounds::at_least(-std::f64::consts::PI).unit("rad");
+
 /// A number a setting holds: a float or a count, shown in a refusal as it was written.
 pub trait SettingNumber: Copy + std::fmt::Debug {
     /// The value on the real line, to compare with [`Bounds`].

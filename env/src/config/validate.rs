@@ -5,7 +5,7 @@ use std::path::Path;
 
 use fairgrasp_kinematics::Pose;
 
-use crate::config::check::{Bounds, check, check_in, check_range};
+use crate::config::check::{ANGLE_FROM_MINUS_PI, Bounds, DISTANCE, check, check_in, check_range};
 use crate::config::env_config::{EnvConfig, SIMULATED_ARM};
 pub use crate::config::error::ConfigError;
 pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
@@ -43,10 +43,6 @@ pub const MAX_EPISODE_STEPS: usize = 100_000;
 const ON_THE_TABLE: Bounds = Bounds::closed(-10.0, 10.0).unit("m");
 /// A grip force \[N\]: the gripper's own and the control's.
 const GRIP_FORCE: Bounds = Bounds::above_to(0.0, 100.0).unit("N");
-/// A distance's range \[m\].
-pub(crate) const DISTANCE: Bounds = Bounds::at_least(0.0).unit("m");
-/// An angle about the vertical \[rad\]: from −π up.
-pub(crate) const ANGLE_FROM_MINUS_PI: Bounds = Bounds::at_least(-std::f64::consts::PI).unit("rad");
 
 impl EnvConfig {
     /// Reads a TOML file; missing fields take their defaults, unknown fields are refused.
@@ -159,8 +155,8 @@ impl EnvConfig {
         self.validate_mount()
     }
 
-    /// Where the arm stands and starts: a finite base pose tilted at most [`MAX_BASE_TILT`], and
-    /// home joints within the [`SIMULATED_ARM`]'s limits.
+    /// Where the arm stands and starts: a base within ±10 m and ±2π on each axis, tilted at most
+    /// [`MAX_BASE_TILT`], and home joints within the [`SIMULATED_ARM`]'s limits.
     fn validate_mount(&self) -> Result<(), ConfigError> {
         let a = &self.arm;
         for (v, field) in

@@ -9,10 +9,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{Bounds, check, check_in, check_range};
+use crate::config::check::{ANGLE_FROM_MINUS_PI, Bounds, DISTANCE, check, check_in, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
-use crate::config::validate::{ANGLE_FROM_MINUS_PI, DISTANCE};
 use crate::scenario::error_mix::settings::ErrorMix;
 use crate::scenario::grip_tilt::settings::check_grip_tilt;
 
