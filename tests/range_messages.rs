@@ -243,74 +243,79 @@ fn just_inside(leaf: &Leaf, end: f64, open: bool, below: bool) -> f64 {
     if below { end + step } else { end - step }
 }
 
-/// Walks one leaf; returns a problem, if any.
-fn walk_leaf(doc: &toml::Table, leaf: &Leaf, load: &Loader) -> Option<String> {
-    let name = leaf.name();
-    let field = leaf.field_without_index();
-    let pair_end = leaf.end_of_pair(doc);
-    let try_value = |v: f64| {
-        let mut d = doc.clone();
-        set(&mut d, &leaf.path, number(leaf, v));
-        load(&d)
-    };
-    // A pair's ends both far away, so that they stay in order.
-    let try_far = |v: f64| {
-        let mut d = doc.clone();
-        let mut path = leaf.path.clone();
-        for end in [0, 1].into_iter().filter(|_| pair_end.is_some()) {
-            *path.last_mut().unwrap() = Step::Index(end);
-            set(&mut d, &path, number(leaf, v));
+/// One number of a document, set to chosen values and loaded.
+struct Probe<'a> {
+    doc: &'a toml::Table,
+    leaf: &'a Leaf,
+    load: &'a Loader<'a>,
+    /// `a.b[1]`.
+    name: String,
+    /// The field as a refusal names it (`a.b`).
+    field: String,
+    /// Which end of a pair the number is, if it is one.
+    pair_end: Option<usize>,
+}
+
+impl Probe<'_> {
+    /// What the loader says with the number set to `v` (with `both_ends`, a pair's two ends, so
+    /// that they stay in order).
+    fn load_with(&self, v: f64, both_ends: bool) -> Option<String> {
+        let mut d = self.doc.clone();
+        let mut path = self.leaf.path.clone();
+        if both_ends && self.pair_end.is_some() {
+            for end in [0, 1] {
+                *path.last_mut().unwrap() = Step::Index(end);
+                set(&mut d, &path, number(self.leaf, v));
+            }
         }
-        set(&mut d, &leaf.path, number(leaf, v));
-        load(&d)
-    };
-    // Far beyond any range, and within an f32 (some recipe numbers are f32).
-    let far: &[f64] = if leaf.integer {
-        &[1e12, -1.0]
-    } else {
-        &[1e30, -1e30]
-    };
-    let refusals: Vec<String> = far
-        .iter()
-        .filter_map(|v| try_far(*v))
-        .filter(|m| !NOT_ABOUT_BOUNDS.iter().any(|words| m.contains(words)))
-        .collect();
-    let listed = |table: &'static [(&'static str, &'static str)]| {
-        table
+        set(&mut d, &self.leaf.path, number(self.leaf, v));
+        (self.load)(&d)
+    }
+
+    /// The bounds the refusals of far values state; else the problem (None when the number is
+    /// listed as unbounded or as one of a rule of several fields).
+    fn stated(&self) -> Result<Stated, Option<String>> {
+        // Far beyond any range, and within an f32 (some recipe numbers are f32).
+        let far: &[f64] = if self.leaf.integer {
+            &[1e12, -1.0]
+        } else {
+            &[1e30, -1e30]
+        };
+        let refusals: Vec<String> = far
             .iter()
-            .find(|(f, _)| *f == field || (f.ends_with('.') && field.starts_with(f)))
-            .map(|(_, r)| *r)
-    };
-    let Some(stated) = refusals.iter().find_map(|m| stated_bounds(m)) else {
-        if refusals.is_empty() {
-            return listed(&UNBOUNDED)
-                .is_none()
-                .then(|| format!("{name}: accepts {far:?}, and is not listed as unbounded"));
+            .filter_map(|v| self.load_with(*v, true))
+            .filter(|m| !NOT_ABOUT_BOUNDS.iter().any(|words| m.contains(words)))
+            .collect();
+        if let Some(stated) = refusals.iter().find_map(|m| stated_bounds(m)) {
+            return Ok(stated);
         }
-        return match listed(&RULES_OF_SEVERAL_FIELDS) {
+        let name = &self.name;
+        if refusals.is_empty() {
+            return Err(listed(&UNBOUNDED, &self.field)
+                .is_none()
+                .then(|| format!("{name}: accepts {far:?}, and is not listed as unbounded")));
+        }
+        match listed(&RULES_OF_SEVERAL_FIELDS, &self.field) {
             Some(words)
                 if refusals
                     .iter()
-                    .all(|m| m.contains(words) || !m.contains(&field)) =>
+                    .all(|m| m.contains(words) || !m.contains(&self.field)) =>
             {
-                None
+                Err(None)
             }
-            _ => Some(format!(
+            _ => Err(Some(format!(
                 "{name}: refused without stated bounds: {refusals:?}"
-            )),
-        };
-    };
-    let ends = [
-        (stated.low, stated.low_open, true),
-        (stated.high, stated.high_open, false),
-    ];
-    for (i, (end, open, below)) in ends.into_iter().enumerate() {
-        if !end.is_finite() || pair_end.is_some_and(|e| e != i) {
-            continue;
+            ))),
         }
+    }
+
+    /// Just outside `end`, a refusal naming the field, the value and `stated`; at `end` (just
+    /// inside it when open), no refusal saying it is outside. The problem, if any.
+    fn check_end(&self, stated: &Stated, end: f64, open: bool, below: bool) -> Option<String> {
+        let (leaf, name, field) = (self.leaf, &self.name, &self.field);
         let outside = just_outside(leaf, end, open, below);
         let value = shown(leaf, outside);
-        match try_value(outside) {
+        match self.load_with(outside, false) {
             None => {
                 return Some(format!(
                     "{name} = {value} is accepted, outside {}",
@@ -320,7 +325,7 @@ fn walk_leaf(doc: &toml::Table, leaf: &Leaf, load: &Loader) -> Option<String> {
             // A negative count is refused by its unsigned type, which states the bound 0.
             Some(m) if leaf.integer && outside < 0.0 && m.contains("expected u") => {}
             Some(m)
-                if !(names_field(&m, &field)
+                if !(names_field(&m, field)
                     && names_value(&m, leaf, outside)
                     && m.contains(&stated.text)) =>
             {
@@ -332,18 +337,48 @@ fn walk_leaf(doc: &toml::Table, leaf: &Leaf, load: &Loader) -> Option<String> {
             Some(_) => {}
         }
         let inside = just_inside(leaf, end, open, below);
-        if let Some(m) = try_value(inside)
-            && names_field(&m, &field)
-            && stated_bounds(&m).as_ref() == Some(&stated)
-        {
-            return Some(format!(
+        let m = self.load_with(inside, false)?;
+        (names_field(&m, field) && stated_bounds(&m).as_ref() == Some(stated)).then(|| {
+            format!(
                 "{name} = {}: inside {} but refused as outside: {m}",
                 shown(leaf, inside),
                 stated.text
-            ));
-        }
+            )
+        })
     }
-    None
+}
+
+/// The reason `field` is listed in `table` (a name ending in `.` covers the table), if it is.
+fn listed(table: &'static [(&'static str, &'static str)], field: &str) -> Option<&'static str> {
+    table
+        .iter()
+        .find(|(f, _)| *f == field || (f.ends_with('.') && field.starts_with(f)))
+        .map(|(_, r)| *r)
+}
+
+/// Walks one leaf; returns a problem, if any.
+fn walk_leaf(doc: &toml::Table, leaf: &Leaf, load: &Loader) -> Option<String> {
+    let probe = Probe {
+        doc,
+        leaf,
+        load,
+        name: leaf.name(),
+        field: leaf.field_without_index(),
+        pair_end: leaf.end_of_pair(doc),
+    };
+    let stated = match probe.stated() {
+        Ok(stated) => stated,
+        Err(problem) => return problem,
+    };
+    let ends = [
+        (stated.low, stated.low_open, true),
+        (stated.high, stated.high_open, false),
+    ];
+    // A pair's low end is its first number's, its high end its second's.
+    ends.into_iter()
+        .enumerate()
+        .filter(|(i, (end, _, _))| end.is_finite() && probe.pair_end.is_none_or(|e| e == *i))
+        .find_map(|(_, (end, open, below))| probe.check_end(&stated, end, open, below))
 }
 
 /// Whether `message` names `field` (`ppo.gamma`), as its path or as `ppo: gamma`.
