@@ -5,8 +5,35 @@ report's ``compare.json`` (``fairgrasp.compare.versus_script``), so the step run
 a place preset alike. No SB3, torch or Ray here: python/tests/test_examples.py runs it with a
 stub policy."""
 
+import argparse
+
 import fairgrasp
 from fairgrasp.compare import describe, read_comparison, versus_script
+from fairgrasp.recipes import task_residual_recipe
+
+
+def residual_parser(out):
+    """The arguments every residual training example takes (the report folder ``out`` by
+    default); an example adds its own."""
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--recipe", default=None,
+                        help="the recipe whose env and hyperparameters to use (default: the preset's residual recipe)")
+    parser.add_argument("--preset", default="nudged")
+    parser.add_argument("--timesteps", type=int, default=300_000)
+    parser.add_argument("--seed", type=int, default=0, help="training seed, 0–999 999")
+    parser.add_argument("--episodes", type=int, default=300)
+    parser.add_argument("--eval-seed", type=int, default=7,
+                        help="held-out scenarios: the set of fairgrasp eval --seed EVAL_SEED")
+    parser.add_argument("--out", default=out, help="the report folder fairgrasp.compare writes")
+    parser.add_argument("--force", action="store_true", help="replace an earlier report in --out")
+    return parser
+
+
+def with_recipe(args):
+    """``args`` with ``--recipe`` left out set to the preset's residual recipe."""
+    if args.recipe is None:
+        args.recipe = task_residual_recipe(args.preset)
+    return args
 
 
 def compare_with_scripts(name, act, *, recipe, preset, episodes, eval_seed, out, force=False,

@@ -24,7 +24,6 @@ above); not part of CI (its reporting step, `report`, is tested with a stub poli
 python/tests/test_examples.py).
 """
 
-import argparse
 import json
 import os
 import time
@@ -33,37 +32,24 @@ import gymnasium as gym
 import numpy as np
 
 import fairgrasp
-from fairgrasp.recipes import task_residual_recipe
-from report_step import compare_with_scripts
+from report_step import compare_with_scripts, residual_parser, with_recipe
 
 NAME = "RLlib PPO residual"
 
 
 def parse_args(argv=None):
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--recipe", default=None,
-                        help="the recipe whose env and hyperparameters to use (default: the preset's residual recipe)")
-    parser.add_argument("--preset", default="nudged")
-    parser.add_argument("--timesteps", type=int, default=300_000)
-    parser.add_argument("--seed", type=int, default=0, help="training seed, 0–999 999")
+    parser = residual_parser("runs/rllib_residual_report")
     parser.add_argument("--envs", type=int, default=8, help="envs of the native vector env (per env runner)")
     parser.add_argument("--threads", type=int, default=2, help="Rust threads of the vector env")
-    parser.add_argument("--episodes", type=int, default=300)
-    parser.add_argument("--eval-seed", type=int, default=7,
-                        help="held-out scenarios: the set of fairgrasp eval --seed EVAL_SEED")
     parser.add_argument("--runners", type=int, default=0, help="remote env runners (0: sample in this process)")
     parser.add_argument("--address", default=None, help="an existing Ray cluster (e.g. auto)")
     parser.add_argument("--log", default=None, help="append one JSON line per training iteration and the result")
-    parser.add_argument("--out", default="runs/rllib_residual_report", help="the report folder fairgrasp.compare writes")
-    parser.add_argument("--force", action="store_true", help="replace an earlier report in --out")
     args = parser.parse_args(argv)
     if not 0 <= args.seed < 1_000_000:
         parser.error(f"--seed {args.seed}: must be in 0–999999 (training scenario seeds start at 100 000 000 + seed)")
     if args.timesteps < 1 or args.episodes < 1 or args.envs < 1 or args.threads < 1:
         parser.error("--timesteps, --episodes, --envs and --threads must be positive")
-    if args.recipe is None:
-        args.recipe = task_residual_recipe(args.preset)
-    return args
+    return with_recipe(args)
 
 
 def log(args, row):

@@ -16,35 +16,20 @@ Needs torch and SB3 (the venv above); not part of CI (its reporting step, `repor
 with a stub model in python/tests/test_examples.py).
 """
 
-import argparse
 import json
 import time
 
-from fairgrasp.recipes import task_residual_recipe
-from report_step import compare_with_scripts
+from report_step import compare_with_scripts, residual_parser, with_recipe
 from sb3_common import policy_act, recipe_file
 
 NAME = "SB3 PPO residual"
 
 
 def parse_args(argv=None):
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--recipe", default=None,
-                        help="the recipe whose env and hyperparameters to use (default: the preset's residual recipe)")
-    parser.add_argument("--preset", default="nudged")
-    parser.add_argument("--timesteps", type=int, default=300_000)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--episodes", type=int, default=300)
-    parser.add_argument("--eval-seed", type=int, default=7,
-                        help="held-out scenarios: the set of fairgrasp eval --seed EVAL_SEED")
+    parser = residual_parser("runs/sb3_residual_report")
     parser.add_argument("--log", default=None)
-    parser.add_argument("--out", default="runs/sb3_residual_report", help="the report folder fairgrasp.compare writes")
     parser.add_argument("--shipped", action="store_true", help="put the shipped policies in the report too")
-    parser.add_argument("--force", action="store_true", help="replace an earlier report in --out")
-    args = parser.parse_args(argv)
-    if args.recipe is None:
-        args.recipe = task_residual_recipe(args.preset)
-    return args
+    return with_recipe(parser.parse_args(argv))
 
 
 def train(args):
