@@ -5,10 +5,9 @@
 //! run's copy (`tests/run_folders.rs`).
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 mod common;
-use common::stderr;
+use common::{ok, stderr, train_in};
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-resume-{name}-{}", std::process::id()));
@@ -27,25 +26,6 @@ fn recipe(path: &Path, lines: &str, tail: &str) {
         ),
     )
     .unwrap();
-}
-
-/// `fairgrasp train --config CONFIG --run-dir RUN FLAGS…` run in the folder `cwd`.
-fn train_in(cwd: &Path, config: &Path, run: &Path, flags: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fairgrasp"))
-        .current_dir(cwd)
-        .arg("train")
-        .arg("--config")
-        .arg(config)
-        .arg("--run-dir")
-        .arg(run)
-        .args(flags)
-        .env_remove("FAIRGRASP_CRASH_AT")
-        .output()
-        .unwrap()
-}
-
-fn ok(o: &Output) {
-    assert!(o.status.success(), "{}", stderr(o));
 }
 
 /// Every file of the run folder (but its lock) with its bytes, to show a refusal wrote nothing.

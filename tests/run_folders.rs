@@ -10,7 +10,7 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{command, stderr};
+use common::{command, ok, stderr, train_in};
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fairgrasp-folders-{name}-{}", std::process::id()));
@@ -34,20 +34,7 @@ fn write_config(dir: &Path, name: &str, preset: &str, updates: u64) -> PathBuf {
 }
 
 fn train(config: &Path, run: &Path, flags: &[&str]) -> Output {
-    command()
-        .arg("train")
-        .arg("--config")
-        .arg(config)
-        .arg("--run-dir")
-        .arg(run)
-        .args(flags)
-        .env_remove("FAIRGRASP_CRASH_AT")
-        .output()
-        .unwrap()
-}
-
-fn ok(o: &Output) {
-    assert!(o.status.success(), "{}", stderr(o));
+    train_in(Path::new(env!("CARGO_MANIFEST_DIR")), config, run, flags)
 }
 
 /// The update numbers of `metrics.csv`'s rows.

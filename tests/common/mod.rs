@@ -55,6 +55,27 @@ pub fn train(config: &Path, run: &Path) -> Output {
     ])
 }
 
+/// Runs `fairgrasp train --config CONFIG --run-dir RUN FLAGS…` in the folder `cwd` (without the
+/// kill tests' crash hook) and waits for it.
+pub fn train_in(cwd: &Path, config: &Path, run: &Path, flags: &[&str]) -> Output {
+    command()
+        .current_dir(cwd)
+        .arg("train")
+        .arg("--config")
+        .arg(config)
+        .arg("--run-dir")
+        .arg(run)
+        .args(flags)
+        .env_remove("FAIRGRASP_CRASH_AT")
+        .output()
+        .unwrap()
+}
+
+/// Asserts that a command succeeded, showing its stderr if not.
+pub fn ok(o: &Output) {
+    assert!(o.status.success(), "{}", stderr(o));
+}
+
 /// What a run printed to stderr, as text.
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
