@@ -20,6 +20,9 @@
 //! - [`correction`]: a task-space correction of the grasp and its map to joints (Jacobian).
 //! - [`residual`]: [`ResidualScript`], what a residual policy corrects the script through, and
 //!   [`OracleResidual`], the hand-written residual that uses the true pose through it.
+//! - [`task_residual`]: [`TaskResidual`], what every task's residual interface is to the agent
+//!   (the lift's [`ResidualScript`], the place's [`PlaceResidual`]); [`tasks`]: which one a
+//!   preset's task uses.
 //! - [`tuned_grip`]: [`TunedGripScript`], the open-loop script with the grip force an engineer
 //!   tuned for the cell (the contact family's control).
 //! - [`controls`]: every task's hand-written controls in one table ([`controls::CONTROLS`]):
@@ -42,6 +45,8 @@ pub mod place_search;
 pub mod place_square;
 pub mod residual;
 pub mod stream;
+pub mod task_residual;
+pub mod tasks;
 pub mod tuned_grip;
 
 pub use baseline::{BaselineConfig, CloseTiming, Phase, PlannedObject, ScriptedGrasp};
@@ -52,4 +57,5 @@ pub use place::ScriptedPlace;
 pub use place_residual::PlaceResidual;
 pub use place_search::SearchParams;
 pub use residual::{OracleResidual, ResidualScript};
+pub use task_residual::TaskResidual;
 pub use tuned_grip::TunedGripScript;

@@ -26,10 +26,8 @@ use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 use crate::correction::CorrectionLimits;
 use crate::place::{PlacePhase, ScriptedPlace};
 use crate::place_search::{Modulation, SearchParams};
-
-/// Values the script adds to the policy input: as many as the lift residual's, so that a
-/// task-space residual's input has one size whatever the task.
-pub const FEATURE_DIM: usize = crate::residual::FEATURE_DIM;
+pub use crate::task_residual::FEATURE_DIM;
+use crate::task_residual::{OUTPUT_DIM, TaskResidual};
 
 /// Names of the added values, in order.
 pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
@@ -121,14 +119,16 @@ impl PlaceResidual {
     pub fn limits(&self) -> &CorrectionLimits {
         &self.limits
     }
+}
 
-    pub fn reset(&mut self, seed: u64) {
+impl TaskResidual for PlaceResidual {
+    fn reset(&mut self, seed: u64) {
         self.script.reset(seed);
         self.steps = 0;
     }
 
     /// The env action for the policy's `action` at `obs` (module doc).
-    pub fn act(&mut self, obs: &Observation, action: &[f64; 7]) -> Action {
+    fn act(&mut self, obs: &Observation, action: &[f64; OUTPUT_DIM]) -> Action {
         if self.script.place_phase() == PlacePhase::Search {
             let now = self.script.search_correction();
             let c = self.limits.follow(&now, action, self.step_dt);
@@ -145,7 +145,7 @@ impl PlaceResidual {
     }
 
     /// Writes the [`FEATURE_NAMES`] values for the next decision at `obs` into `out`.
-    pub fn write_features(&self, obs: &Observation, out: &mut [f64; FEATURE_DIM]) {
+    fn write_features(&self, obs: &Observation, out: &mut [f64; FEATURE_DIM]) {
         *out = [0.0; FEATURE_DIM];
         let search = self.script.search();
         let phase = match (self.script.place_phase(), search) {
@@ -187,13 +187,33 @@ impl PlaceResidual {
         out[18] = (self.steps as f64 * self.step_dt / self.takt).min(2.0);
     }
 
+    fn feature_names(&self) -> &'static [&'static str; FEATURE_DIM] {
+        &FEATURE_NAMES
+    }
+
+    fn feature_bounds(&self, _object_bound: f64) -> [(f64, f64); FEATURE_DIM] {
+        feature_bounds()
+    }
+
+    fn output_names(&self) -> [&'static str; OUTPUT_DIM] {
+        [
+            "search_offset_x",
+            "search_offset_y",
+            "search_offset_z",
+            "search_offset_yaw",
+            "search_floor_band",
+            "search_spiral_pace",
+            "search_touch_force",
+        ]
+    }
+
     /// The script's verdict (it gave up).
-    pub fn gave_up(&self) -> Option<Outcome> {
+    fn gave_up(&self) -> Option<Outcome> {
         self.script.gave_up()
     }
 
     /// The script's phase name (for recorded trajectories).
-    pub fn phase(&self) -> &'static str {
+    fn phase(&self) -> &'static str {
         Policy::phase(&self.script).unwrap_or("place")
     }
 }

@@ -39,9 +39,8 @@ use std::f64::consts::FRAC_PI_2;
 
 use crate::baseline::{BaselineConfig, CloseTiming, Phase, ScriptedGrasp};
 use crate::correction::{CorrectionLimits, TaskCorrection};
-
-/// Values the script adds to the policy input.
-pub const FEATURE_DIM: usize = 19;
+pub use crate::task_residual::FEATURE_DIM;
+use crate::task_residual::{OUTPUT_DIM, TaskResidual};
 
 /// Names of the added values, in order.
 pub const FEATURE_NAMES: [&str; FEATURE_DIM] = [
@@ -125,17 +124,6 @@ impl ResidualScript {
         self
     }
 
-    /// The grip force per finger \[N\] the squeeze asks for (None without the squeeze).
-    pub fn grip_force(&self) -> Option<f64> {
-        let s = self.squeeze?;
-        let force = if s.signal >= 0.0 {
-            s.base + s.signal * self.limits.max_squeeze
-        } else {
-            s.base + s.signal * (s.base - MIN_GRIP_FORCE).max(0.0)
-        };
-        Some(force.max(MIN_GRIP_FORCE))
-    }
-
     /// The script inside.
     pub fn script(&self) -> &ScriptedGrasp {
         &self.script
@@ -158,7 +146,14 @@ impl ResidualScript {
         )
     }
 
-    pub fn reset(&mut self, seed: u64) {
+    /// The filtered close-timing command (in [-1, 1]).
+    pub fn close_signal(&self) -> f64 {
+        self.close_signal
+    }
+}
+
+impl TaskResidual for ResidualScript {
+    fn reset(&mut self, seed: u64) {
         self.script.reset(seed);
         self.close_signal = 0.0;
         if let Some(s) = &mut self.squeeze {
@@ -166,13 +161,8 @@ impl ResidualScript {
         }
     }
 
-    /// The filtered close-timing command (in [-1, 1]).
-    pub fn close_signal(&self) -> f64 {
-        self.close_signal
-    }
-
     /// The env action for the policy's `action` at `obs` (see the module doc).
-    pub fn act(&mut self, obs: &Observation, action: &[f64; 7]) -> Action {
+    fn act(&mut self, obs: &Observation, action: &[f64; OUTPUT_DIM]) -> Action {
         if self.correcting() {
             let c = self
                 .limits
@@ -196,7 +186,7 @@ impl ResidualScript {
     }
 
     /// Writes the [`FEATURE_NAMES`] values for the next decision at `obs` into `out`.
-    pub fn write_features(&self, obs: &Observation, out: &mut [f64; FEATURE_DIM]) {
+    fn write_features(&self, obs: &Observation, out: &mut [f64; FEATURE_DIM]) {
         *out = [0.0; FEATURE_DIM];
         let slot = match self.script.phase() {
             Phase::Approach => Some(0),
@@ -230,6 +220,62 @@ impl ResidualScript {
             }
             out[18] = wrap_quarter(w.yaw - p.yaw) / self.limits.max_yaw;
         }
+    }
+
+    fn feature_names(&self) -> &'static [&'static str; FEATURE_DIM] {
+        &FEATURE_NAMES
+    }
+
+    fn feature_bounds(&self, object_bound: f64) -> [(f64, f64); FEATURE_DIM] {
+        // A difference of two cube positions, turned into the table frame: at most
+        // √3 · 2 · object_bound per coordinate, in units of the largest offset.
+        let moved = 2.0 * 3f64.sqrt() * object_bound / self.limits.max_offset;
+        // `wrap_quarter` keeps a yaw difference within ±45°.
+        let turned = std::f64::consts::FRAC_PI_4 / self.limits.max_yaw;
+        let mut b = [(-1.0, 1.0); FEATURE_DIM];
+        b[..5].fill((0.0, 1.0));
+        b[5..8].fill((-moved, moved));
+        b[8] = (-turned, turned);
+        b[14] = (0.0, 1.0);
+        b[15..18].fill((-moved, moved));
+        b[18] = (-turned, turned);
+        b
+    }
+
+    fn output_names(&self) -> [&'static str; OUTPUT_DIM] {
+        let squeeze = if self.squeeze.is_some() {
+            "squeeze"
+        } else {
+            "unused_4"
+        };
+        [
+            "offset_x",
+            "offset_y",
+            "offset_z",
+            "offset_yaw",
+            squeeze,
+            "unused_5",
+            "close_timing",
+        ]
+    }
+
+    fn phase(&self) -> &'static str {
+        self.script.phase().name()
+    }
+
+    fn gave_up(&self) -> Option<Outcome> {
+        self.script.gave_up()
+    }
+
+    /// The grip force per finger \[N\] the squeeze asks for (None without the squeeze).
+    fn grip_force(&self) -> Option<f64> {
+        let s = self.squeeze?;
+        let force = if s.signal >= 0.0 {
+            s.base + s.signal * self.limits.max_squeeze
+        } else {
+            s.base + s.signal * (s.base - MIN_GRIP_FORCE).max(0.0)
+        };
+        Some(force.max(MIN_GRIP_FORCE))
     }
 }
 

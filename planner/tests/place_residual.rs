@@ -6,7 +6,7 @@ use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::Policy;
 use fairgrasp_planner::place::PlacePhase;
 use fairgrasp_planner::place_residual::{FEATURE_DIM, PlaceResidual};
-use fairgrasp_planner::{ScriptedPlace, SearchParams};
+use fairgrasp_planner::{ScriptedPlace, SearchParams, TaskResidual};
 
 /// Each step's joint command and the episode's end, under `act`.
 fn actions(

@@ -92,7 +92,12 @@ def test_a_recipe_id_builds_the_env_the_recipe_trains_on(name):
         assert config["arm"]["action_space"] == "joint"
         entry_4 = "squeeze" if agent.get("squeeze", False) else "unused_4"
         lift_actions = ["offset_x", "offset_y", "offset_z", "offset_yaw", entry_4, "unused_5", "close_timing"]
-        place_actions = [f"search_offset_{a}" for a in ("x", "y", "z", "yaw")] + ["unused_4", "unused_5", "unused_6"]
+        # Entries 4-6 of a place residual scale the search (its floor band, spiral pace, touch force).
+        place_actions = [f"search_offset_{a}" for a in ("x", "y", "z", "yaw")] + [
+            "search_floor_band",
+            "search_spiral_pace",
+            "search_touch_force",
+        ]
         assert env.unwrapped.action_names == (place_actions if place else lift_actions)
     _, info = env.reset(seed=3)
     if "curriculum" in recipe:

@@ -95,24 +95,7 @@ pub fn script_input_bounds(
     match agent.script(env) {
         None => Vec::new(),
         Some(Script::Joint(_)) => vec![(-1.0, 1.0); fairgrasp_env::env::spaces::ACT_DIM],
-        Some(Script::Task(r)) => {
-            let limits = r.limits();
-            // A difference of two cube positions, turned into the table frame: at most
-            // √3 · 2 · object_bound per coordinate, in units of the largest offset.
-            let moved = 2.0 * 3f64.sqrt() * object_bound / limits.max_offset;
-            // `wrap_quarter` keeps a yaw difference within ±45°.
-            let turned = std::f64::consts::FRAC_PI_4 / limits.max_yaw;
-            let unit = (0.0, 1.0);
-            let mut b = vec![unit; 5];
-            b.extend([(-moved, moved); 3]);
-            b.push((-turned, turned));
-            b.extend([(-1.0, 1.0); 5]);
-            b.push(unit);
-            b.extend([(-moved, moved); 3]);
-            b.push((-turned, turned));
-            b
-        }
-        Some(Script::Place(_)) => fairgrasp_planner::place_residual::feature_bounds().to_vec(),
+        Some(Script::Task(r)) => r.feature_bounds(object_bound).to_vec(),
     }
 }
 
@@ -140,27 +123,6 @@ pub fn output_names(agent: &AgentConfig, env: &EnvConfig) -> Vec<String> {
                 }
             })
             .collect(),
-        Some(Script::Task(_)) => [
-            "offset_x",
-            "offset_y",
-            "offset_z",
-            "offset_yaw",
-            if agent.squeeze { "squeeze" } else { "unused_4" },
-            "unused_5",
-            "close_timing",
-        ]
-        .map(String::from)
-        .to_vec(),
-        Some(Script::Place(_)) => [
-            "search_offset_x",
-            "search_offset_y",
-            "search_offset_z",
-            "search_offset_yaw",
-            "unused_4",
-            "unused_5",
-            "unused_6",
-        ]
-        .map(String::from)
-        .to_vec(),
+        Some(Script::Task(r)) => r.output_names().map(String::from).to_vec(),
     }
 }

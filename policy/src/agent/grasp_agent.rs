@@ -13,7 +13,7 @@
 //! ([`fairgrasp_env::robot::tcp_action::TaskSpaceAction`]).
 
 use fairgrasp_env::cell::Cell;
-use fairgrasp_env::config::{ActionSpace, GripperCommand, TaskKind, TcpSaturation};
+use fairgrasp_env::config::{ActionSpace, GripperCommand, TcpSaturation};
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::robot::tcp_action::TaskSpaceAction;
 use fairgrasp_env::{Action, EnvConfig, Observation};
@@ -171,8 +171,7 @@ impl AgentConfig {
     /// The names of the policy input's entries on the env of `env`, in order: the
     /// observation's ([`fairgrasp_env::env::obs::OBS_NAMES`]), then the script's part
     /// (`baseline_action_0` … `_6`, or the task script's features:
-    /// [`fairgrasp_planner::residual::FEATURE_NAMES`] on the lift task,
-    /// [`fairgrasp_planner::place_residual::FEATURE_NAMES`] on the place task).
+    /// [`fairgrasp_planner::TaskResidual::feature_names`] of the env's task).
     pub fn input_names(&self, env: &EnvConfig) -> Vec<String> {
         let mut names: Vec<String> = fairgrasp_env::env::obs::OBS_NAMES
             .iter()
@@ -184,11 +183,8 @@ impl AgentConfig {
                 names.extend((0..ACT_DIM).map(|i| format!("baseline_action_{i}")));
             }
             (Mode::Residual, ActionSpace::Tcp) => {
-                let features = match env.task.kind {
-                    TaskKind::Lift => fairgrasp_planner::residual::FEATURE_NAMES,
-                    TaskKind::Place => fairgrasp_planner::place_residual::FEATURE_NAMES,
-                };
-                names.extend(features.iter().map(|n| n.to_string()));
+                let residual = fairgrasp_planner::tasks::task_residual(env, self.squeeze);
+                names.extend(residual.feature_names().iter().map(|n| n.to_string()));
             }
         }
         names
@@ -284,14 +280,12 @@ impl AgentConfig {
         }
     }
 
-    /// The script for residual mode (None in pure mode): on a place preset, a task-space
-    /// residual corrects the force-guided search (its squeeze is not used there).
+    /// The script for residual mode (None in pure mode): a task-space residual corrects the
+    /// residual interface of the env's task ([`fairgrasp_planner::tasks::task_residual`]; on a
+    /// place preset the force-guided search, where the squeeze is not used).
     pub fn script(&self, env: &EnvConfig) -> Option<Script> {
         match self.mode {
             Mode::Pure => None,
-            Mode::Residual if self.task_residual() && env.task.kind == TaskKind::Place => {
-                Some(Script::place(env))
-            }
             Mode::Residual if self.task_residual() => Some(Script::task(env, self.squeeze)),
             Mode::Residual => Some(Script::joint(env)),
         }

@@ -3,24 +3,23 @@
 //! - [`Script::Joint`] (`action_space = "joint"`, the first residual): the baseline acts first;
 //!   its joint-velocity action is appended to the policy input and the policy's output is added
 //!   to it (`clip(a_base + scale · a_policy)`).
-//! - [`Script::Task`] (`action_space = "tcp"`, the residual with authority): the policy's output
-//!   is the rate of a task-space correction the script's reference follows, and the close's
-//!   timing ([`fairgrasp_planner::residual`]); the script's phase, the cube's motion since the
-//!   plan and the correction so far are appended to the policy input.
-//! - [`Script::Place`] (`action_space = "tcp"` on a place preset): the same on the place task,
-//!   correcting the force-guided search ([`fairgrasp_planner::place_residual`]).
+//! - [`Script::Task`] (`action_space = "tcp"`, the residual with authority): the task's residual
+//!   interface ([`TaskResidual`], registered per task in [`fairgrasp_planner::tasks`]) turns the
+//!   policy's output into the env's action and adds its features to the policy input — on the
+//!   lift task the grasp script's correction and close timing
+//!   ([`fairgrasp_planner::residual`]), on the place task the force-guided search's
+//!   ([`fairgrasp_planner::place_residual`]).
 
 use fairgrasp_env::episode::Outcome;
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::{Action, EnvConfig, Observation};
-use fairgrasp_planner::residual::{FEATURE_DIM, ResidualScript};
-use fairgrasp_planner::{BaselineConfig, PlaceResidual, ScriptedGrasp};
+use fairgrasp_planner::task_residual::{FEATURE_DIM, OUTPUT_DIM};
+use fairgrasp_planner::{BaselineConfig, ScriptedGrasp, TaskResidual};
 
 /// One env's script.
 pub enum Script {
     Joint(Box<ScriptedGrasp>),
-    Task(Box<ResidualScript>),
-    Place(Box<PlaceResidual>),
+    Task(Box<dyn TaskResidual>),
 }
 
 impl Script {
@@ -29,21 +28,16 @@ impl Script {
         Script::Joint(Box::new(ScriptedGrasp::new(env, BaselineConfig::default())))
     }
 
-    /// The task-space residual interface, with the squeeze if `squeeze`.
+    /// The residual interface of `env`'s task, with the squeeze if `squeeze` (where the task's
+    /// interface has one).
     pub fn task(env: &EnvConfig, squeeze: bool) -> Script {
-        let r = ResidualScript::new(env);
-        Script::Task(Box::new(if squeeze { r.squeezing(env) } else { r }))
-    }
-
-    /// The place task's residual interface on the force-guided search.
-    pub fn place(env: &EnvConfig) -> Script {
-        Script::Place(Box::new(PlaceResidual::new(env)))
+        Script::Task(fairgrasp_planner::tasks::task_residual(env, squeeze))
     }
 
     /// The grip force per finger \[N\] the task script's squeeze asks for (None otherwise).
     pub fn grip_force(&self) -> Option<f64> {
         match self {
-            Script::Joint(_) | Script::Place(_) => None,
+            Script::Joint(_) => None,
             Script::Task(r) => r.grip_force(),
         }
     }
@@ -52,7 +46,6 @@ impl Script {
         match self {
             Script::Joint(b) => (**b).reset(seed),
             Script::Task(r) => r.reset(seed),
-            Script::Place(r) => r.reset(seed),
         }
     }
 
@@ -62,7 +55,7 @@ impl Script {
     pub fn prepare(&mut self, obs: &Observation) -> Option<Action> {
         match self {
             Script::Joint(b) => Some((**b).act(obs)),
-            Script::Task(_) | Script::Place(_) => None,
+            Script::Task(_) => None,
         }
     }
 
@@ -76,8 +69,13 @@ impl Script {
                     *slot = v;
                 }
             }
-            Script::Task(r) => write_features(|f| r.write_features(obs, f), out),
-            Script::Place(r) => write_features(|f| r.write_features(obs, f), out),
+            Script::Task(r) => {
+                let mut f = [0.0; FEATURE_DIM];
+                r.write_features(obs, &mut f);
+                for (slot, v) in out.iter_mut().zip(f) {
+                    *slot = v as f32;
+                }
+            }
         }
     }
 
@@ -87,7 +85,6 @@ impl Script {
         match self {
             Script::Joint(_) => None,
             Script::Task(r) => Some(r.act(obs, &policy_action(policy))),
-            Script::Place(r) => Some(r.act(obs, &policy_action(policy))),
         }
     }
 
@@ -95,8 +92,7 @@ impl Script {
     pub fn phase(&self) -> &'static str {
         match self {
             Script::Joint(b) => (**b).phase().name(),
-            Script::Task(r) => r.script().phase().name(),
-            Script::Place(r) => r.phase(),
+            Script::Task(r) => r.phase(),
         }
     }
 
@@ -104,22 +100,12 @@ impl Script {
     pub fn gave_up(&self) -> Option<Outcome> {
         match self {
             Script::Joint(b) => (**b).gave_up(),
-            Script::Task(r) => r.script().gave_up(),
-            Script::Place(r) => r.gave_up(),
+            Script::Task(r) => r.gave_up(),
         }
     }
 }
 
-/// The features `write` fills, as policy input values into `out`.
-fn write_features(write: impl FnOnce(&mut [f64; FEATURE_DIM]), out: &mut [f32]) {
-    let mut f = [0.0; FEATURE_DIM];
-    write(&mut f);
-    for (slot, v) in out.iter_mut().zip(f) {
-        *slot = v as f32;
-    }
-}
-
-/// The policy's output as the 7 values a task-space script reads (a missing one counts as 0).
-fn policy_action(policy: &[f32]) -> [f64; 7] {
+/// The policy's output as the values a task-space script reads (a missing one counts as 0).
+fn policy_action(policy: &[f32]) -> [f64; OUTPUT_DIM] {
     std::array::from_fn(|i| policy.get(i).copied().unwrap_or(0.0) as f64)
 }

@@ -1,0 +1,20 @@
+//! Where the planner registers each task: the residual interface a task-space residual policy
+//! corrects on a preset of that task. A task's hand-written controls are rows of
+//! [`crate::controls::CONTROLS`].
+
+use fairgrasp_env::{EnvConfig, TaskKind};
+
+use crate::task_residual::TaskResidual;
+use crate::{PlaceResidual, ResidualScript};
+
+/// The residual interface of `env`'s task: the lift script (with the squeeze if `squeeze`), or
+/// the place task's force-guided search (which has no squeeze; `squeeze` is ignored).
+pub fn task_residual(env: &EnvConfig, squeeze: bool) -> Box<dyn TaskResidual> {
+    match env.task.kind {
+        TaskKind::Lift => {
+            let r = ResidualScript::new(env);
+            Box::new(if squeeze { r.squeezing(env) } else { r })
+        }
+        TaskKind::Place => Box::new(PlaceResidual::new(env)),
+    }
+}
