@@ -712,3 +712,95 @@ fn an_import_from_config_into_a_familys_behaviour_leaves_the_layer() {
         vec!["config::env_config imports scenario::nudge::draw".to_string()]
     );
 }
+
+/// The files that register the tasks and may name each one: the list of tasks and what the
+/// shared code reads of each (`TaskSpec`), the rules' arms, the planner's residual interfaces
+/// and the table of every task's controls. ARCHITECTURE.md's "Where to add things" lists them.
+const TASK_REGISTRATION: [&str; 4] = [
+    "env/src/config/task.rs",
+    "env/src/task/tasks.rs",
+    "planner/src/tasks.rs",
+    "planner/src/controls/mod.rs",
+];
+
+/// Whether `path` (relative to a crate's `src/`) is inside a task's own folder: a folder named
+/// after the task (`task/place/`, `place/`).
+fn in_a_task_folder(path: &Path, tasks: &[&str]) -> bool {
+    let mut folders = path.iter().rev().skip(1);
+    folders.any(|f| tasks.iter().any(|t| f == *t))
+}
+
+/// The places in the `src/` files of `crates` (under `root`) outside a task's folder and the
+/// registration files that ask which task it is: that name a task of `TaskKind` (`TaskKind::
+/// Place`; `TaskKind::ALL` names none). Unit-test modules (from `#[cfg(test)]` on) are left out.
+fn task_checks_outside_task_folders(root: &Path, crates: &[&str], tasks: &[&str]) -> Vec<String> {
+    let mut found = Vec::new();
+    for krate in crates {
+        let src = root.join(krate).join("src");
+        for path in modules(&src).into_values() {
+            let rel = path.strip_prefix(&src).unwrap();
+            let shown = Path::new(krate).join("src").join(rel);
+            let shown = shown.strip_prefix("./").unwrap_or(&shown);
+            if in_a_task_folder(rel, tasks)
+                || TASK_REGISTRATION.iter().any(|r| shown == Path::new(r))
+            {
+                continue;
+            }
+            let text = std::fs::read_to_string(&path).unwrap();
+            let code = code_of(&text);
+            let code = code.split("#[cfg(test)]").next().unwrap_or_default();
+            for (n, line) in code.lines().enumerate() {
+                let names_a_task = line.match_indices("TaskKind::").any(|(i, m)| {
+                    line[i + m.len()..].starts_with(|c: char| c.is_ascii_uppercase())
+                        && !line[i + m.len()..].starts_with("ALL")
+                });
+                if names_a_task {
+                    found.push(format!("{}:{}: {}", shown.display(), n + 1, line.trim()));
+                }
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn no_code_outside_a_tasks_folder_asks_which_task_it_is() {
+    let tasks: Vec<&str> = fairgrasp_env::TaskKind::ALL.map(|t| t.name()).to_vec();
+    let found = task_checks_outside_task_folders(repo(), &CRATES, &tasks);
+    assert!(
+        found.is_empty(),
+        "code outside a task's folder asks which task it is (read what the task registers \
+         instead — its TaskSpec, its controls' rows, its residual interface — or move the code \
+         into the task's folder; see ARCHITECTURE.md, \"Where to add things\"):\n{}",
+        found.join("\n")
+    );
+}
+
+#[test]
+fn a_task_named_outside_its_folder_is_found_with_its_file_and_line() {
+    let dir = scratch_crate(
+        "task-check",
+        &[
+            ("env/src/lib.rs", "pub mod sim;\npub mod task;\n"),
+            (
+                "env/src/sim/scene.rs",
+                "// TaskKind::Place in a comment is no check\nfn f(k: TaskKind) -> bool {\n    \
+                 k == TaskKind::Place\n}\nconst A: [TaskKind; 2] = TaskKind::ALL;\n",
+            ),
+            (
+                "env/src/task/place/rules.rs",
+                "fn g() -> TaskKind { TaskKind::Place }\n",
+            ),
+            (
+                "env/src/sim/world.rs",
+                "fn h() {}\n#[cfg(test)]\nmod tests { fn t() { let _ = TaskKind::Lift; } }\n",
+            ),
+        ],
+    );
+    let found = task_checks_outside_task_folders(&dir, &["env"], &["lift", "place"]);
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(
+        found,
+        vec!["env/src/sim/scene.rs:3: k == TaskKind::Place".to_string()]
+    );
+}

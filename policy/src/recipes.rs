@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use fairgrasp_env::ConfigError;
+use fairgrasp_env::{ConfigError, TaskKind};
 
 /// Name (the file's stem) and text of every shipped recipe, in name order.
 pub const SHIPPED: [(&str, &str); 14] = [
@@ -73,17 +73,16 @@ pub fn names() -> Vec<&'static str> {
 
 /// The shipped recipe of the task-space residual for the preset `preset` (what Python's
 /// `FairGrasp-Residual-<Preset>-v0` trains with, `preset` laid over it): the squeeze's on
-/// `heavy_slippery`, the wrist-view family's on `wrist_camera`, the place residual's on a place
-/// preset (`place_task`; `place_tilted` and `place_cell` have their own), the first task-space residual's (`residual_miscalibrated`, which names
-/// nothing but its default preset) elsewhere.
-pub fn task_residual_recipe(preset: &str, place_task: bool) -> &'static str {
+/// `heavy_slippery`, the wrist-view family's on `wrist_camera`, `place_tilted`'s and
+/// `place_cell`'s own, and elsewhere the residual recipe of the preset's task (`task`, its
+/// [`TaskSpec::residual_recipe`](fairgrasp_env::config::task::TaskSpec::residual_recipe)).
+pub fn task_residual_recipe(preset: &str, task: TaskKind) -> &'static str {
     match preset {
         "place_tilted" => "residual_place_tilted",
         "place_cell" => "residual_place_cell",
-        _ if place_task => "residual_place_grasp_error",
         "heavy_slippery" => "residual_heavy_slippery",
         "wrist_camera" => "residual_wrist_camera",
-        _ => "residual_miscalibrated",
+        _ => task.spec().residual_recipe,
     }
 }
 

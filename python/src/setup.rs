@@ -163,8 +163,7 @@ pub(crate) fn recipe_names() -> Vec<&'static str> {
 #[pyfunction]
 pub(crate) fn task_residual_recipe(preset: &str) -> PyResult<&'static str> {
     let config = fairgrasp_env::config::presets::load(preset).map_err(crate::args::value_error)?;
-    let place = config.task.kind == fairgrasp_env::config::TaskKind::Place;
-    Ok(recipes::task_residual_recipe(preset, place))
+    Ok(recipes::task_residual_recipe(preset, config.task.kind))
 }
 
 /// The keys a recipe override may have.

@@ -22,6 +22,66 @@ pub enum TaskKind {
     Place,
 }
 
+impl TaskKind {
+    /// Every task, in the order the docs and `--help` list them.
+    pub const ALL: [TaskKind; 2] = [TaskKind::Lift, TaskKind::Place];
+
+    /// What the env's shared code reads of the task (its [`TaskSpec`], registered here).
+    pub fn spec(self) -> &'static TaskSpec {
+        match self {
+            TaskKind::Lift => &LIFT,
+            TaskKind::Place => &PLACE,
+        }
+    }
+
+    /// Its name in a preset's `[task] kind` and in messages (`lift`, `place`).
+    pub fn name(self) -> &'static str {
+        self.spec().name
+    }
+}
+
+/// What the code shared by every task (the scene, the scenario's draw, the config's checks, the
+/// takt, the default residual recipe) reads of a task, so that it never asks which task it is.
+/// One per task, below; the task's rules (success, distance to go) are registered in
+/// `env/src/task/tasks.rs`, its settings and rules are in its folder (`env/src/task/<name>/`).
+#[derive(Debug)]
+pub struct TaskSpec {
+    /// Its name in a preset's `[task] kind` and in messages.
+    pub name: &'static str,
+    /// Does the scene hold the fixture (`[task.place]`'s pocket, a fixed body the cube goes
+    /// into), drawn per scenario?
+    pub fixture: bool,
+    /// `None` if the task can pay the staged reward (reach, grasp, lift); else why not (the
+    /// refusal's rule for `task.reward = "staged"`).
+    pub refuses_staged_reward: Option<&'static str>,
+    /// The takt the task runs on \[s\], from its settings (`None`: no takt).
+    pub takt: fn(&TaskConfig) -> Option<f64>,
+    /// The shipped recipe (`assets/experiments/<name>.toml`) a task-space residual trains with
+    /// on the task's presets that have no recipe of their own.
+    pub residual_recipe: &'static str,
+}
+
+/// The lift task to the shared code: no fixture, the staged reward (written for it), no takt.
+const LIFT: TaskSpec = TaskSpec {
+    name: "lift",
+    fixture: false,
+    refuses_staged_reward: None,
+    takt: |_| None,
+    residual_recipe: "residual_miscalibrated",
+};
+
+/// The place task to the shared code: the fixture in the scene, drawn per scenario; the distance
+/// reward only; its takt `[task.place] takt`.
+const PLACE: TaskSpec = TaskSpec {
+    name: "place",
+    fixture: true,
+    refuses_staged_reward: Some(
+        "the staged reward is the lift task's (reach, grasp, lift): with task.kind = \"place\" use \"distance\"",
+    ),
+    takt: |task| Some(task.place.takt),
+    residual_recipe: "residual_place_grasp_error",
+};
+
 /// The task, its success, reward and time limit.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(from = "TaskToml", into = "TaskToml")]
@@ -87,10 +147,7 @@ impl TaskConfig {
     /// The takt the task runs on \[s\]: a cell's time for one cycle, from the reset (the place
     /// task's `[task.place] takt`; the lift task has none).
     pub fn takt(&self) -> Option<f64> {
-        match self.kind {
-            TaskKind::Lift => None,
-            TaskKind::Place => Some(self.place.takt),
-        }
+        (self.kind.spec().takt)(self)
     }
 }
 
@@ -201,6 +258,20 @@ impl From<TaskConfig> for TaskToml {
             reward: t.reward,
             protective_stop_force: t.protective_stop_force,
             staged: t.staged,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_task_is_listed_once_under_the_name_its_presets_write() {
+        for kind in TaskKind::ALL {
+            let written = toml::Value::try_from(kind).unwrap();
+            assert_eq!(written.as_str(), Some(kind.name()), "{kind:?}");
+            assert_eq!(TaskKind::ALL.iter().filter(|k| **k == kind).count(), 1);
         }
     }
 }

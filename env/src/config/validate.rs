@@ -346,13 +346,14 @@ impl EnvConfig {
             ];
             crate::scenario::error_mix::settings::check_error_mix(mix, drawn)?;
         }
-        check(
-            !(t.kind == crate::config::TaskKind::Place
-                && t.reward == crate::config::RewardKind::Staged),
-            "task.reward",
-            "staged",
-            "the staged reward is the lift task's (reach, grasp, lift): with task.kind = \"place\" use \"distance\"",
-        )?;
+        if let Some(rule) = t.kind.spec().refuses_staged_reward {
+            check(
+                t.reward != crate::config::RewardKind::Staged,
+                "task.reward",
+                "staged",
+                rule,
+            )?;
+        }
         Ok(())
     }
 }

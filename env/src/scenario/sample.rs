@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
-use crate::config::{EnvConfig, TaskKind};
+use crate::config::EnvConfig;
 use crate::scenario::error_mix::draw::{draw_error_family, keep_only};
 use crate::scenario::fixture::{FixturePose, draw_fixture};
 use crate::scenario::graspable::top_down_grasp;
@@ -125,7 +125,12 @@ impl Scenario {
             observed_yaw_error: 0.0,
             nudge: None,
             camera_offset: None,
-            fixture: (config.task.kind == TaskKind::Place).then(|| FixturePose::fixed(config)),
+            fixture: config
+                .task
+                .kind
+                .spec()
+                .fixture
+                .then(|| FixturePose::fixed(config)),
         }
     }
 
@@ -241,7 +246,7 @@ fn noisy_home(config: &EnvConfig, model: &ArmModel, rng: &mut ChaCha8Rng) -> [f6
     q
 }
 
-/// The place task's fixture for a cube starting at `object_xy` (`Ok(None)` for the lift task);
+/// The fixture for a cube starting at `object_xy` (`Ok(None)` for a task without one);
 /// `Err` when no fixture pose fits beside this cube.
 fn fixture_for(
     config: &EnvConfig,
@@ -250,19 +255,19 @@ fn fixture_for(
     object_xy: [f64; 2],
     start_joints: &[f64; 6],
 ) -> Result<Option<FixturePose>, ()> {
-    match config.task.kind {
-        TaskKind::Lift => Ok(None),
-        TaskKind::Place => draw_fixture(
-            config,
-            &cell.model,
-            &cell.mount,
-            seed,
-            object_xy,
-            start_joints,
-        )
-        .map(Some)
-        .ok_or(()),
+    if !config.task.kind.spec().fixture {
+        return Ok(None);
     }
+    draw_fixture(
+        config,
+        &cell.model,
+        &cell.mount,
+        seed,
+        object_xy,
+        start_joints,
+    )
+    .map(Some)
+    .ok_or(())
 }
 
 /// A seeded list of `n` scenarios, identical for every policy evaluated on it: scenario `i` is

@@ -210,7 +210,7 @@ pub fn build(
     let base_xy = base_in_world.xyz();
     let (table_collider, cube, cube_collider) =
         insert_table_and_cube(&mut world, &mut parts, config, base_xy, cube_pose);
-    let fixture = (config.task.kind == crate::config::TaskKind::Place)
+    let fixture = (config.task.kind.spec().fixture)
         .then(|| insert_place_fixture(&mut world, &mut parts, config, base_xy));
     let dynamic = config.arm.model == ArmSimulation::Multibody;
     let links = insert_arm_links(&mut world, &mut parts, model, base_in_world, q, dynamic);
