@@ -12,7 +12,7 @@ use fairgrasp_planner::stream::{
 };
 
 use crate::compare::methods::Method;
-use crate::compare::{CompareError, LearnedPolicy, calibration_of, make_policy, scripts_for};
+use crate::compare::{CompareError, calibration_of};
 
 /// An exported episode: the stream and the episode it came from.
 pub struct ExportedEpisode {
@@ -76,13 +76,8 @@ pub fn export_episode(
     limits: &StreamLimits,
 ) -> Result<ExportedEpisode, ExportError> {
     method.check_task(config)?;
-    let scripts = scripts_for([config]);
-    let (index, learned): (usize, Vec<LearnedPolicy>) = match method {
-        Method::Script(i) => (i, Vec::new()),
-        Method::Learned(l) => (scripts.len(), vec![*l]),
-    };
     let calibration = calibration_of(config, "the exported preset")?;
-    let mut policy = make_policy(index, &scripts, &learned, config, &calibration);
+    let mut policy = method.policy(config, &calibration);
     let mut env = GraspEnv::new(config.clone()).map_err(CompareError::from)?;
     let mut log = JointLog::default();
     let record =

@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use fairgrasp_env::config::presets;
 use fairgrasp_evaluate::compare::{
     CompareError, CompareEvent, CompareOutput, ComparePreset, CompareSpec, LearnedPolicy,
-    RecordedTrajectory, SCRIPTS, run_comparison,
+    RecordedTrajectory, run_comparison, scripts_for,
 };
 use fairgrasp_policy::shipped::ShippedPolicy;
 use fairgrasp_types::{ArmSimulation, Comparison, MethodResult, RecordedEpisode};
@@ -43,9 +43,16 @@ fn shipped_residual() -> Vec<LearnedPolicy> {
 /// The learned policy's method name in the comparison of [`shipped_residual`].
 const AGENT: &str = "residual PPO: residual_hard";
 
+/// The report names of the scripts a comparison on the lift presets runs (the lift task's
+/// controls in the planner's table).
+fn lift_scripts() -> Vec<&'static str> {
+    let sector = presets::load("sector").unwrap();
+    scripts_for([&sector]).iter().map(|c| c.report).collect()
+}
+
 /// Every method's name in the comparison: the scripts, then the learned policy.
 fn methods() -> Vec<&'static str> {
-    let mut methods: Vec<&str> = SCRIPTS.to_vec();
+    let mut methods = lift_scripts();
     methods.push(AGENT);
     methods
 }
@@ -76,7 +83,7 @@ fn compare_fixed_and_sector() -> (CompareOutput, usize, Vec<String>) {
 /// differently, else 0: the scenario the comparison records.
 fn first_differing_scenario(c: &Comparison, preset: &str) -> usize {
     let [base, agent] =
-        [0, SCRIPTS.len()].map(|i| &c.get(&c.methods[i], preset).unwrap().report.results);
+        [0, lift_scripts().len()].map(|i| &c.get(&c.methods[i], preset).unwrap().report.results);
     (0..3)
         .find(|&i| base[i].outcome != agent[i].outcome)
         .unwrap_or(0)
@@ -94,10 +101,11 @@ fn trajectory_of<'a>(out: &'a CompareOutput, rec: &RecordedEpisode) -> &'a Recor
 /// without a policy, the learned one with its run folder.
 fn assert_the_same_scenarios_for_every_method(c: &Comparison) {
     for p in &c.presets {
-        for script in SCRIPTS {
+        let scripts = lift_scripts();
+        for script in &scripts {
             assert!(c.get(script, p).unwrap().policy.is_none(), "{script}");
         }
-        let [a, b] = [0, SCRIPTS.len()].map(|i| c.get(&c.methods[i], p).unwrap());
+        let [a, b] = [0, scripts.len()].map(|i| c.get(&c.methods[i], p).unwrap());
         let seeds = |r: &MethodResult| {
             r.report
                 .results
@@ -322,9 +330,15 @@ fn the_generalist_grasps_on_every_family_it_was_trained_for() {
 fn a_place_comparison_runs_the_place_scripts_and_refuses_a_lift_preset_beside_them() {
     let out = run_comparison(&spec(&["place", "place_fixture_error"], 4), &[], &|_| {}).unwrap();
     let c = &out.comparison;
+    // The place task's four scripts (the cell's three more need its mix), in the table's order.
     assert_eq!(
         c.methods,
-        fairgrasp_evaluate::compare::PLACE_SCRIPTS.to_vec()
+        [
+            "place script",
+            "place script + force search",
+            "closed-loop place",
+            "closed-loop place + force search",
+        ]
     );
     // Seated on the noise-free preset; the replay records the place task's episodes.
     let seated = &c.get("place script", "place").unwrap().report;

@@ -28,7 +28,7 @@ fn export_and_play(
     let mut env = GraspEnv::new(config.clone()).unwrap();
     let (mut exported, mut replayed, mut lag, mut step) = (0, 0, 0.0f64, 0.0f64);
     for (k, scenario) in scenarios.iter().enumerate() {
-        let resolved = Method::resolve(method).unwrap();
+        let resolved = Method::resolve(method, config.task.kind).unwrap();
         let e = export_episode(&config, scenario, resolved, period, 25, &limits).unwrap();
         let stream = &e.resampled.stream;
         check_stream(&stream.joints, period, &limits).expect("export checks its streams");

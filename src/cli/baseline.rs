@@ -5,12 +5,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
+use fairgrasp_env::EnvConfig;
 use fairgrasp_env::config::presets::{self, PRESETS, RENAMED_PRESETS};
 use fairgrasp_env::episode::{EvalReport, Policy, evaluate_seeded};
-use fairgrasp_env::{EnvConfig, TaskKind};
+use fairgrasp_evaluate::compare::methods::script_names;
 use fairgrasp_evaluate::tune::fragment;
 use fairgrasp_planner::CameraCalibration;
-use fairgrasp_planner::controls::{self, CONTROLS, Control, ParamValues};
+use fairgrasp_planner::controls::{self, Control, ParamValues};
 use fairgrasp_types::output::StagedRecording;
 use fairgrasp_types::{ArmSimulation, MethodResult};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -56,19 +57,6 @@ pub struct ScenarioArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
-}
-
-/// Every control's command-line name, each once (the table in `fairgrasp_planner::controls`).
-fn script_names() -> Vec<&'static str> {
-    let mut names: Vec<&'static str> = CONTROLS.iter().map(|c| c.cli).collect();
-    names.dedup();
-    let mut seen = Vec::new();
-    names.retain(|n| {
-        let new = !seen.contains(n);
-        seen.push(*n);
-        new
-    });
-    names
 }
 
 #[derive(Args, Debug)]
@@ -346,11 +334,7 @@ pub fn run(a: &BaselineArgs) -> anyhow::Result<ExitCode> {
             "--script {} on preset `{}`: not a control of its task ({}); its scripts are {}",
             a.script,
             a.scenarios.preset,
-            if task == TaskKind::Place {
-                "place"
-            } else {
-                "lift"
-            },
+            task.name(),
             controls::control_names(task).join(", ")
         );
     };

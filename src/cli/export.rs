@@ -10,7 +10,7 @@ use clap::Args;
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::episode::Outcome;
 use fairgrasp_env::scenario::{Scenario, scenario_set};
-use fairgrasp_evaluate::compare::methods::{Method, SCRIPT_NAMES};
+use fairgrasp_evaluate::compare::methods::{Method, script_names, scripts_by_task};
 use fairgrasp_evaluate::export::{ExportError, export_episode};
 use fairgrasp_kinematics::Pose;
 use fairgrasp_planner::stream::check::peaks;
@@ -55,8 +55,10 @@ pub struct EpisodeArgs {
 pub struct ExportArgs {
     #[command(flatten)]
     pub episode: EpisodeArgs,
-    /// The script that grasps [default: open_loop, unless --policy].
-    #[arg(long, conflicts_with = "policy", value_parser = clap::builder::PossibleValuesParser::new(SCRIPT_NAMES))]
+    // Its help (`method_help`) lists each task's scripts from the planner's table; clap accepts
+    // any of the table's names, and the preset's task picks the control.
+    #[arg(long, conflicts_with = "policy", help = method_help(), hide_possible_values = true,
+          value_parser = clap::builder::PossibleValuesParser::new(script_names()))]
     method: Option<String>,
     /// The policy that grasps, as every command takes one: a shipped policy by name
     /// (residual_nudged, pure_full, …), a policy folder (assets/policies/residual_nudged), a
@@ -87,6 +89,15 @@ pub struct ExportArgs {
     out: PathBuf,
     #[command(flatten)]
     output: OutputArgs,
+}
+
+/// `--method`'s help: each task's scripts by name (the planner's table, [`scripts_by_task`]).
+fn method_help() -> String {
+    format!(
+        "The script that grasps, a control of the preset's task by name ({}) [default: open_loop, \
+         unless --policy]",
+        scripts_by_task()
+    )
 }
 
 /// Where an episode happens, flags parsed (angles in radians); `None`: not given.
@@ -186,7 +197,7 @@ pub fn run(a: &ExportArgs) -> anyhow::Result<ExitCode> {
         (None, Some(p)) => p.clone(),
         (None, None) => "open_loop".into(),
     };
-    let method = Method::resolve(&name)?;
+    let method = Method::resolve(&name, chosen.config.task.kind)?;
     let model = fairgrasp_env::cell::Cell::from_config(&chosen.config).model;
     let limits = StreamLimits::of(&model);
     let hold_samples = (a.hold / a.period).round() as usize;

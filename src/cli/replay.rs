@@ -10,9 +10,8 @@ use std::process::ExitCode;
 use anyhow::{Context, bail};
 use clap::Args;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_evaluate::compare::methods::Method;
+use fairgrasp_evaluate::compare::methods::{Method, numbered, scripts_by_task};
 use fairgrasp_evaluate::compare::record::record_episodes;
-use fairgrasp_evaluate::compare::{LearnedPolicy, scripts_for};
 use fairgrasp_report::replay3d::{self, ReplayEpisode};
 use fairgrasp_types::ArmSimulation;
 
@@ -20,12 +19,8 @@ use super::baseline::preset_config;
 
 #[derive(Args, Debug)]
 pub struct ReplayArgs {
-    /// What acts: a script (open_loop, closed_loop, oracle, calibrated), or a policy as every
-    /// command takes one: a shipped policy by name (residual_hard, pure_full, …), a policy folder
-    /// (assets/policies/pure_full), a checkpoint folder (…/checkpoint) or a run folder (its
-    /// checkpoints/best). Repeat the flag to run several on the same scenario (shown side by side
-    /// in the page).
-    #[arg(long = "policy", value_name = "P", required = true)]
+    // Its help (`policy_help`) lists each task's scripts from the planner's table.
+    #[arg(long = "policy", value_name = "P", required = true, help = policy_help())]
     policies: Vec<String>,
     /// Preset name or a .toml env config.
     #[arg(long, default_value = "sector", value_parser = super::args::preset)]
@@ -49,6 +44,19 @@ pub struct ReplayArgs {
     /// into a Rerun .rrd. An existing file is replaced only if it is such a JSON.
     #[arg(long, value_name = "FILE.json")]
     json: Option<PathBuf>,
+}
+
+/// `--policy`'s help: what acts, each task's scripts by name (the planner's table of controls,
+/// [`scripts_by_task`]) and the learned policies.
+fn policy_help() -> String {
+    format!(
+        "What acts: a script, a control of the preset's task by name ({}), or a policy as every \
+         command takes one: a shipped policy by name (residual_hard, pure_full, …), a policy \
+         folder (assets/policies/pure_full), a checkpoint folder (…/checkpoint) or a run folder \
+         (its checkpoints/best). Repeat the flag to run several on the same scenario (shown side \
+         by side in the page).",
+        scripts_by_task()
+    )
 }
 
 pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
@@ -79,22 +87,13 @@ pub fn run(a: &ReplayArgs) -> anyhow::Result<ExitCode> {
         preset_config(&a.preset, a.arm).with_context(|| format!("preset `{}`", a.preset))?;
     let scenarios = scenario_set(&config, a.seed, a.episode + 1)
         .with_context(|| format!("preset `{}`: drawing scenario {}", a.preset, a.episode))?;
-    let scripts = scripts_for([&config]);
-    let mut learned: Vec<LearnedPolicy> = Vec::new();
-    let mut methods = Vec::new();
-    let mut names = Vec::new();
-    for p in &a.policies {
-        let method = Method::resolve(p)?;
-        method.check_task(&config)?;
-        names.push(method.name());
-        match method {
-            Method::Script(i) => methods.push(i),
-            Method::Learned(l) => {
-                methods.push(scripts.len() + learned.len());
-                learned.push(*l);
-            }
-        }
-    }
+    let resolved = a
+        .policies
+        .iter()
+        .map(|p| Method::resolve(p, config.task.kind))
+        .collect::<Result<Vec<_>, _>>()?;
+    let names: Vec<String> = resolved.iter().map(Method::name).collect();
+    let (methods, scripts, learned) = numbered(resolved);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let recordings = record_episodes(
         &config,

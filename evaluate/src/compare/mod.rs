@@ -1,8 +1,8 @@
-//! The comparison experiment: the scripts (open-loop baseline, closed-loop script, oracle) and
-//! learned policies on identical seeded scenario sets, one scenario recorded for every method,
-//! and the typed result that `compare.json` holds ([`fairgrasp_types::Comparison`]). Scripts are
-//! the results without a policy folder; the report pairs every learned method with every script
-//! (McNemar, [`fairgrasp_types::paired`]).
+//! The comparison experiment: the task's scripts (its controls in the planner's table,
+//! [`fairgrasp_planner::controls::CONTROLS`]) and learned policies on identical seeded scenario
+//! sets, one scenario recorded for every method, and the typed result that `compare.json` holds
+//! ([`fairgrasp_types::Comparison`]). Scripts are the results without a policy folder; the
+//! report pairs every learned method with every script (McNemar, [`fairgrasp_types::paired`]).
 //!
 //! The CLI (`fairgrasp compare`) parses arguments, calls [`run_comparison`], writes the files and
 //! prints; tests call [`run_comparison`] directly.
@@ -10,7 +10,8 @@
 //! - [`policies`]: the methods as policies (the task's scripts, then the learned policies).
 //! - [`error`]: why a comparison could not run; [`event`]: its progress, for progress bars.
 //! - [`record`]: recording every method on chosen scenarios (the charts' episode, the replay's).
-//! - [`methods`]: a method named on the command line (`fairgrasp replay --policy`).
+//! - [`methods`]: a method named on the command line (`fairgrasp replay --policy`, `export
+//!   --method`): a control of the preset's task by name, or a learned policy.
 //! - [`spec`]: what a comparison runs, and the default presets.
 //! - `schedule`: the evaluations as one queue of episodes shared by the worker threads.
 
@@ -25,8 +26,8 @@ pub mod tuning;
 
 pub use error::CompareError;
 pub use event::CompareEvent;
-pub use policies::{BASELINE, LearnedPolicy, PLACE_SCRIPTS, SCRIPTS, run_folder_of, scripts_for};
-pub(crate) use policies::{calibration_of, make_policy};
+pub(crate) use policies::calibration_of;
+pub use policies::{LearnedPolicy, run_folder_of, scripts_for};
 pub use spec::{
     ComparePreset, CompareSpec, DEFAULT_PRESETS, DEFAULT_REPLAY_EPISODES, MAX_THREADS,
     default_threads,

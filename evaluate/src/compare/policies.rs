@@ -1,6 +1,6 @@
-//! The methods a comparison runs, as policies: the task's scripts first ([`scripts_for`]),
-//! then the learned policies loaded from their checkpoint folders ([`LearnedPolicy`]);
-//! `make_policy` builds a fresh policy of method `i`.
+//! The methods a comparison runs, as policies: the task's scripts first ([`scripts_for`], rows
+//! of the planner's table of controls), then the learned policies loaded from their checkpoint
+//! folders ([`LearnedPolicy`]); `make_policy` builds a fresh policy of method `i`.
 
 use std::path::{Path, PathBuf};
 
@@ -13,39 +13,12 @@ use crate::compare::error::CompareError;
 use fairgrasp_policy::actor::Actor;
 use fairgrasp_policy::checkpoint::{self, CheckpointMeta, actor_policy};
 
-/// The name of the scripted baseline (the open-loop script) in every comparison.
-pub const BASELINE: &str = "scripted baseline";
-
-/// The scripts every comparison runs first, in order: the open-loop baseline, the closed-loop
-/// script (re-plans on the observed cube, retries once), the oracle (the closed loop on the
-/// true pose: the ceiling), the open-loop script after a simulated camera calibration (the
-/// engineer's fix for a miscalibrated cell, [`fairgrasp_planner::calibrated`]) and the
-/// open-loop script with the grip tuned for the cell (the contact family's control,
-/// [`fairgrasp_planner::tuned_grip`]; the open-loop script where the preset tunes none).
-pub const SCRIPTS: [&str; 5] = [
-    BASELINE,
-    "closed-loop script",
-    "oracle script",
-    "script + calibration",
-    "script + tuned grip",
-];
-
-/// The place task's scripts, in order: the open-loop place script, the same with the
-/// force-guided search, tuned on training scenarios, in place of its lower
-/// ([`fairgrasp_planner::place_search`]), and both in closed loop (the cube re-observed in the
-/// hand before the place is planned, `ScriptedPlace::reobserving`).
-pub const PLACE_SCRIPTS: [&str; 4] = [
-    "place script",
-    "place script + force search",
-    "closed-loop place",
-    "closed-loop place + force search",
-];
-
 /// The controls a comparison of `configs` (presets of one task) runs first: the task's controls
-/// ([`fairgrasp_planner::controls::CONTROLS`]) that any of the presets runs by default, in the
-/// table's order ([`SCRIPTS`] for the lift task, [`PLACE_SCRIPTS`] and, with a place cell's
-/// mix, its controls). Method `i` of a comparison is control `i` while `i` is below their
-/// number, then the learned policies in order (`make_policy`).
+/// in the planner's table ([`fairgrasp_planner::controls::CONTROLS`], the one list of every
+/// task's scripts) that any of the presets runs by default ([`Control::in_compare`]), in the
+/// table's order. Each is shown under its [`Control::report`] name. Method `i` of a comparison
+/// is control `i` while `i` is below their number, then the learned policies in order
+/// (`make_policy`).
 pub fn scripts_for<'a>(configs: impl IntoIterator<Item = &'a EnvConfig>) -> Vec<&'static Control> {
     let configs: Vec<&EnvConfig> = configs.into_iter().collect();
     let Some(task) = configs.first().map(|c| c.task.kind) else {
@@ -91,6 +64,11 @@ impl LearnedPolicy {
         }
         Ok(out)
     }
+
+    /// A fresh policy of this learned method for `config`: its actor, run without burn.
+    pub fn policy(&self, config: &EnvConfig) -> Box<dyn Policy> {
+        Box::new(actor_policy(&self.meta, &self.actor, config))
+    }
 }
 
 /// A unit enum's serde name (`Mode::Residual` → `residual`).
@@ -123,10 +101,7 @@ pub(crate) fn make_policy(
 ) -> Box<dyn Policy> {
     match scripts.get(i) {
         Some(control) => (control.build)(config, calibration),
-        None => {
-            let l = &learned[i - scripts.len()];
-            Box::new(actor_policy(&l.meta, &l.actor, config))
-        }
+        None => learned[i - scripts.len()].policy(config),
     }
 }
 
@@ -144,20 +119,52 @@ pub(crate) fn calibration_of(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fairgrasp_env::TaskKind;
 
-    /// The name lists are the table's names, in its order (they are not a second list of the
-    /// controls to keep in step: a control added to the table and not here fails this).
+    fn reports(configs: &[&EnvConfig]) -> Vec<&'static str> {
+        scripts_for(configs.iter().copied())
+            .iter()
+            .map(|c| c.report)
+            .collect()
+    }
+
+    /// A comparison runs the scripts it ran when evaluate kept its own lists of them, in the
+    /// same order and under the same names (compare.csv's method column): the lift task's five,
+    /// the place task's four, and with a place cell's mix its three more; presets of one task
+    /// together run every script any of them runs.
     #[test]
-    fn the_script_names_are_the_tables() {
-        let names = |task| controls_of(task).map(|c| c.report).collect::<Vec<_>>();
-        assert_eq!(names(TaskKind::Lift), SCRIPTS.to_vec());
-        assert_eq!(names(TaskKind::Place)[..PLACE_SCRIPTS.len()], PLACE_SCRIPTS);
-        // A place preset without a mix runs the four; the place cell adds its three.
-        let place = fairgrasp_env::config::presets::load("place").unwrap();
-        let cell = fairgrasp_env::config::presets::load("place_cell").unwrap();
-        assert_eq!(scripts_for([&place]).len(), PLACE_SCRIPTS.len());
-        assert_eq!(scripts_for([&cell]).len(), PLACE_SCRIPTS.len() + 3);
-        assert_eq!(scripts_for([&place, &cell]).len(), PLACE_SCRIPTS.len() + 3);
+    fn a_comparison_runs_its_tasks_scripts_in_the_tables_order() {
+        let load = |name| fairgrasp_env::config::presets::load(name).unwrap();
+        let (sector, place, cell) = (load("sector"), load("place"), load("place_cell"));
+        assert_eq!(
+            reports(&[&sector]),
+            [
+                "scripted baseline",
+                "closed-loop script",
+                "oracle script",
+                "script + calibration",
+                "script + tuned grip",
+            ]
+        );
+        let place_scripts = [
+            "place script",
+            "place script + force search",
+            "closed-loop place",
+            "closed-loop place + force search",
+        ];
+        assert_eq!(reports(&[&place]), place_scripts);
+        let mut with_mix = place_scripts.to_vec();
+        with_mix.extend([
+            "squaring + force search",
+            "force search, switch",
+            "force search, oracle switch (ceiling)",
+        ]);
+        assert_eq!(reports(&[&cell]), with_mix);
+        assert_eq!(reports(&[&place, &cell]), with_mix);
+        assert!(
+            scripts_for([&cell])
+                .iter()
+                .all(|c| c.task == cell.task.kind)
+        );
+        assert!(scripts_for([]).is_empty());
     }
 }

@@ -17,7 +17,8 @@ use fairgrasp_planner::controls::Control;
 
 /// One recorded episode: method index, scenario index, outcome and trajectory.
 pub struct Recording {
-    /// Index of the method ([`crate::compare::SCRIPTS`], then the learned policies).
+    /// Number of the method: an index into the scripts, then into the learned policies
+    /// (`make_policy`'s numbering).
     pub method: usize,
     /// Index of the scenario in the preset's set.
     pub scenario: usize,
