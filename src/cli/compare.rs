@@ -1,7 +1,7 @@
 //! `fairgrasp compare`: the baseline and learned policies on identical seeded scenario sets,
 //! with the table, compare.csv/json, charts, replays and the notebook in one folder.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
@@ -10,9 +10,10 @@ use fairgrasp_env::TaskKind;
 use fairgrasp_env::config::presets;
 use fairgrasp_evaluate::compare::{
     ComparePreset, CompareSpec, DEFAULT_REPLAY_EPISODES, LearnedPolicy, default_threads,
-    run_comparison,
+    run_comparison, run_folder_of,
 };
 use fairgrasp_evaluate::tune::fragment;
+use fairgrasp_policy::recipe::{EnvFor, Recipe};
 use fairgrasp_policy::shipped;
 use fairgrasp_report::comparison_folder::write_comparison_folder;
 use fairgrasp_report::comparison_table;
@@ -35,7 +36,8 @@ pub struct CompareArgs {
     /// policy folder (assets/policies/NAME), a checkpoint folder or a run folder (its
     /// checkpoints/best), or `all` for every shipped policy (the specialists too; all but the
     /// pitfall exhibit pure_hard). Default: the shipped generalist residual
-    /// (residual_generalist) and pure PPO (pure_full); on place presets none unless named.
+    /// (residual_generalist) and pure PPO (pure_full) where the presets' task is the one they
+    /// were trained on (lift); on place presets none unless named.
     /// Every comparison also runs the task's scripts: for lift the open-loop baseline, the
     /// closed-loop script, the oracle, the open-loop script after a simulated camera
     /// calibration and the open-loop script with the grip tuned for the preset; for place the
@@ -89,10 +91,19 @@ pub struct CompareArgs {
     verbose: bool,
 }
 
-/// The checkpoint folders `--policy` names (the default pair when none is given).
-fn policy_folders(names: &[String]) -> anyhow::Result<Vec<PathBuf>> {
+/// The checkpoint folders `--policy` names; when none is given, the shipped policies compared
+/// by default ([`shipped::default_compare_policies`]) that were trained on `task`, the presets'
+/// task (none when `task` is `None`: the first preset did not load). The shipped policies are
+/// all the lift task's, so a place comparison runs its scripts alone unless policies are named.
+fn policy_folders(names: &[String], task: Option<TaskKind>) -> anyhow::Result<Vec<PathBuf>> {
     if names.is_empty() {
-        return Ok(shipped::default_compare_policies()?);
+        let mut dirs = Vec::new();
+        for dir in shipped::default_compare_policies()? {
+            if Some(trained_task(&dir)?) == task {
+                dirs.push(dir);
+            }
+        }
+        return Ok(dirs);
     }
     let mut dirs = Vec::new();
     for name in names {
@@ -105,6 +116,27 @@ fn policy_folders(names: &[String]) -> anyhow::Result<Vec<PathBuf>> {
         }
     }
     Ok(dirs)
+}
+
+/// The task a learned policy was trained on: that of its recipe's first preset (the run's
+/// `config.toml`, which a shipped policy's folder holds beside its checkpoint folder).
+fn trained_task(checkpoint: &Path) -> anyhow::Result<TaskKind> {
+    let run = run_folder_of(checkpoint).with_context(|| {
+        format!(
+            "{}: no run folder (metrics.csv) holds this checkpoint, so its training recipe is \
+             unknown",
+            checkpoint.display()
+        )
+    })?;
+    let path = run.join("config.toml");
+    let what = || format!("{}: the policy's training recipe", path.display());
+    let recipe = Recipe::from_toml_file(&path).with_context(what)?;
+    let envs = recipe
+        .env_configs(EnvFor::Evaluation)
+        .map_err(anyhow::Error::msg)
+        .with_context(what)?;
+    let first = envs.first().with_context(what)?;
+    Ok(first.task.kind)
 }
 
 /// Reads each tuned fragment into the preset it was tuned on (one of `presets`).
@@ -137,14 +169,9 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<ExitCode> {
     } else {
         a.presets.clone()
     };
-    // The shipped policies are the lift task's: a place comparison runs its scripts alone
-    // unless policies are named.
-    let lift = presets::load(&names[0]).is_ok_and(|c| c.task.kind == TaskKind::Lift);
-    let policy_paths = if lift || !a.policies.is_empty() {
-        policy_folders(&a.policies)?
-    } else {
-        Vec::new()
-    };
+    // A preset that does not load is refused below, naming it.
+    let task = presets::load(&names[0]).ok().map(|c| c.task.kind);
+    let policy_paths = policy_folders(&a.policies, task)?;
     let mut presets = names
         .iter()
         .map(|p| {
