@@ -11,6 +11,8 @@
 //!   lower in the engineer's control; [`place_square`]: squaring a tilted cube on the table
 //!   before it; [`place_residual`]: [`PlaceResidual`], what a residual
 //!   policy corrects that search through.
+//! - [`stack`]: the stack task's controls (the place script set down on a second cube) and its
+//!   residual interface.
 //! - [`oracle_switch`]: [`oracle_switch::OracleSwitch`], the switching search told each cycle's
 //!   family: the place cell's ceiling, not a control.
 //! - [`closed_loop`]: [`ClosedLoopGrasp`], the closed-loop script (re-plans, retries once) and
@@ -44,6 +46,7 @@ pub mod place_residual;
 pub mod place_search;
 pub mod place_square;
 pub mod residual;
+pub mod stack;
 pub mod stream;
 pub mod task_residual;
 pub mod tasks;

@@ -89,6 +89,9 @@ pub struct ScriptedPlace {
     step_dt: f64,
     cube_size: f64,
     grasp_height: f64,
+    /// Where the cube's bottom goes, above the fixture's origin on the table top \[m\]: 0 on
+    /// the pocket's floor, a cube's edge on a second cube ([`ScriptedPlace::onto`]).
+    seat_height: f64,
     phase: PlacePhase,
     steps_in_phase: usize,
     /// Carry (above the pocket), place and retreat joints, once planned.
@@ -124,7 +127,15 @@ pub struct ScriptedPlace {
 impl ScriptedPlace {
     /// The place script for the env `env` (its `[task.place]`).
     pub fn new(env: &EnvConfig) -> Self {
-        let grasp_height = env.task.place.grasp_height;
+        let place = &env.task.place;
+        Self::onto(env, 0.0, place.grasp_height, place.wall_height)
+    }
+
+    /// The same script setting the cube down on a seat `seat_height` \[m\] above the fixture's
+    /// origin on the table top (0: the pocket's floor; the stack task's second cube: its edge),
+    /// the cube held `grasp_height` \[m\] above its centre, beside walls `wall_height` \[m\]
+    /// high (the search's rim; 0: none).
+    pub fn onto(env: &EnvConfig, seat_height: f64, grasp_height: f64, wall_height: f64) -> Self {
         let config = BaselineConfig {
             grasp_height,
             ..BaselineConfig::default()
@@ -141,6 +152,7 @@ impl ScriptedPlace {
             step_dt: env.physics.dt * env.physics.substeps as f64,
             cube_size: env.scene.cube_size,
             grasp_height,
+            seat_height,
             phase: PlacePhase::Grasp,
             steps_in_phase: 0,
             targets: None,
@@ -148,7 +160,7 @@ impl ScriptedPlace {
             gave_up: None,
             search_params: None,
             search: None,
-            wall_height: env.task.place.wall_height,
+            wall_height,
             planned_fixture: None,
             correction: TaskCorrection::ZERO,
             modulation: Modulation::NONE,
@@ -188,10 +200,13 @@ impl ScriptedPlace {
     /// The place script with the force-guided search ([`crate::place_search`]) in place of the
     /// open-loop lower.
     pub fn with_search(env: &EnvConfig, params: SearchParams) -> Self {
-        Self {
-            search_params: Some(params),
-            ..Self::new(env)
-        }
+        Self::new(env).searching(params)
+    }
+
+    /// The same script with the force-guided search `params` in place of the open-loop lower.
+    pub fn searching(mut self, params: SearchParams) -> Self {
+        self.search_params = Some(params);
+        self
     }
 
     /// The same script in closed loop: after the lift it looks at the cube in the hand again
@@ -251,7 +266,7 @@ impl ScriptedPlace {
         let up = self.mount.table_in_base.transform_vector([
             0.0,
             0.0,
-            0.5 * self.cube_size + DROP_HEIGHT + self.grasp_height,
+            self.seat_height + 0.5 * self.cube_size + DROP_HEIGHT + self.grasp_height,
         ]);
         let mut target = GraspTarget {
             object: [0, 1, 2].map(|i| fixture.position[i] + up[i]),

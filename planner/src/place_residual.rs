@@ -98,16 +98,31 @@ impl PlaceResidual {
     /// The search tuned for the env `env`'s family (its `[task.place.search]`) and
     /// [`place_limits`].
     pub fn new(env: &EnvConfig) -> Self {
-        let params = env.task.place.search;
+        let place = &env.task.place;
+        let params = place.search;
+        let script = ScriptedPlace::with_search(env, params);
+        Self::over(env, script, params, place.wall_height, place.takt)
+    }
+
+    /// The residual interface over `script`, a place script searching with `params` beside
+    /// walls `wall_height` \[m\] high, on a cell whose takt is `takt` \[s\] (the stack task's,
+    /// [`crate::stack`]), with [`place_limits`].
+    pub fn over(
+        env: &EnvConfig,
+        script: ScriptedPlace,
+        params: SearchParams,
+        wall_height: f64,
+        takt: f64,
+    ) -> Self {
         Self {
-            script: ScriptedPlace::with_search(env, params),
+            script,
             params,
             limits: place_limits(),
             mount: Cell::from_config(env).mount,
-            wall_height: env.task.place.wall_height,
+            wall_height,
             step_dt: env.physics.dt * env.physics.substeps as f64,
             steps: 0,
-            takt: env.task.place.takt,
+            takt,
         }
     }
 

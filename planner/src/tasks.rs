@@ -8,7 +8,8 @@ use crate::task_residual::TaskResidual;
 use crate::{PlaceResidual, ResidualScript};
 
 /// The residual interface of `env`'s task: the lift script (with the squeeze if `squeeze`), or
-/// the place task's force-guided search (which has no squeeze; `squeeze` is ignored).
+/// the place task's force-guided search, the stack task's force lower (neither has a squeeze;
+/// `squeeze` is ignored there).
 pub fn task_residual(env: &EnvConfig, squeeze: bool) -> Box<dyn TaskResidual> {
     match env.task.kind {
         TaskKind::Lift => {
@@ -16,5 +17,6 @@ pub fn task_residual(env: &EnvConfig, squeeze: bool) -> Box<dyn TaskResidual> {
             Box::new(if squeeze { r.squeezing(env) } else { r })
         }
         TaskKind::Place => Box::new(PlaceResidual::new(env)),
+        TaskKind::Stack => Box::new(crate::stack::residual(env)),
     }
 }

@@ -7,7 +7,7 @@ use std::path::Path;
 use fairgrasp_env::{ConfigError, TaskKind};
 
 /// Name (the file's stem) and text of every shipped recipe, in name order.
-pub const SHIPPED: [(&str, &str); 14] = [
+pub const SHIPPED: [(&str, &str); 15] = [
     (
         "joint_residual_nudged",
         include_str!("../../assets/experiments/joint_residual_nudged.toml"),
@@ -59,6 +59,10 @@ pub const SHIPPED: [(&str, &str); 14] = [
     (
         "residual_place_tilted",
         include_str!("../../assets/experiments/residual_place_tilted.toml"),
+    ),
+    (
+        "residual_stack",
+        include_str!("../../assets/experiments/residual_stack.toml"),
     ),
     (
         "residual_wrist_camera",

@@ -1,7 +1,8 @@
 //! Named configurations: `fixed`, `sector`, `wide`, `full`, `hard` and the scenario families
 //! `miscalibrated`, `miscalibrated_b`, `wrist_camera`, `nudged` (`env/src/scenario/<family>/`)
 //! the contact family `heavy_slippery` and the place task's `place`, `place_grasp_error`,
-//! `place_fixture_error`, `place_tilted` and the mix of the three, `place_cell`, shipped as TOML files in
+//! `place_fixture_error`, `place_tilted` and the mix of the three, `place_cell`, and the stack
+//! task's `stack` and `stack_camera_error`, shipped as TOML files in
 //! `assets/configs/` and built into the binary, so `--preset NAME` works from any folder.
 //!
 //! A preset that was renamed keeps its old name as an alias ([`RENAMED_PRESETS`]): every
@@ -12,7 +13,7 @@ use crate::config::EnvConfig;
 use crate::config::validate::ConfigError;
 
 /// Every preset: name, TOML text, one-line description.
-pub const PRESETS: [(&str, &str, &str); 15] = [
+pub const PRESETS: [(&str, &str, &str); 17] = [
     (
         "fixed",
         include_str!("../../../assets/configs/fixed.toml"),
@@ -87,6 +88,16 @@ pub const PRESETS: [(&str, &str, &str); 15] = [
         "place_cell",
         include_str!("../../../assets/configs/place_cell.toml"),
         "a real place cell: each cycle one family's error (fixture pose, grasp, tilt in the grip), unlabelled, a third each; wall friction drawn; 20 s takt",
+    ),
+    (
+        "stack",
+        include_str!("../../../assets/configs/stack.toml"),
+        "the stack task: set the cube down squarely on a second cube, drawn per scenario; no perception error",
+    ),
+    (
+        "stack_camera_error",
+        include_str!("../../../assets/configs/stack_camera_error.toml"),
+        "stack with the second cube seen off by N(0, 3 mm), N(0, 1.5°) (the camera's errors)",
     ),
 ];
 

@@ -8,8 +8,11 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::config::error::ConfigError;
 use crate::config::reward::{DistanceReward, StagedReward};
-use crate::task::place::settings::PlaceConfig;
+use crate::scenario::fixture::settings::{FixtureBox, FixtureSite};
+use crate::task::place::settings::{PlaceConfig, check_place};
+use crate::task::stack::settings::{StackConfig, check_stack};
 
 /// Which task an env runs (`[task] kind`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -20,17 +23,21 @@ pub enum TaskKind {
     Lift,
     /// Grasp the cube, carry it and seat it in the fixture's pocket, release it, move clear.
     Place,
+    /// Grasp the cube, carry it and set it down squarely on a second cube, release it, move
+    /// clear.
+    Stack,
 }
 
 impl TaskKind {
     /// Every task, in the order the docs and `--help` list them.
-    pub const ALL: [TaskKind; 2] = [TaskKind::Lift, TaskKind::Place];
+    pub const ALL: [TaskKind; 3] = [TaskKind::Lift, TaskKind::Place, TaskKind::Stack];
 
     /// What the env's shared code reads of the task (its [`TaskSpec`], registered here).
     pub fn spec(self) -> &'static TaskSpec {
         match self {
             TaskKind::Lift => &LIFT,
             TaskKind::Place => &PLACE,
+            TaskKind::Stack => &STACK,
         }
     }
 
@@ -48,14 +55,24 @@ impl TaskKind {
 pub struct TaskSpec {
     /// Its name in a preset's `[task] kind` and in messages.
     pub name: &'static str,
-    /// Does the scene hold the fixture (`[task.place]`'s pocket, a fixed body the cube goes
-    /// into), drawn per scenario?
-    pub fixture: bool,
+    /// Where the task's fixture stands and how it is seen, from the task's settings, for a
+    /// cube of edge `cube_size` \[m\] (`None`: the scene has no fixture). The fixture is a
+    /// fixed body the cube goes onto or into, drawn per scenario (`env/src/scenario/fixture/`).
+    pub site: fn(&TaskConfig, f64) -> Option<FixtureSite>,
+    /// The fixture's boxes in its frame, for a cube of edge `cube_size` \[m\] (empty without
+    /// a fixture).
+    pub fixture_boxes: fn(&TaskConfig, f64) -> Vec<FixtureBox>,
+    /// The fixture's name in a recorded trajectory's shapes (`<name>_<k>` for box `k`).
+    pub fixture_part: &'static str,
     /// `None` if the task can pay the staged reward (reach, grasp, lift); else why not (the
     /// refusal's rule for `task.reward = "staged"`).
     pub refuses_staged_reward: Option<&'static str>,
     /// The takt the task runs on \[s\], from its settings (`None`: no takt).
     pub takt: fn(&TaskConfig) -> Option<f64>,
+    /// Refuses the task's own settings (`[task.<name>]`) where one cannot mean what it says,
+    /// for a cube of edge `cube_size` \[m\], naming the field. Every task's settings are checked,
+    /// whichever task a preset runs (a file is valid or not as a whole).
+    pub check: fn(&TaskConfig, f64) -> Result<(), ConfigError>,
     /// The shipped recipe (`assets/experiments/<name>.toml`) a task-space residual trains with
     /// on the task's presets that have no recipe of their own.
     pub residual_recipe: &'static str,
@@ -64,7 +81,10 @@ pub struct TaskSpec {
 /// The lift task to the shared code: no fixture, the staged reward (written for it), no takt.
 const LIFT: TaskSpec = TaskSpec {
     name: "lift",
-    fixture: false,
+    site: |_, _| None,
+    fixture_boxes: |_, _| Vec::new(),
+    fixture_part: "",
+    check: |_, _| Ok(()),
     refuses_staged_reward: None,
     takt: |_| None,
     residual_recipe: "residual_miscalibrated",
@@ -74,12 +94,30 @@ const LIFT: TaskSpec = TaskSpec {
 /// reward only; its takt `[task.place] takt`.
 const PLACE: TaskSpec = TaskSpec {
     name: "place",
-    fixture: true,
+    site: |task, _| Some(task.place.site()),
+    fixture_boxes: |task, cube_size| task.place.wall_boxes(cube_size),
+    fixture_part: "fixture_wall",
+    check: |task, cube_size| check_place(&task.place, cube_size),
     refuses_staged_reward: Some(
         "the staged reward is the lift task's (reach, grasp, lift): with task.kind = \"place\" use \"distance\"",
     ),
     takt: |task| Some(task.place.takt),
     residual_recipe: "residual_place_grasp_error",
+};
+
+/// The stack task to the shared code: the second cube as the fixture, drawn per scenario; the
+/// distance reward only; its takt `[task.stack] takt`.
+const STACK: TaskSpec = TaskSpec {
+    name: "stack",
+    site: |task, cube_size| Some(task.stack.site(cube_size)),
+    fixture_boxes: |_, cube_size| StackConfig::base_boxes(cube_size),
+    fixture_part: "fixture_cube",
+    check: |task, cube_size| check_stack(&task.stack, cube_size),
+    refuses_staged_reward: Some(
+        "the staged reward is the lift task's (reach, grasp, lift): with task.kind = \"stack\" use \"distance\"",
+    ),
+    takt: |task| Some(task.stack.takt),
+    residual_recipe: "residual_stack",
 };
 
 /// The task, its success, reward and time limit.
@@ -90,6 +128,8 @@ pub struct TaskConfig {
     pub kind: TaskKind,
     /// The place task's fixture and seated criterion (used when `kind = "place"`).
     pub place: PlaceConfig,
+    /// The stack task's second cube and stacked criterion (used when `kind = "stack"`).
+    pub stack: StackConfig,
     /// Steps before the episode is truncated (the seed's 200).
     pub max_steps: usize,
     /// Lift above the resting height that counts as success \[m\].
@@ -159,6 +199,7 @@ impl Default for TaskConfig {
         Self {
             kind: TaskKind::Lift,
             place: PlaceConfig::default(),
+            stack: StackConfig::default(),
             max_steps: 200,
             lift_height: 0.03,
             terminate_on_collision: true,
@@ -181,6 +222,8 @@ pub struct TaskToml {
     pub kind: TaskKind,
     #[serde(skip_serializing_if = "is_default_place")]
     pub place: PlaceConfig,
+    #[serde(skip_serializing_if = "is_default_stack")]
+    pub stack: StackConfig,
     pub max_steps: usize,
     pub lift_height: f64,
     /// [`DistanceReward::success`].
@@ -212,6 +255,10 @@ fn is_default_place(place: &PlaceConfig) -> bool {
     *place == PlaceConfig::default()
 }
 
+fn is_default_stack(stack: &StackConfig) -> bool {
+    *stack == StackConfig::default()
+}
+
 impl Default for TaskToml {
     fn default() -> Self {
         TaskConfig::default().into()
@@ -223,6 +270,7 @@ impl From<TaskToml> for TaskConfig {
         TaskConfig {
             kind: t.kind,
             place: t.place,
+            stack: t.stack,
             max_steps: t.max_steps,
             lift_height: t.lift_height,
             terminate_on_collision: t.terminate_on_collision,
@@ -246,6 +294,7 @@ impl From<TaskConfig> for TaskToml {
         TaskToml {
             kind: t.kind,
             place: t.place,
+            stack: t.stack,
             max_steps: t.max_steps,
             lift_height: t.lift_height,
             success_reward: t.distance.success,

@@ -336,7 +336,9 @@ impl EnvConfig {
             Bounds::closed(-10.0, 0.0).unit("per step"),
             "(a cost; default 0)",
         )?;
-        crate::task::place::settings::check_place(&t.place, self.scene.cube_size)?;
+        for task in crate::config::TaskKind::ALL {
+            (task.spec().check)(t, self.scene.cube_size)?;
+        }
         if let Some(mix) = &t.place.mix {
             let (p, r) = (&t.place, &self.randomization);
             let drawn = [

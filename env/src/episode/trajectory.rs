@@ -223,18 +223,20 @@ fn scene_of(env: &GraspEnv, capsule_names: Vec<String>) -> TrajectoryScene {
     }
 }
 
-/// The place task's fixture walls, on the body after the robot's (none for the lift task).
+/// The task's fixture's boxes (the place task's walls, the stack task's second cube), on the
+/// body after the robot's (none for a task without a fixture).
 fn fixture_shapes(env: &GraspEnv) -> Vec<BodyShape> {
     if env.fixture_in_base().is_none() {
         return Vec::new();
     }
     let config = env.config();
     let body = body_names(env.model()).len();
-    crate::sim::fixture::wall_boxes(&config.task.place, config.scene.cube_size)
+    let spec = config.task.kind.spec();
+    (spec.fixture_boxes)(&config.task, config.scene.cube_size)
         .into_iter()
         .enumerate()
         .map(|(k, (half_extents, centre))| BodyShape {
-            name: format!("fixture_wall_{k}"),
+            name: format!("{}_{k}", spec.fixture_part),
             body,
             geometry: Geometry::Box {
                 centre,

@@ -125,12 +125,8 @@ impl Scenario {
             observed_yaw_error: 0.0,
             nudge: None,
             camera_offset: None,
-            fixture: config
-                .task
-                .kind
-                .spec()
-                .fixture
-                .then(|| FixturePose::fixed(config)),
+            fixture: (config.task.kind.spec().site)(&config.task, config.scene.cube_size)
+                .map(|site| FixturePose::fixed(&site)),
         }
     }
 
@@ -255,11 +251,12 @@ fn fixture_for(
     object_xy: [f64; 2],
     start_joints: &[f64; 6],
 ) -> Result<Option<FixturePose>, ()> {
-    if !config.task.kind.spec().fixture {
+    let Some(site) = (config.task.kind.spec().site)(&config.task, config.scene.cube_size) else {
         return Ok(None);
-    }
+    };
     draw_fixture(
         config,
+        &site,
         &cell.model,
         &cell.mount,
         seed,

@@ -1,31 +1,16 @@
-//! The place task's fixture: a square pocket of four walls standing on the table, one fixed
-//! body whose origin is the pocket's centre on the table top (z up along the world vertical).
-//! The pocket's floor is the table itself. Built once with the world; each episode moves it to
-//! the scenario's pose ([`crate::sim::Sim::place_fixture`]).
+//! A task's fixture: one fixed body of boxes standing on the table, its origin on the table top
+//! (z up along the world vertical) — the place task's square pocket of four walls (its floor is
+//! the table itself), the stack task's second cube. Its boxes are the task's
+//! ([`TaskSpec::fixture_boxes`](crate::config::task::TaskSpec::fixture_boxes)). Built once with
+//! the world; each episode moves it to the scenario's pose ([`crate::sim::Sim::place_fixture`]).
 
 use rapier3d::prelude::*;
 
-use crate::config::{EnvConfig, PlaceConfig};
+use crate::config::EnvConfig;
 use crate::sim::part::{ColliderParts, Part};
 
-/// The four walls' half extents and centres in the fixture frame \[m\]: two along x (which also
-/// close the corners) and two along y.
-pub fn wall_boxes(place: &PlaceConfig, cube_size: f64) -> [([f64; 3], [f64; 3]); 4] {
-    let h = place.pocket_half_side(cube_size);
-    let (t, z) = (place.wall_thickness, 0.5 * place.wall_height);
-    let across = h + 0.5 * t;
-    let long = [0.5 * t, h + t, z];
-    let short = [h, 0.5 * t, z];
-    [
-        (long, [across, 0.0, z]),
-        (long, [-across, 0.0, z]),
-        (short, [0.0, across, z]),
-        (short, [0.0, -across, z]),
-    ]
-}
-
-/// Inserts the fixture (a fixed body, its walls with the table's friction) at `pose` in the
-/// world, and records its colliders as [`Part::Fixture`].
+/// Inserts the fixture of the task of `config` (a fixed body, its boxes with the table's
+/// friction) at `pose` in the world, and records its colliders as [`Part::Fixture`].
 pub fn insert_fixture(
     world: &mut PhysicsWorld,
     parts: &mut ColliderParts,
@@ -33,7 +18,8 @@ pub fn insert_fixture(
     pose: Pose,
 ) -> RigidBodyHandle {
     let body = world.bodies.insert(RigidBodyBuilder::fixed().pose(pose));
-    for (half, centre) in wall_boxes(&config.task.place, config.scene.cube_size) {
+    let boxes = (config.task.kind.spec().fixture_boxes)(&config.task, config.scene.cube_size);
+    for (half, centre) in boxes {
         let wall = ColliderBuilder::cuboid(half[0] as f32, half[1] as f32, half[2] as f32)
             .translation(Vector::new(
                 centre[0] as f32,

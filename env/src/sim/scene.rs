@@ -8,6 +8,7 @@ use nalgebra::Isometry3;
 use rapier3d::prelude::*;
 
 use crate::config::{ArmSimulation, EnvConfig};
+use crate::scenario::fixture::settings::FixtureSite;
 use crate::sim::collision_filter::set_collision_groups;
 pub use crate::sim::convert::from_rapier;
 use crate::sim::convert::{to_rapier, vec3};
@@ -29,7 +30,7 @@ pub struct SceneHandles {
     pub table_collider: ColliderHandle,
     /// Multibody joint handles j1 … j6 (multibody arm only).
     pub arm_joints: Option<[MultibodyJointHandle; 6]>,
-    /// The place task's fixture (a fixed body; `None` for the lift task).
+    /// The task's fixture (a fixed body; `None` for a task without one).
     pub fixture: Option<RigidBodyHandle>,
     /// Which part each collider is.
     pub parts: ColliderParts,
@@ -210,8 +211,8 @@ pub fn build(
     let base_xy = base_in_world.xyz();
     let (table_collider, cube, cube_collider) =
         insert_table_and_cube(&mut world, &mut parts, config, base_xy, cube_pose);
-    let fixture = (config.task.kind.spec().fixture)
-        .then(|| insert_place_fixture(&mut world, &mut parts, config, base_xy));
+    let fixture = (config.task.kind.spec().site)(&config.task, config.scene.cube_size)
+        .map(|site| insert_fixture_at(&mut world, &mut parts, config, &site, base_xy));
     let dynamic = config.arm.model == ArmSimulation::Multibody;
     let links = insert_arm_links(&mut world, &mut parts, model, base_in_world, q, dynamic);
     let tool0 = base_in_world.iso * model.fk_flange(q).iso;
@@ -236,15 +237,16 @@ pub fn build(
     (world, handles)
 }
 
-/// The place task's fixture, at `task.place.fixture_xy` from the base at `base_xy` (world) until
-/// a scenario moves it.
-fn insert_place_fixture(
+/// The task's fixture, at its site's `xy` from the base at `base_xy` (world) until a scenario
+/// moves it.
+fn insert_fixture_at(
     world: &mut PhysicsWorld,
     parts: &mut ColliderParts,
     config: &EnvConfig,
+    site: &FixtureSite,
     base_xy: [f64; 3],
 ) -> RigidBodyHandle {
-    let p = config.task.place.fixture_xy;
+    let p = site.xy;
     let s = &config.scene;
     let at = Isometry3::translation(p[0] + base_xy[0], p[1] + base_xy[1], s.table_height);
     crate::sim::fixture::insert_fixture(world, parts, config, to_rapier(&at))

@@ -32,7 +32,15 @@ pub fn tcp_object_distance(s: &TaskState) -> f64 {
         .sqrt()
 }
 
-/// The facts about the cube and the fixture a place step is judged on (world frame, \[m\]).
+/// Released and clear: neither pad on the object and the TCP at least `clear_height` \[m\]
+/// above its top (how a task that sets the cube down ends: place, stack).
+pub fn released_and_clear(s: &TaskState, clear_height: f64) -> bool {
+    let top = s.object[2] + 0.5 * s.object_size;
+    !s.pad_contact[0] && !s.pad_contact[1] && s.tcp[2] - top >= clear_height
+}
+
+/// The facts about the cube and the fixture a step of a task with a fixture (place, stack) is
+/// judged on (world frame, \[m\]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlaceFacts {
     /// The cube's centre in the fixture frame (x, y along its walls) \[m\].

@@ -147,7 +147,7 @@ pub const GRIP: [Param; 1] = [Param {
 }];
 
 /// Every control of every task, each task's in the order a comparison shows them.
-pub const CONTROLS: [Control; 12] = [
+pub const CONTROLS: [Control; 14] = [
     Control {
         cli: "open_loop",
         report: "scripted baseline",
@@ -288,6 +288,28 @@ pub const CONTROLS: [Control; 12] = [
         set: set_switch,
         build: |env, _| Box::new(OracleSwitch::new(env)),
         in_compare: has_mix,
+    },
+    Control {
+        cli: "open_loop",
+        report: "stack script",
+        task: TaskKind::Stack,
+        params: &[],
+        table: None,
+        values: no_values,
+        set: set_nothing,
+        build: |env, _| Box::new(crate::stack::open_loop(env)),
+        in_compare: always,
+    },
+    Control {
+        cli: "force_lower",
+        report: "stack script + force lower",
+        task: TaskKind::Stack,
+        params: &[],
+        table: None,
+        values: no_values,
+        set: set_nothing,
+        build: |env, _| Box::new(crate::stack::force_lower(env)),
+        in_compare: always,
     },
 ];
 

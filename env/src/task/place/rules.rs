@@ -2,7 +2,7 @@
 //! released, the arm clear. Its settings are `[task.place]` ([`crate::config::PlaceConfig`]).
 
 use crate::config::PlaceConfig;
-use crate::task::state::{PlaceFacts, TaskState};
+use crate::task::state::{PlaceFacts, TaskState, released_and_clear};
 
 /// Seated: the cube's centre inside the pocket, its bottom on the table (the pocket's floor)
 /// and standing on a face: then it is between the walls, which a cube on the floor can only be
@@ -17,8 +17,7 @@ pub fn is_seated(f: &PlaceFacts, object_size: f64, p: &PlaceConfig) -> bool {
 /// Released and clear: neither pad on the cube and the TCP at least `clear_height` above its
 /// top.
 pub fn is_clear(s: &TaskState, p: &PlaceConfig) -> bool {
-    let top = s.object[2] + 0.5 * s.object_size;
-    !s.pad_contact[0] && !s.pad_contact[1] && s.tcp[2] - top >= p.clear_height
+    released_and_clear(s, p.clear_height)
 }
 
 /// The place task's success: seated, released, the arm clear.

@@ -13,6 +13,7 @@ use crate::config::check::{ANGLE_FROM_MINUS_PI, Bounds, DISTANCE, check, check_i
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
 use crate::scenario::error_mix::settings::ErrorMix;
+use crate::scenario::fixture::settings::{FixtureBox, FixtureSite};
 use crate::scenario::grip_tilt::settings::check_grip_tilt;
 
 /// The fixture and the seated criterion (`[task.place]`).
@@ -236,6 +237,38 @@ impl PlaceConfig {
     /// The pocket's inner half side for a cube of edge `cube_size` \[m\].
     pub fn pocket_half_side(&self, cube_size: f64) -> f64 {
         0.5 * cube_size + self.clearance
+    }
+
+    /// Where the fixture stands and how the cell sees it; the seat is the pocket's floor, the
+    /// table.
+    pub fn site(&self) -> FixtureSite {
+        FixtureSite {
+            randomize: self.randomize,
+            xy: self.fixture_xy,
+            radius: self.fixture_radius,
+            angle: self.fixture_angle,
+            random_yaw: self.random_yaw,
+            min_distance_from_cube: self.min_distance_from_cube,
+            observed_position_noise: self.observed_position_noise,
+            observed_yaw_noise: self.observed_yaw_noise,
+            seat_height: 0.0,
+        }
+    }
+
+    /// The four walls' half extents and centres in the fixture frame \[m\]: two along x (which
+    /// also close the corners) and two along y.
+    pub fn wall_boxes(&self, cube_size: f64) -> Vec<FixtureBox> {
+        let h = self.pocket_half_side(cube_size);
+        let (t, z) = (self.wall_thickness, 0.5 * self.wall_height);
+        let across = h + 0.5 * t;
+        let long = [0.5 * t, h + t, z];
+        let short = [h, 0.5 * t, z];
+        vec![
+            (long, [across, 0.0, z]),
+            (long, [-across, 0.0, z]),
+            (short, [0.0, across, z]),
+            (short, [0.0, -across, z]),
+        ]
     }
 }
 

@@ -3,21 +3,23 @@
 //! Its weights are [`DistanceReward`] (`[task]`'s `success_reward`, `collision_reward`,
 //! `distance_reward`).
 
+use crate::config::TaskConfig;
 pub use crate::config::reward::DistanceReward;
 use crate::task::state::TaskState;
 use crate::task::tasks::distance_to_go;
 
-/// The distance reward of a step that ended in `s`: `w.success` on success, `w.collision` on a
+/// The distance reward of a step that ended in `s`, with `cfg`'s weights `w` (`cfg.distance`): `w.success` on success, `w.collision` on a
 /// collision, else `w.distance ·` the distance still to go \[m\] ([`distance_to_go`]:
 /// `|TCP − object|`, plus for the place task the cube's distance from its seat in the pocket);
 /// plus `w.time` every step.
-pub fn distance_reward(s: &TaskState, success: bool, collision: bool, w: &DistanceReward) -> f64 {
+pub fn distance_reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
+    let w = &cfg.distance;
     let r = if success {
         w.success
     } else if collision {
         w.collision
     } else {
-        w.distance * distance_to_go(s)
+        w.distance * distance_to_go(s, cfg)
     };
     // The time's cost, when it has one (adding 0 would turn a -0 into 0).
     if w.time == 0.0 { r } else { r + w.time }

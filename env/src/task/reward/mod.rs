@@ -15,7 +15,7 @@ pub use staged::staged_reward;
 /// The reward of the config's [`RewardKind`] for a step that ended in state `s`.
 pub fn reward(s: &TaskState, success: bool, collision: bool, cfg: &TaskConfig) -> f64 {
     match cfg.reward {
-        RewardKind::Distance => distance_reward(s, success, collision, &cfg.distance),
+        RewardKind::Distance => distance_reward(s, success, collision, cfg),
         RewardKind::Staged => staged_reward(s, success, collision, cfg.lift_height, &cfg.staged),
     }
 }

@@ -1,0 +1,42 @@
+//! The stack task's controls: the place script set down on the second cube's top instead of in
+//! a pocket ([`ScriptedPlace::onto`]): grasp, carry above the second cube as the camera sees it,
+//! lower, release, retreat ([`open_loop`]); and the same lowering until the wrist feels the cube
+//! touch the second cube's top, then releasing there ([`force_lower`], the force search's
+//! descent without its spiral: [`FORCE_LOWER`]). [`residual`] is what a residual policy corrects
+//! on a stack preset: the force lower, through the place task's interface.
+
+use fairgrasp_env::EnvConfig;
+
+use crate::place_residual::PlaceResidual;
+use crate::{ScriptedPlace, SearchParams};
+
+/// The force lower: the search's descent at 1 cm/s until the wrist feels 1.5 N up, then the
+/// release. A floor band of 1 m puts every touch below the "rim" (there is none), so the search
+/// never spirals; without a touch it stops where the open-loop lower would.
+pub const FORCE_LOWER: SearchParams = SearchParams {
+    descend_speed: 0.01,
+    contact_force: 1.5,
+    admittance: 0.004,
+    pitch: 0.003,
+    speed: 0.01,
+    max_radius: 0.0,
+    floor_band: Some(1.0),
+    check_floor: false,
+};
+
+/// The open-loop stack script for `env` (its `[task.stack]`): the cube set down a cube's edge
+/// above the table, on the second cube where the camera sees it.
+pub fn open_loop(env: &EnvConfig) -> ScriptedPlace {
+    ScriptedPlace::onto(env, env.scene.cube_size, env.task.stack.grasp_height, 0.0)
+}
+
+/// The stack script that lowers until the wrist feels the second cube ([`FORCE_LOWER`]).
+pub fn force_lower(env: &EnvConfig) -> ScriptedPlace {
+    open_loop(env).searching(FORCE_LOWER)
+}
+
+/// The residual interface on a stack preset: the force lower, corrected and scaled as the place
+/// residual corrects the search, on the stack cell's takt.
+pub fn residual(env: &EnvConfig) -> PlaceResidual {
+    PlaceResidual::over(env, force_lower(env), FORCE_LOWER, 0.0, env.task.stack.takt)
+}
