@@ -97,9 +97,12 @@ pub struct CompareArgs {
 /// all the lift task's, so a place comparison runs its scripts alone unless policies are named.
 fn policy_folders(names: &[String], task: Option<TaskKind>) -> anyhow::Result<Vec<PathBuf>> {
     if names.is_empty() {
+        let Some(task) = task else {
+            return Ok(Vec::new());
+        };
         let mut dirs = Vec::new();
         for dir in shipped::default_compare_policies()? {
-            if Some(trained_task(&dir)?) == task {
+            if trained_task(&dir)? == task {
                 dirs.push(dir);
             }
         }
