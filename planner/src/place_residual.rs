@@ -104,9 +104,10 @@ impl PlaceResidual {
         Self::over(env, script, params, place.wall_height, place.takt)
     }
 
-    /// The residual interface over `script`, a place script searching with `params` beside
-    /// walls `wall_height` \[m\] high, on a cell whose takt is `takt` \[s\] (the stack task's,
-    /// [`crate::stack`]), with [`place_limits`].
+    /// The residual interface over `script`, a place script searching with `params`, its depth
+    /// features in units of `wall_height` \[m\] (the pocket's walls; on the stack task, which
+    /// has none, [`crate::stack`] gives a unit of its own), on a cell whose takt is `takt` \[s\],
+    /// with [`place_limits`].
     pub fn over(
         env: &EnvConfig,
         script: ScriptedPlace,

@@ -12,14 +12,16 @@ use crate::{ScriptedPlace, SearchParams};
 
 /// The force lower: the search's descent at 1 cm/s until the wrist feels 1.5 N up, then the
 /// release. A floor band of 1 m puts every touch below the "rim" (there is none), so the search
-/// never spirals; without a touch it stops where the open-loop lower would.
+/// never spirals; without a touch it stops where the open-loop lower would. The spiral's
+/// settings are the search's defaults: unused, its radius is only the unit of a residual's
+/// spiral features.
 pub const FORCE_LOWER: SearchParams = SearchParams {
     descend_speed: 0.01,
     contact_force: 1.5,
     admittance: 0.004,
     pitch: 0.003,
     speed: 0.01,
-    max_radius: 0.0,
+    max_radius: 0.009,
     floor_band: Some(1.0),
     check_floor: false,
 };
@@ -35,8 +37,13 @@ pub fn force_lower(env: &EnvConfig) -> ScriptedPlace {
     open_loop(env).searching(FORCE_LOWER)
 }
 
+/// The unit of the residual's depth features \[m\] (the place task's are in wall heights, and
+/// the second cube has no walls): 10 mm, the place task's default wall.
+pub const DEPTH_FEATURE_UNIT: f64 = 0.01;
+
 /// The residual interface on a stack preset: the force lower, corrected and scaled as the place
 /// residual corrects the search, on the stack cell's takt.
 pub fn residual(env: &EnvConfig) -> PlaceResidual {
-    PlaceResidual::over(env, force_lower(env), FORCE_LOWER, 0.0, env.task.stack.takt)
+    let takt = env.task.stack.takt;
+    PlaceResidual::over(env, force_lower(env), FORCE_LOWER, DEPTH_FEATURE_UNIT, takt)
 }

@@ -147,7 +147,7 @@ pub const GRIP: [Param; 1] = [Param {
 }];
 
 /// Every control of every task, each task's in the order a comparison shows them.
-pub const CONTROLS: [Control; 14] = [
+pub static CONTROLS: [Control; 14] = [
     Control {
         cli: "open_loop",
         report: "scripted baseline",
