@@ -124,3 +124,16 @@ def test_each_preset_has_a_task_space_residual_id_named_for_what_it_corrects():
     assert place.preset == "place_grasp_error"
     assert "wrist_force_z" in place.obs_names and place.action_names[0] == "search_offset_x"
     check_env(place, skip_render_check=True)
+
+
+def test_the_stack_task_has_its_id_and_a_second_cube_to_set_the_cube_on():
+    env = gym.make("FairGrasp-Stack-v0")
+    config = env.unwrapped._native.config_toml()
+    assert 'kind = "stack"' in config
+    obs, info = env.reset(seed=4)
+    assert env.observation_space.contains(obs)
+    # Nothing stacked at the start: the cube rests on the table, not on the second cube.
+    _, reward, terminated, truncated, info = env.step(np.zeros(env.action_space.shape, dtype=np.float32))
+    assert not info.get("success", False) and not terminated
+    assert np.isfinite(reward)
+    env.close()

@@ -87,7 +87,9 @@ def test_a_recipe_id_builds_the_env_the_recipe_trains_on(name):
         # The task-space residual: observation ⊕ the script's 19 features in, the correction
         # out; with the squeeze, entry 4 commands the grip force.
         assert env.observation_space.shape == (fairgrasp.OBS_DIM + 19,)
-        place = config["task"].get("kind") == "place"
+        # The place and stack tasks' residuals correct a force-guided lower (the stack's is the
+        # search's descent, planner/src/stack.rs): the same interface, the same names.
+        place = config["task"].get("kind") in ("place", "stack")
         assert names[fairgrasp.OBS_DIM:] == (PLACE_FEATURES if place else FEATURES)
         assert config["arm"]["action_space"] == "joint"
         entry_4 = "squeeze" if agent.get("squeeze", False) else "unused_4"
