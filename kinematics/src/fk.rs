@@ -73,13 +73,20 @@ impl ArmModel {
     /// URDF link i (i ≥ 1) is DH frame i−1 turned by θ_i about its z axis; the collision capsules
     /// and mass properties of [`ArmModel`] are given in these frames.
     pub fn link_poses(&self, q: &[f64; 6]) -> [Isometry3<f64>; 7] {
+        self.link_poses_and_flange(q).0
+    }
+
+    /// [`ArmModel::link_poses`] and [`ArmModel::fk_flange`] from one pass down the chain, each
+    /// bit for bit what its own function returns (the flange is the same product of the same
+    /// DH transforms): for callers that place the links and the gripper at one `q` \[rad\].
+    pub fn link_poses_and_flange(&self, q: &[f64; 6]) -> ([Isometry3<f64>; 7], Pose) {
         let mut poses = [Isometry3::identity(); 7];
         let mut dh_frame = Isometry3::identity();
         for i in 0..6 {
             poses[i + 1] = dh_frame * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), q[i]);
             dh_frame *= dh_transform(&self.dh[i], q[i]);
         }
-        poses
+        (poses, Pose { iso: dh_frame })
     }
 
     /// `T_base_tool0`: the flange pose.

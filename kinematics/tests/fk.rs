@@ -166,3 +166,17 @@ fn link_poses_equal_the_urdf_link_frames() {
         }
     }
 }
+
+#[test]
+fn the_flange_of_the_one_pass_link_poses_is_bit_for_bit_fk_flange() {
+    // The env places its links and gripper from one pass down the chain: a replay must not
+    // move by a bit against the flange `fk_flange` computes on its own.
+    for model in [ArmKind::Fr3.model(), ArmKind::Fr5.model()] {
+        let mut rng = common::rng(61);
+        for _ in 0..500 {
+            let q = common::random_in_limits(&model, &mut rng);
+            let (_, flange) = model.link_poses_and_flange(&q);
+            assert_eq!(flange.iso, model.fk_flange(&q).iso, "{q:?}");
+        }
+    }
+}

@@ -151,7 +151,7 @@ impl RobotShapes {
         q: &[f64; 6],
         finger_travel: [f64; 2],
     ) {
-        let links = model.link_poses(q);
+        let (links, flange) = model.link_poses_and_flange(q);
         for (i, link) in links.iter().enumerate() {
             let frame = base_in_world.iso * link;
             let (from, to, radius) = self.capsules[i];
@@ -162,7 +162,7 @@ impl RobotShapes {
                 radius,
             };
         }
-        let tool0 = base_in_world.iso * model.fk_flange(q).iso;
+        let tool0 = base_in_world.iso * flange.iso;
         self.placed[7] = Shape::Box(placed_box(&tool0, scene::palm_box(model)));
         for (f, travel) in finger_travel.into_iter().enumerate() {
             let finger = tool0 * scene::finger_in_tool0(model, f, travel);

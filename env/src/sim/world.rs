@@ -128,8 +128,8 @@ impl Sim {
         q: &[f64; 6],
         teleport: bool,
     ) {
-        let poses = model.link_poses(q);
-        let tool0 = base.iso * model.fk_flange(q).iso;
+        let (poses, flange) = model.link_poses_and_flange(q);
+        let tool0 = base.iso * flange.iso;
         let targets = self
             .handles
             .links
