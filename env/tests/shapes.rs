@@ -365,3 +365,47 @@ fn non_finite_joints_and_travels_give_answers_not_panics() {
     assert_eq!(shapes.collision(&filter), None);
     assert!(shapes.clearance_to(&cube) > 0.0);
 }
+
+#[test]
+fn shapes_placed_again_answer_as_shapes_placed_once_whatever_changed_in_between() {
+    // `place` skips the work when nothing changed since the last placement: each step below
+    // changes one input (joints, one finger, the base) or none, and the reused shapes must
+    // answer bit for bit as fresh shapes placed once at the same configuration.
+    let mut rng = ChaCha8Rng::seed_from_u64(61);
+    let cube = Cuboid {
+        pose: Isometry3::translation(0.35, 0.05, 0.02),
+        half_extents: [0.02; 3],
+    };
+    let answers = |shapes: &RobotShapes| {
+        let mut out = vec![shapes.clearance_to(&cube)];
+        for (i, a) in RobotShapes::PARTS.iter().enumerate() {
+            for b in RobotShapes::PARTS[i + 1..].iter().chain(&[Part::Table]) {
+                out.push(shapes.penetration(*a, *b).unwrap_or(f64::NAN));
+            }
+        }
+        out.into_iter().map(f64::to_bits).collect::<Vec<u64>>()
+    };
+    for mount in &MOUNTS[..2] {
+        let env = env_on(mount);
+        let model = env.model().clone();
+        let mut reused = RobotShapes::new(env.config(), &model);
+        let (mut q, mut travel) = random_configuration(&env, &mut rng);
+        let mut base = *env.base_in_world();
+        for k in 0..40 {
+            match k % 4 {
+                0 => q = random_configuration(&env, &mut rng).0,
+                1 => travel[k / 4 % 2] = rng.random_range(0.0..=model.gripper.finger_travel),
+                2 => base.iso.translation.vector.z += 0.01,
+                _ => {}
+            }
+            reused.place(&model, &base, &q, travel);
+            let mut fresh = RobotShapes::new(env.config(), &model);
+            fresh.place(&model, &base, &q, travel);
+            assert_eq!(
+                answers(&reused),
+                answers(&fresh),
+                "step {k}: {q:?} {travel:?}"
+            );
+        }
+    }
+}

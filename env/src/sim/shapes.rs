@@ -103,6 +103,25 @@ pub struct RobotShapes {
     /// The table box in the world.
     table: Cuboid,
     table_sphere: ([f64; 3], f64),
+    /// The bits of the base pose, joints \[rad\] and finger travels \[m\] the shapes were last
+    /// placed at ([`placement_key`]): placing them there again computes nothing.
+    placed_at: Option<PlacementKey>,
+}
+
+/// The exact bits of one placement's inputs: the base's translation and rotation
+/// quaternion, the joints and the finger travels.
+type PlacementKey = [u64; 15];
+
+/// The [`PlacementKey`] of placing the robot at `q` on `base` with `finger_travel`.
+fn placement_key(base: &Pose, q: &[f64; 6], finger_travel: [f64; 2]) -> PlacementKey {
+    let t = base.iso.translation.vector;
+    let r = base.iso.rotation.coords;
+    let values = [t.x, t.y, t.z, r.x, r.y, r.z, r.w];
+    std::array::from_fn(|i| match i {
+        0..7 => values[i].to_bits(),
+        7..13 => q[i - 7].to_bits(),
+        _ => finger_travel[i - 13].to_bits(),
+    })
 }
 
 impl RobotShapes {
@@ -136,6 +155,7 @@ impl RobotShapes {
             spheres: [([0.0; 3], 0.0); ROBOT_SHAPES],
             table_sphere: Shape::Box(table).bounding_sphere(),
             table,
+            placed_at: None,
         };
         shapes.place(model, &Pose::default(), &[0.0; 6], [0.0; 2]);
         shapes
@@ -143,7 +163,8 @@ impl RobotShapes {
 
     /// Places every shape for joints `q` \[rad\] on a base at `base_in_world`, each finger closed
     /// by `finger_travel[f]` \[m\] (0 = open, `gripper.finger_travel` = closed; used as given, the
-    /// convention of `Sim::finger_travel`).
+    /// convention of `Sim::finger_travel`). `model` is the one the shapes were built with. Placing
+    /// them again where they already are (the same bits) computes nothing.
     pub fn place(
         &mut self,
         model: &ArmModel,
@@ -151,6 +172,11 @@ impl RobotShapes {
         q: &[f64; 6],
         finger_travel: [f64; 2],
     ) {
+        let key = placement_key(base_in_world, q, finger_travel);
+        if self.placed_at == Some(key) {
+            return;
+        }
+        self.placed_at = Some(key);
         let (links, flange) = model.link_poses_and_flange(q);
         for (i, link) in links.iter().enumerate() {
             let frame = base_in_world.iso * link;
