@@ -71,9 +71,10 @@ pub struct CorrectionLimits {
     /// spread stays bounded: `σ·max·√(α/(2−α))` for `α = dt/τ`.
     pub time_constant: f64,
     /// Squeeze per finger \[N\] added to the env's `gripper.force` at a squeeze command of +1,
-    /// when the residual has the squeeze ([`crate::residual::ResidualScript::squeezing`]). 7 N:
-    /// 12 N on the default 5 N grip, which lifts the `heavy_slippery` cubes; at 15 N the
-    /// fingers' closing impact trips the 35 N protective stop.
+    /// when the residual has the squeeze
+    /// ([`crate::lift::residual::ResidualScript::squeezing`]). 7 N: 12 N on the default 5 N
+    /// grip, which lifts the `heavy_slippery` cubes; at 15 N the fingers' closing impact trips
+    /// the 35 N protective stop.
     pub max_squeeze: f64,
 }
 

@@ -1,6 +1,6 @@
 //! Where the planner registers each task: the residual interface a task-space residual policy
-//! corrects on a preset of that task. A task's hand-written controls are rows of
-//! [`crate::controls::CONTROLS`].
+//! corrects on a preset of that task. A task's hand-written controls are its rows of
+//! [`crate::controls::CONTROLS`], in its folder (`planner/src/lift/controls.rs`, …).
 
 use fairgrasp_env::{EnvConfig, TaskKind};
 

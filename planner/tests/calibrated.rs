@@ -9,7 +9,7 @@ use fairgrasp_env::scenario::perception::observe_object;
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{EnvConfig, GraspEnv, Mount};
 use fairgrasp_kinematics::Pose;
-use fairgrasp_planner::calibrated::TOUCH_ERROR;
+use fairgrasp_planner::lift::calibrated::TOUCH_ERROR;
 use fairgrasp_planner::{BaselineConfig, CalibratedScript, CameraCalibration, ScriptedGrasp};
 
 /// The largest distance \[m\] between the calibration's prediction of what the camera reports and

@@ -6,7 +6,7 @@ use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{EvalReport, Outcome, Policy, run_episode};
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
-use fairgrasp_planner::residual::{OracleResidual, ResidualScript};
+use fairgrasp_planner::lift::residual::{OracleResidual, ResidualScript};
 use fairgrasp_planner::{ClosedLoopGrasp, TaskResidual};
 
 const EPISODES: usize = 100;

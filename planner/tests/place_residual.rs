@@ -4,8 +4,8 @@
 use fairgrasp_env::GraspEnv;
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::Policy;
-use fairgrasp_planner::place::PlacePhase;
-use fairgrasp_planner::place_residual::{FEATURE_DIM, PlaceResidual};
+use fairgrasp_planner::place::residual::{FEATURE_DIM, PlaceResidual};
+use fairgrasp_planner::place::script::PlacePhase;
 use fairgrasp_planner::{ScriptedPlace, SearchParams, TaskResidual};
 
 /// Each step's joint command and the episode's end, under `act`.

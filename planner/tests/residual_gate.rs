@@ -7,7 +7,7 @@ use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{EvalReport, Outcome, Policy, run_episode};
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
-use fairgrasp_planner::residual::{FEATURE_DIM, ResidualScript};
+use fairgrasp_planner::lift::residual::{FEATURE_DIM, ResidualScript};
 use fairgrasp_planner::{
     BaselineConfig, OracleResidual, Phase, ScriptedGrasp, TaskCorrection, TaskResidual,
 };

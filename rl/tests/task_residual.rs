@@ -6,7 +6,7 @@ use fairgrasp_env::config::ActionSpace;
 use fairgrasp_env::episode::{Policy, run_episode};
 use fairgrasp_env::scenario::scenario_set;
 use fairgrasp_env::{GraspEnv, config::presets};
-use fairgrasp_planner::residual::FEATURE_DIM;
+use fairgrasp_planner::lift::residual::FEATURE_DIM;
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig, Mode, OBS_DIM};
 use fairgrasp_rl::agent::grasp_env::GraspVecEnv;

@@ -1,317 +1,75 @@
 //! Every task's hand-written controls in one table ([`CONTROLS`]): the name on the command line,
 //! the name in a report, the task, the parameters `fairgrasp tune` may set, and how to build
-//! the control as a [`Policy`]. `baseline`, `compare` and `tune` read it; a new control is one
-//! row here.
+//! the control as a [`fairgrasp_env::episode::Policy`]. `baseline`, `compare` and `tune` read
+//! it. Each task's rows live in its folder (`planner/src/lift/controls.rs`,
+//! `planner/src/place/controls.rs`, `planner/src/stack/controls.rs`): a new control is one row
+//! there, a new task one line in [`TASKS`].
 //!
-//! - [`params`]: a tunable parameter ([`Param`]), its scale and bounds, values by name;
-//! - [`search_params`]: the force search's parameters ([`SEARCH`]) and how values set them.
+//! - [`row`]: one row ([`Control`]) and what rows share;
+//! - [`params`]: a tunable parameter ([`Param`]), its scale and bounds, values by name.
 
 pub mod params;
-pub mod search_params;
+pub mod row;
 
-use fairgrasp_env::episode::Policy;
-use fairgrasp_env::{EnvConfig, TaskKind};
+use fairgrasp_env::TaskKind;
 
-use crate::oracle_switch::OracleSwitch;
-use crate::{
-    BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
-    ScriptedPlace, TunedGripScript,
-};
+use crate::lift::controls::LIFT_CONTROLS;
+use crate::place::controls::PLACE_CONTROLS;
+use crate::stack::controls::STACK_CONTROLS;
 pub use params::{Param, ParamValues, Scale};
-pub use search_params::{SEARCH, SQUARE, SWITCH, search_values, set_search};
+pub use row::Control;
 
-/// One hand-written control. Its parameters live in the env's config (one table per control,
-/// [`Control::table`]), so that a tuned setting is a preset fragment and every command that
-/// reads a preset runs the control as tuned.
-pub struct Control {
-    /// Its name on the command line (`baseline --script`, `tune --control`, `replay --policy`).
-    pub cli: &'static str,
-    /// Its name in a comparison and the report.
-    pub report: &'static str,
-    /// The task it runs.
-    pub task: TaskKind,
-    /// What `tune` may set.
-    pub params: &'static [Param],
-    /// The preset table its parameters live in (`task.place.search`); `None` without any.
-    pub table: Option<&'static str>,
-    /// Its parameters' values in an env.
-    pub values: fn(&EnvConfig) -> ParamValues,
-    /// Sets `values` (names of `params`) in an env's config; `EnvConfig::validate` checks them.
-    pub set: fn(&mut EnvConfig, &ParamValues),
-    /// The control for an env, the cell's camera calibration at hand.
-    pub build: fn(&EnvConfig, &CameraCalibration) -> Box<dyn Policy>,
-    /// Does `compare` run it on presets like this env's by default?
-    pub in_compare: fn(&EnvConfig) -> bool,
-}
+/// Old path of the lift task's grip force ([`crate::lift`]'s rows), kept for one release.
+pub use crate::lift::controls::GRIP;
+/// Old path of [`crate::place::search_params`], kept for one release.
+pub use crate::place::search_params;
+/// Old paths of the force search's parameters ([`crate::place::search_params`]), kept for one
+/// release.
+pub use crate::place::search_params::{SEARCH, SQUARE, SWITCH, search_values, set_search};
 
-impl Control {
-    /// The parameter called `name`.
-    pub fn param(&self, name: &str) -> Option<&'static Param> {
-        self.params.iter().find(|p| p.name == name)
+/// Each task's rows, one line per task, in the order a comparison lists the tasks.
+pub const TASKS: [&[Control]; 3] = [LIFT_CONTROLS, PLACE_CONTROLS, STACK_CONTROLS];
+
+/// Every control of every task, each task's in the order a comparison shows them: the rows of
+/// [`TASKS`] one after another.
+pub static CONTROLS: [Control; row_count(&TASKS)] = concatenated(&TASKS);
+
+/// How many rows `tasks` have together.
+const fn row_count(tasks: &[&[Control]]) -> usize {
+    let mut count = 0;
+    let mut t = 0;
+    while t < tasks.len() {
+        count += tasks[t].len();
+        t += 1;
     }
+    count
 }
 
-fn no_values(_: &EnvConfig) -> ParamValues {
-    ParamValues::new()
-}
-
-fn set_nothing(_: &mut EnvConfig, _: &ParamValues) {}
-
-fn always(_: &EnvConfig) -> bool {
-    true
-}
-
-/// A place cell's preset (one family's error per cycle, unlabelled).
-fn has_mix(env: &EnvConfig) -> bool {
-    env.task.place.mix.is_some()
-}
-
-fn square_values(env: &EnvConfig) -> ParamValues {
-    let q = &env.task.place.square;
-    let mut v = prefixed(
-        search_values(&q.search, env.task.place.wall_height),
-        "search_",
+/// The rows of `tasks` one after another, `N` of them (the table, built when the crate is
+/// compiled: a count that is not `N`, or a first task without any row, fails the build).
+const fn concatenated<const N: usize>(tasks: &[&[Control]]) -> [Control; N] {
+    assert!(
+        N == row_count(tasks),
+        "N is not the number of the tasks' rows"
     );
-    for (k, x) in [
-        ("offset", q.offset),
-        ("speed", q.speed),
-        ("force", q.force),
-        ("press", q.press),
-        ("hold", q.hold),
-        ("squeeze", q.squeeze),
-    ] {
-        v.insert(k.to_string(), x);
-    }
-    v
-}
-
-fn set_square(env: &mut EnvConfig, values: &ParamValues) {
-    let q = &mut env.task.place.square;
-    set_search(&mut q.search, values, "search_");
-    for (k, slot) in [
-        ("offset", &mut q.offset),
-        ("speed", &mut q.speed),
-        ("force", &mut q.force),
-        ("press", &mut q.press),
-        ("hold", &mut q.hold),
-        ("squeeze", &mut q.squeeze),
-    ] {
-        if let Some(&x) = values.get(k) {
-            *slot = x;
+    assert!(
+        !tasks.is_empty() && !tasks[0].is_empty(),
+        "the first task has no control"
+    );
+    let mut out = [tasks[0][0]; N];
+    let mut k = 0;
+    let mut t = 0;
+    while t < tasks.len() {
+        let mut r = 0;
+        while r < tasks[t].len() {
+            out[k] = tasks[t][r];
+            k += 1;
+            r += 1;
         }
+        t += 1;
     }
+    out
 }
-
-fn switch_values(env: &EnvConfig) -> ParamValues {
-    let s = &env.task.place.switch;
-    let wall = env.task.place.wall_height;
-    let mut v = prefixed(search_values(&s.pose, wall), "pose_");
-    v.extend(prefixed(search_values(&s.tilted, wall), "tilted_"));
-    v.insert("tilt_band".to_string(), s.tilt_band);
-    v
-}
-
-fn set_switch(env: &mut EnvConfig, values: &ParamValues) {
-    let s = &mut env.task.place.switch;
-    set_search(&mut s.pose, values, "pose_");
-    set_search(&mut s.tilted, values, "tilted_");
-    if let Some(&x) = values.get("tilt_band") {
-        s.tilt_band = x;
-    }
-}
-
-/// `values` with each name behind `prefix`.
-fn prefixed(values: ParamValues, prefix: &str) -> ParamValues {
-    values
-        .into_iter()
-        .map(|(k, v)| (format!("{prefix}{k}"), v))
-        .collect()
-}
-
-fn place_search_values(env: &EnvConfig) -> ParamValues {
-    search_values(&env.task.place.search, env.task.place.wall_height)
-}
-
-fn set_place_search(env: &mut EnvConfig, values: &ParamValues) {
-    set_search(&mut env.task.place.search, values, "");
-}
-
-/// The lift task's grip force.
-pub const GRIP: [Param; 1] = [Param {
-    name: "grip_force",
-    unit: "N",
-    accepts: [0.1, 100.0],
-    range: [2.0, 30.0],
-    scale: Scale::Log,
-    doc: "the squeeze per finger",
-}];
-
-/// Every control of every task, each task's in the order a comparison shows them.
-pub static CONTROLS: [Control; 14] = [
-    Control {
-        cli: "open_loop",
-        report: "scripted baseline",
-        task: TaskKind::Lift,
-        params: &[],
-        table: None,
-        values: no_values,
-        set: set_nothing,
-        build: |env, _| Box::new(ScriptedGrasp::new(env, BaselineConfig::default())),
-        in_compare: always,
-    },
-    Control {
-        cli: "closed_loop",
-        report: "closed-loop script",
-        task: TaskKind::Lift,
-        params: &[],
-        table: None,
-        values: no_values,
-        set: set_nothing,
-        build: |env, _| Box::new(ClosedLoopGrasp::observed(env)),
-        in_compare: always,
-    },
-    Control {
-        cli: "oracle",
-        report: "oracle script",
-        task: TaskKind::Lift,
-        params: &[],
-        table: None,
-        values: no_values,
-        set: set_nothing,
-        build: |env, _| Box::new(ClosedLoopGrasp::oracle(env)),
-        in_compare: always,
-    },
-    Control {
-        cli: "calibrated",
-        report: "script + calibration",
-        task: TaskKind::Lift,
-        params: &[],
-        table: None,
-        values: no_values,
-        set: set_nothing,
-        build: |env, calibration| Box::new(CalibratedScript::new(env, calibration.clone())),
-        in_compare: always,
-    },
-    Control {
-        cli: "tuned_grip",
-        report: "script + tuned grip",
-        task: TaskKind::Lift,
-        params: &GRIP,
-        table: Some("control"),
-        values: |env| {
-            let f = env.control.grip_force.unwrap_or(env.gripper.force);
-            ParamValues::from([("grip_force".to_string(), f)])
-        },
-        set: |env, values| {
-            if let Some(&f) = values.get("grip_force") {
-                env.control.grip_force = Some(f);
-            }
-        },
-        build: |env, _| Box::new(TunedGripScript::new(env)),
-        in_compare: always,
-    },
-    Control {
-        cli: "open_loop",
-        report: "place script",
-        task: TaskKind::Place,
-        params: &[],
-        table: None,
-        values: no_values,
-        set: set_nothing,
-        build: |env, _| Box::new(ScriptedPlace::new(env)),
-        in_compare: always,
-    },
-    Control {
-        cli: "force_search",
-        report: "place script + force search",
-        task: TaskKind::Place,
-        params: &SEARCH,
-        table: Some("task.place.search"),
-        values: place_search_values,
-        set: set_place_search,
-        build: |env, _| Box::new(ScriptedPlace::with_search(env, env.task.place.search)),
-        in_compare: always,
-    },
-    Control {
-        cli: "closed_loop",
-        report: "closed-loop place",
-        task: TaskKind::Place,
-        params: &[],
-        table: None,
-        values: no_values,
-        set: set_nothing,
-        build: |env, _| Box::new(ScriptedPlace::new(env).reobserving()),
-        in_compare: always,
-    },
-    Control {
-        cli: "closed_loop_force_search",
-        report: "closed-loop place + force search",
-        task: TaskKind::Place,
-        params: &SEARCH,
-        table: Some("task.place.search"),
-        values: place_search_values,
-        set: set_place_search,
-        build: |env, _| {
-            Box::new(ScriptedPlace::with_search(env, env.task.place.search).reobserving())
-        },
-        in_compare: always,
-    },
-    Control {
-        cli: "square_search",
-        report: "squaring + force search",
-        task: TaskKind::Place,
-        params: &SQUARE,
-        table: Some("task.place.square"),
-        values: square_values,
-        set: set_square,
-        build: |env, _| Box::new(ScriptedPlace::with_squaring(env, env.task.place.square)),
-        in_compare: has_mix,
-    },
-    Control {
-        cli: "switch_search",
-        report: "force search, switch",
-        task: TaskKind::Place,
-        params: &SWITCH,
-        table: Some("task.place.switch"),
-        values: switch_values,
-        set: set_switch,
-        build: |env, _| Box::new(ScriptedPlace::with_switch(env, env.task.place.switch)),
-        in_compare: has_mix,
-    },
-    Control {
-        cli: "oracle_switch",
-        report: "force search, oracle switch (ceiling)",
-        task: TaskKind::Place,
-        params: &SWITCH,
-        table: Some("task.place.switch"),
-        values: switch_values,
-        set: set_switch,
-        build: |env, _| Box::new(OracleSwitch::new(env)),
-        in_compare: has_mix,
-    },
-    Control {
-        cli: "open_loop",
-        report: "stack script",
-        task: TaskKind::Stack,
-        params: &[],
-        table: None,
-        values: no_values,
-        set: set_nothing,
-        build: |env, _| Box::new(crate::stack::open_loop(env)),
-        in_compare: always,
-    },
-    Control {
-        cli: "force_lower",
-        report: "stack script + force lower",
-        task: TaskKind::Stack,
-        params: &[],
-        table: None,
-        values: no_values,
-        set: set_nothing,
-        build: |env, _| Box::new(crate::stack::force_lower(env)),
-        in_compare: always,
-    },
-];
 
 /// The controls of `task`, in a comparison's order.
 pub fn controls_of(task: TaskKind) -> impl Iterator<Item = &'static Control> {
@@ -326,4 +84,47 @@ pub fn control(task: TaskKind, cli: &str) -> Option<&'static Control> {
 /// The command-line names of `task`'s controls, for an error that lists them.
 pub fn control_names(task: TaskKind) -> Vec<&'static str> {
     controls_of(task).map(|c| c.cli).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_tasks_rows_run_one_task_of_their_own_and_every_task_has_rows() {
+        let tasks: Vec<TaskKind> = TASKS
+            .iter()
+            .map(|rows| {
+                let task = rows[0].task;
+                let names: Vec<&str> = rows.iter().map(|c| c.cli).collect();
+                assert!(
+                    rows.iter().all(|c| c.task == task),
+                    "{}'s rows {names:?} run another task too",
+                    task.name()
+                );
+                task
+            })
+            .collect();
+        for task in TaskKind::ALL {
+            let lists = tasks.iter().filter(|&&t| t == task).count();
+            assert_eq!(lists, 1, "{} has {lists} lists of rows", task.name());
+        }
+    }
+
+    #[test]
+    fn the_table_is_the_tasks_rows_in_order() {
+        let rows: Vec<(&str, &str)> = TASKS
+            .iter()
+            .flat_map(|r| r.iter())
+            .map(|c| (c.report, c.cli))
+            .collect();
+        let table: Vec<(&str, &str)> = CONTROLS.iter().map(|c| (c.report, c.cli)).collect();
+        assert_eq!(table, rows);
+        for task in TaskKind::ALL {
+            let of_task: Vec<&str> = controls_of(task).map(|c| c.report).collect();
+            let listed = TASKS.iter().find(|r| r[0].task == task).unwrap();
+            let listed: Vec<&str> = listed.iter().map(|c| c.report).collect();
+            assert_eq!(of_task, listed, "{}", task.name());
+        }
+    }
 }

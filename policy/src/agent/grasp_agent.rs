@@ -6,7 +6,7 @@
 //! policy's own output, not a correction.
 //! Residual mode, `action_space = "tcp"` (the residual with authority): the policy sees
 //! `obs ⊕ script features` and its output is the rate of a task-space correction of the script
-//! plus the close's timing ([`crate::agent::script`], [`fairgrasp_planner::residual`]).
+//! plus the close's timing ([`crate::agent::script`], [`fairgrasp_planner::lift::residual`]).
 //! Either way the actor's output layer can start at zero, so an untrained agent *is* the script.
 //! Pure mode (the seed's setup): `input = obs`, the env receives `clip(a_policy)`, or in `tcp`
 //! mode the TCP velocity it commands, through the env's task-space action
@@ -19,7 +19,7 @@ use fairgrasp_env::robot::tcp_action::TaskSpaceAction;
 use fairgrasp_env::{Action, EnvConfig, Observation};
 
 use crate::agent::script::Script;
-use fairgrasp_planner::residual::FEATURE_DIM;
+use fairgrasp_planner::lift::residual::FEATURE_DIM;
 use serde::{Deserialize, Serialize};
 
 /// Residual or pure.
@@ -78,7 +78,8 @@ pub struct AgentConfig {
     /// residual mode ([`crate::agent::script`]).
     pub action_space: ActionSpace,
     /// A task-space residual also commands the grip force with its output's entry 4
-    /// ([`fairgrasp_planner::residual`]); off by default (earlier policies' entry 4 is unused).
+    /// ([`fairgrasp_planner::lift::residual`]); off by default (earlier policies' entry 4 is
+    /// unused).
     pub squeeze: bool,
 }
 

@@ -7,8 +7,8 @@
 //!   interface ([`TaskResidual`], registered per task in [`fairgrasp_planner::tasks`]) turns the
 //!   policy's output into the env's action and adds its features to the policy input — on the
 //!   lift task the grasp script's correction and close timing
-//!   ([`fairgrasp_planner::residual`]), on the place task the force-guided search's
-//!   ([`fairgrasp_planner::place_residual`]).
+//!   ([`fairgrasp_planner::lift::residual`]), on the place task the force-guided search's
+//!   ([`fairgrasp_planner::place::residual`]).
 
 use fairgrasp_env::episode::Outcome;
 use fairgrasp_env::episode::Policy;

@@ -6,7 +6,7 @@
 //! admittance in the vertical: the TCP goes down when the wrist feels less, up when it feels
 //! more), until the TCP has sunk half a wall's height below the touch (the cube has found the
 //! opening), then descend into it. The release and retreat follow, as in
-//! the open-loop script ([`crate::place`]).
+//! the open-loop script ([`crate::place::script`]).
 //!
 //! The TCP follows a task-space offset from the carry pose (`corrected`, through the arm's
 //! Jacobian), one env step at a time. Its parameters ([`SearchParams`], the preset's
@@ -60,7 +60,7 @@ pub struct ForceSearch {
     found_xy: [f64; 2],
     step_dt: f64,
     /// A residual's correction added to the search's own offset (zero for the engineer's
-    /// search; [`crate::place_residual`]).
+    /// search; [`crate::place::residual`]).
     correction: TaskCorrection,
     /// The offset the last step commanded: xy in the table plane, then depth below the carry
     /// pose \[m\].

@@ -10,7 +10,7 @@ use fairgrasp_env::scenario::Scenario;
 use fairgrasp_env::scenario::error_mix::ErrorFamily;
 use fairgrasp_env::{Action, EnvConfig, Observation};
 
-use crate::place::ScriptedPlace;
+use crate::place::script::ScriptedPlace;
 
 /// The place script whose search is set per episode from the scenario's family.
 pub struct OracleSwitch {

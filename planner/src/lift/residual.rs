@@ -37,8 +37,8 @@ use fairgrasp_env::scenario::perception::ObservedObject;
 use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 use std::f64::consts::FRAC_PI_2;
 
-use crate::baseline::{BaselineConfig, CloseTiming, Phase, ScriptedGrasp};
 use crate::correction::{CorrectionLimits, TaskCorrection};
+use crate::lift::script::{BaselineConfig, CloseTiming, Phase, ScriptedGrasp};
 pub use crate::task_residual::FEATURE_DIM;
 use crate::task_residual::{OUTPUT_DIM, TaskResidual};
 

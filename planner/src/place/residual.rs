@@ -1,5 +1,5 @@
 //! The interface a residual policy corrects the place task's engineered control through: the
-//! force-guided search ([`crate::place_search`], tuned defaults) with a task-space correction
+//! force-guided search ([`crate::place::search`], tuned defaults) with a task-space correction
 //! of the search's offset (`agent.action_space = "tcp"` in residual mode on a place preset).
 //! An all-zero action is the engineer's search exactly, so an untrained residual starts from
 //! the strongest hand-written control, not from the open loop (Johannink et al. 2019).
@@ -24,8 +24,8 @@ use fairgrasp_env::episode::{Outcome, Policy};
 use fairgrasp_env::{Action, EnvConfig, Mount, Observation};
 
 use crate::correction::CorrectionLimits;
-use crate::place::{PlacePhase, ScriptedPlace};
-use crate::place_search::{Modulation, SearchParams};
+use crate::place::script::{PlacePhase, ScriptedPlace};
+use crate::place::search::{Modulation, SearchParams};
 pub use crate::task_residual::FEATURE_DIM;
 use crate::task_residual::{OUTPUT_DIM, TaskResidual};
 

@@ -6,7 +6,7 @@
 use fairgrasp_env::episode::{Outcome, Policy};
 use fairgrasp_env::{Action, EnvConfig, Observation};
 
-use crate::baseline::{BaselineConfig, ScriptedGrasp};
+use crate::lift::script::{BaselineConfig, ScriptedGrasp};
 
 /// The open-loop script squeezing `control.grip_force` per finger, as a [`Policy`].
 pub struct TunedGripScript {

@@ -11,7 +11,7 @@ pub use fairgrasp_env::config::SquareParams;
 use fairgrasp_kinematics::{ArmModel, Pose};
 
 use crate::correction::{TaskCorrection, corrected};
-use crate::place_search::upward_force;
+use crate::place::search::upward_force;
 
 /// After the hold, the full squeeze is back this long before the lift \[s\] (the fingers'
 /// force settles in a few steps).

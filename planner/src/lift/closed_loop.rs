@@ -17,7 +17,7 @@ use fairgrasp_env::{Action, EnvConfig, Observation};
 use fairgrasp_kinematics::analytic_ik::wrap_pi;
 use serde::Serialize;
 
-use crate::baseline::{BaselineConfig, Phase, ScriptedGrasp};
+use crate::lift::script::{BaselineConfig, Phase, ScriptedGrasp};
 
 /// Settings of the closed-loop script.
 #[derive(Clone, Debug, PartialEq, Serialize)]

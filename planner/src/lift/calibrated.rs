@@ -23,7 +23,7 @@ use fairgrasp_kinematics::calibrate::{PointFit, PointFitOptions, PointPair, fit_
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use crate::baseline::{BaselineConfig, ScriptedGrasp};
+use crate::lift::script::{BaselineConfig, ScriptedGrasp};
 
 /// Marker spots touched per calibration.
 pub const TOUCHES: usize = 8;

@@ -16,15 +16,15 @@ use fairgrasp_kinematics::ArmModel;
 
 use fairgrasp_env::scenario::perception::ObservedObject;
 
-use crate::baseline::{BaselineConfig, Phase, ScriptedGrasp};
 use crate::correction::TaskCorrection;
 use crate::grasp::{GraspJoints, GraspTarget, plan_grasp_joints};
+use crate::lift::script::{BaselineConfig, Phase, ScriptedGrasp};
 use crate::motion::{JointTrajectory, MotionLimits, tracking_action};
-use crate::place_search::{ForceSearch, Modulation, SearchParams};
-use crate::place_square::{SquareParams, Squaring};
+use crate::place::search::{ForceSearch, Modulation, SearchParams};
+use crate::place::square::{SquareParams, Squaring};
 use fairgrasp_env::config::SwitchParams;
 
-pub use crate::place_search::DROP_HEIGHT;
+pub use crate::place::search::DROP_HEIGHT;
 /// Height of the carry above the place pose \[m\]: low, because the lower that follows is a joint
 /// trajectory, whose TCP path bows away from the vertical (6 mm off over a 10 cm lower, more
 /// than the pocket's clearance; about a tenth of that over 3 cm).
@@ -48,9 +48,9 @@ pub enum PlacePhase {
     Grasp,
     Carry,
     Lower,
-    /// The force-guided search instead of the lower ([`crate::place_search`]).
+    /// The force-guided search instead of the lower ([`crate::place::search`]).
     Search,
-    /// The carry to the squaring spot beside the pocket ([`crate::place_square`]).
+    /// The carry to the squaring spot beside the pocket ([`crate::place::square`]).
     SquareCarry,
     /// Squaring the cube on the table.
     Square,
@@ -107,7 +107,7 @@ pub struct ScriptedPlace {
     /// Whether the place is planned for the cube where the camera sees it in the hand (the
     /// closed loop), not for where the grasp should have put it.
     reobserve: bool,
-    /// A residual's correction of the search ([`crate::place_residual`]); zero otherwise.
+    /// A residual's correction of the search ([`crate::place::residual`]); zero otherwise.
     correction: TaskCorrection,
     /// A residual's scaling of the search's settings; none otherwise.
     modulation: Modulation,
@@ -174,7 +174,7 @@ impl ScriptedPlace {
     }
 
     /// The place script that squares the cube on the table beside the pocket first
-    /// ([`crate::place_square`]), then places it with its own search (`square.search`).
+    /// ([`crate::place::square`]), then places it with its own search (`square.search`).
     pub fn with_squaring(env: &EnvConfig, square: SquareParams) -> Self {
         Self {
             square: Some(square),
@@ -192,12 +192,12 @@ impl ScriptedPlace {
     }
 
     /// Sets the search's settings for the episodes from the next reset on (an oracle that
-    /// knows each cycle's family, [`crate::oracle_switch`]).
+    /// knows each cycle's family, [`crate::place::oracle_switch`]).
     pub fn set_search_params(&mut self, params: SearchParams) {
         self.search_params = Some(params);
     }
 
-    /// The place script with the force-guided search ([`crate::place_search`]) in place of the
+    /// The place script with the force-guided search ([`crate::place::search`]) in place of the
     /// open-loop lower.
     pub fn with_search(env: &EnvConfig, params: SearchParams) -> Self {
         Self::new(env).searching(params)

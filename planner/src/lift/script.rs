@@ -4,9 +4,9 @@
 //! the joint velocity that moves along the reference over the coming step plus a small feedback
 //! term, `q̇ = (q_ref(t+Δ) − q_ref(t))/Δ + K·(q_ref(t) − q)`, scaled into the action range.
 //!
-//! A residual may correct the script ([`crate::residual`]): the reference then follows a task-space
-//! [`TaskCorrection`] (`q_ref + J⁺·c`, so the feedback term holds the correction instead of
-//! erasing it), a phase is complete when the joints reach the *corrected* target, and
+//! A residual may correct the script ([`crate::lift::residual`]): the reference then follows a
+//! task-space [`TaskCorrection`] (`q_ref + J⁺·c`, so the feedback term holds the correction
+//! instead of erasing it), a phase is complete when the joints reach the *corrected* target, and
 //! [`CloseTiming`] may close the gripper during the descent or hold it open a little longer.
 //! With no correction and [`CloseTiming::Script`] the script is exactly the open-loop baseline.
 
