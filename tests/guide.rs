@@ -251,6 +251,7 @@ fn every_docs_page_with_commands_is_run() {
         "docs/replay-and-tensorboard.md",
         "docs/report.md",
         "docs/rl.md",
+        "docs/stack.md",
     ];
     for page in docs_pages() {
         if !page_commands(&page).is_empty() {
@@ -332,6 +333,11 @@ fn baseline_commands_run_as_written() {
 #[test]
 fn place_commands_run_as_written() {
     run_page("docs/place.md");
+}
+
+#[test]
+fn stack_commands_run_as_written() {
+    run_page("docs/stack.md");
 }
 
 #[test]

@@ -8,7 +8,7 @@ use clap::Args;
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::config::presets::{self, PRESETS, RENAMED_PRESETS};
 use fairgrasp_env::episode::{EvalReport, Policy, evaluate_seeded};
-use fairgrasp_evaluate::compare::methods::script_names;
+use fairgrasp_evaluate::compare::methods::{script_names, scripts_by_task};
 use fairgrasp_evaluate::tune::fragment;
 use fairgrasp_planner::CameraCalibration;
 use fairgrasp_planner::controls::{self, Control, ParamValues};
@@ -59,16 +59,23 @@ pub struct ScenarioArgs {
     pub json: bool,
 }
 
+/// `--script`'s help: each task's scripts by name (the planner's table, [`scripts_by_task`]).
+fn script_help() -> String {
+    format!(
+        "Which script: a control of the preset's task by name ({}); open_loop is each task's \
+         open-loop script",
+        scripts_by_task()
+    )
+}
+
 #[derive(Args, Debug)]
 pub struct BaselineArgs {
     #[command(flatten)]
     scenarios: ScenarioArgs,
-    /// Which script: open_loop (the baseline), closed_loop, oracle, calibrated or tuned_grip; on
-    /// a place preset open_loop, force_search, closed_loop, closed_loop_force_search,
-    /// square_search (the cube squared on the table first), switch_search (the search that
-    /// switches settings at its first touch) or oracle_switch (told each cycle's family: a
-    /// ceiling).
-    #[arg(long, default_value = "open_loop", value_parser = clap::builder::PossibleValuesParser::new(script_names()))]
+    // Its help (`script_help`) lists each task's scripts from the planner's table; the preset's
+    // task picks the control.
+    #[arg(long, default_value = "open_loop", help = script_help(), hide_possible_values = true,
+          value_parser = clap::builder::PossibleValuesParser::new(script_names()))]
     script: String,
     /// A preset fragment `fairgrasp tune` wrote (its `tuned.toml`): the script runs with the
     /// tuned setting. It must be the script's and tuned on this preset.
