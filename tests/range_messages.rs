@@ -29,8 +29,9 @@ const UNBOUNDED: [(&str, &str); 4] = [
 ];
 
 /// Numbers whose rule joins several fields (stated in the message), and the rule's words.
-const RULES_OF_SEVERAL_FIELDS: [(&str, &str); 2] = [
+const RULES_OF_SEVERAL_FIELDS: [(&str, &str); 3] = [
     ("task.place.grasp_height", "must hold the cube"),
+    ("task.stack.grasp_height", "must hold the cube"),
     ("task.staged", "reach + grasp + lift must be positive"),
 ];
 

@@ -21,7 +21,7 @@ FEATURES = [
     "correction_x", "correction_y", "correction_z", "correction_yaw", "close_signal",
     "wrist_valid", "wrist_offset_x", "wrist_offset_y", "wrist_offset_z", "wrist_turn",
 ]
-# The place task's residual corrects the force-guided search (planner/src/place_residual.rs).
+# The place task's residual corrects the force-guided search (planner/src/place/residual.rs).
 PLACE_FEATURES = [
     "place_phase_grasp", "place_phase_carry", "place_phase_search_descend",
     "place_phase_search_spiral", "place_phase_search_insert", "place_phase_release",
@@ -88,7 +88,7 @@ def test_a_recipe_id_builds_the_env_the_recipe_trains_on(name):
         # out; with the squeeze, entry 4 commands the grip force.
         assert env.observation_space.shape == (fairgrasp.OBS_DIM + 19,)
         # The place and stack tasks' residuals correct a force-guided lower (the stack's is the
-        # search's descent, planner/src/stack.rs): the same interface, the same names.
+        # search's descent, planner/src/stack/script.rs): the same interface, the same names.
         place = config["task"].get("kind") in ("place", "stack")
         assert names[fairgrasp.OBS_DIM:] == (PLACE_FEATURES if place else FEATURES)
         assert config["arm"]["action_space"] == "joint"

@@ -58,7 +58,7 @@ pub struct Observation {
     /// The cube as the wrist camera sees it (exactly; `base_link`), when the preset has one and
     /// the TCP is within its range of the cube; otherwise None. Not part of the flat view
     /// ([`OBS_NAMES`]): the task-space residual's features carry it
-    /// (`fairgrasp_planner::residual`).
+    /// (`fairgrasp_planner::lift::residual`).
     pub wrist_camera: Option<ObservedObject>,
     /// The place task's fixture as the cell knows it (its pose with the scenario's error,
     /// `task.place.observed_*_noise`; the cube's camera errors do not apply): the pocket's

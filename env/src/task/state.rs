@@ -32,6 +32,13 @@ pub fn tcp_object_distance(s: &TaskState) -> f64 {
         .sqrt()
 }
 
+/// The TCP's distance to the object plus the object's to `seat` (where the task sets its centre
+/// down), world \[m\]: how far a task that carries the cube somewhere still has to go.
+pub fn distance_via_object(s: &TaskState, seat: [f64; 3]) -> f64 {
+    let to = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
+    to(s.tcp, s.object) + to(s.object, seat)
+}
+
 /// Released and clear: neither pad on the object and the TCP at least `clear_height` \[m\]
 /// above its top (how a task that sets the cube down ends: place, stack).
 pub fn released_and_clear(s: &TaskState, clear_height: f64) -> bool {

@@ -7,7 +7,7 @@
 
 use fairgrasp_env::EnvConfig;
 
-use crate::place_residual::PlaceResidual;
+use crate::place::residual::PlaceResidual;
 use crate::{ScriptedPlace, SearchParams};
 
 /// The force lower: the search's descent at 1 cm/s until the wrist feels 1.5 N up, then the

@@ -2,7 +2,7 @@
 //! released, the arm clear. Its settings are `[task.place]` ([`crate::config::PlaceConfig`]).
 
 use crate::config::PlaceConfig;
-use crate::task::state::{PlaceFacts, TaskState, released_and_clear};
+use crate::task::state::{PlaceFacts, TaskState, distance_via_object, released_and_clear};
 
 /// Seated: the cube's centre inside the pocket, its bottom on the table (the pocket's floor)
 /// and standing on a face: then it is between the walls, which a cube on the floor can only be
@@ -33,8 +33,7 @@ pub fn distance_to_go(s: &TaskState, f: &PlaceFacts) -> f64 {
         f.fixture[1],
         f.fixture[2] + 0.5 * s.object_size,
     ];
-    let to = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
-    to(s.tcp, s.object) + to(s.object, seated)
+    distance_via_object(s, seated)
 }
 
 #[cfg(test)]

@@ -9,11 +9,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{ANGLE_FROM_MINUS_PI, Bounds, DISTANCE, check, check_in, check_range};
+use crate::config::check::{Bounds, check_in, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
 use crate::scenario::error_mix::settings::ErrorMix;
-use crate::scenario::fixture::settings::{FixtureBox, FixtureSite};
+use crate::scenario::fixture::settings::{
+    FixtureBox, FixtureSite, SiteKeys, check_grasp_height, check_site,
+};
 use crate::scenario::grip_tilt::settings::check_grip_tilt;
 
 /// The fixture and the seated criterion (`[task.place]`).
@@ -275,12 +277,12 @@ impl PlaceConfig {
 /// Refuses a fixture or criterion that cannot mean what it says, naming the field.
 pub(crate) fn check_place(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
     check_fixture(p, cube_size)?;
-    check_observation_noise(p)?;
     check_contact_conditions(p)?;
     check_search(p)
 }
 
-/// The pocket's sizes, the seated and clear criteria, the grasp, where the fixture stands.
+/// The pocket's sizes, the seated and clear criteria, the grasp, where the fixture stands and
+/// how well the cell knows its pose.
 fn check_fixture(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
     for (value, field, high, unit) in [
         (p.clearance, "task.place.clearance", 0.02, "m"),
@@ -299,45 +301,16 @@ fn check_fixture(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
     ] {
         check_in(value, field, Bounds::above_to(0.0, high).unit(unit), "")?;
     }
-    check(
-        p.grasp_height.abs() < 0.5 * cube_size,
-        "task.place.grasp_height",
-        p.grasp_height,
-        "must hold the cube: less than half its edge above or below its centre",
-    )?;
-    for (v, field) in p
-        .fixture_xy
-        .iter()
-        .zip(["task.place.fixture_xy[0]", "task.place.fixture_xy[1]"])
-    {
-        check_in(
-            *v,
-            field,
-            Bounds::closed(-2.0, 2.0).unit("m"),
-            "(within 2 m of the base)",
-        )?;
-    }
-    check_range(&p.fixture_radius, "task.place.fixture_radius", DISTANCE)?;
-    check_range(
-        &p.fixture_angle,
-        "task.place.fixture_angle",
-        ANGLE_FROM_MINUS_PI,
-    )
-}
-
-/// How well the cell knows the fixture's pose.
-fn check_observation_noise(p: &PlaceConfig) -> Result<(), ConfigError> {
-    check_in(
-        p.observed_position_noise,
-        "task.place.observed_position_noise",
-        Bounds::closed(0.0, 0.05).unit("m"),
-        "",
-    )?;
-    check_in(
-        p.observed_yaw_noise,
-        "task.place.observed_yaw_noise",
-        Bounds::closed(0.0, 0.5).unit("rad"),
-        "",
+    check_grasp_height(p.grasp_height, cube_size, "task.place.grasp_height")?;
+    check_site(
+        &p.site(),
+        &SiteKeys {
+            xy: ["task.place.fixture_xy[0]", "task.place.fixture_xy[1]"],
+            radius: "task.place.fixture_radius",
+            angle: "task.place.fixture_angle",
+            observed_position_noise: "task.place.observed_position_noise",
+            observed_yaw_noise: "task.place.observed_yaw_noise",
+        },
     )
 }
 

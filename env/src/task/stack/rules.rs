@@ -1,11 +1,10 @@
 //! The stack task's rules, pure functions of the state: the held cube resting squarely on the
-//! second cube, released, the arm clear. Its settings are `[task.stack]`
-//! ([`StackConfig`](crate::task::stack::settings::StackConfig)). The facts are the fixture's
-//! ([`PlaceFacts`]): the second cube is the stack task's fixture, its origin on the table top
-//! under the cube's centre.
+//! second cube, released, the arm clear. Its settings are `[task.stack]` ([`StackConfig`]). The
+//! facts are the fixture's ([`PlaceFacts`]): the second cube is the stack task's fixture, its
+//! origin on the table top under the cube's centre.
 
 use crate::task::stack::settings::StackConfig;
-use crate::task::state::{PlaceFacts, TaskState, released_and_clear};
+use crate::task::state::{PlaceFacts, TaskState, distance_via_object, released_and_clear};
 
 /// Stacked: the cube's centre within `max_offset` of the second cube's along each of its faces,
 /// its bottom on the second cube's top (not more than `max_gap` above it, and not sunk below it
@@ -29,8 +28,7 @@ pub fn distance_to_go(s: &TaskState, f: &PlaceFacts) -> f64 {
         f.fixture[1],
         f.fixture[2] + 1.5 * s.object_size,
     ];
-    let to = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
-    to(s.tcp, s.object) + to(s.object, stacked)
+    distance_via_object(s, stacked)
 }
 
 #[cfg(test)]

@@ -9,10 +9,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{ANGLE_FROM_MINUS_PI, Bounds, DISTANCE, check, check_in, check_range};
+use crate::config::check::{Bounds, check_in};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
-use crate::scenario::fixture::settings::{FixtureBox, FixtureSite};
+use crate::scenario::fixture::settings::{
+    FixtureBox, FixtureSite, SiteKeys, check_grasp_height, check_site,
+};
 
 /// The second cube and the stacked criterion (`[task.stack]`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -113,36 +115,15 @@ pub(crate) fn check_stack(s: &StackConfig, cube_size: f64) -> Result<(), ConfigE
     ] {
         check_in(value, field, Bounds::above_to(0.0, high).unit(unit), "")?;
     }
-    check(
-        s.grasp_height.abs() < 0.5 * cube_size,
-        "task.stack.grasp_height",
-        s.grasp_height,
-        "must hold the cube: less than half its edge above or below its centre",
-    )?;
-    for (v, field) in s
-        .base_xy
-        .iter()
-        .zip(["task.stack.base_xy[0]", "task.stack.base_xy[1]"])
-    {
-        check_in(
-            *v,
-            field,
-            Bounds::closed(-2.0, 2.0).unit("m"),
-            "(within 2 m of the base)",
-        )?;
-    }
-    check_range(&s.base_radius, "task.stack.base_radius", DISTANCE)?;
-    check_range(&s.base_angle, "task.stack.base_angle", ANGLE_FROM_MINUS_PI)?;
-    check_in(
-        s.observed_position_noise,
-        "task.stack.observed_position_noise",
-        Bounds::closed(0.0, 0.05).unit("m"),
-        "",
-    )?;
-    check_in(
-        s.observed_yaw_noise,
-        "task.stack.observed_yaw_noise",
-        Bounds::closed(0.0, 0.5).unit("rad"),
-        "",
+    check_grasp_height(s.grasp_height, cube_size, "task.stack.grasp_height")?;
+    check_site(
+        &s.site(cube_size),
+        &SiteKeys {
+            xy: ["task.stack.base_xy[0]", "task.stack.base_xy[1]"],
+            radius: "task.stack.base_radius",
+            angle: "task.stack.base_angle",
+            observed_position_noise: "task.stack.observed_position_noise",
+            observed_yaw_noise: "task.stack.observed_yaw_noise",
+        },
     )
 }
