@@ -1,5 +1,5 @@
 """The Python layer's cost, measured side by side in one run (a benchmark, never a test): one
-`FairGraspEnv` stepped from Python against the same steps of the Rust `GraspEnv` in a Rust loop
+`FairGraspEnv` stepped from Python against the same steps of the Rust `TaskEnv` in a Rust loop
 (same process, same build, same actions and seeds), and the native vector env's throughput
 against one env's. Random actions on `sector` from the home pose, so almost every step is a
 free-space step (the share that ran physics is printed); then the open-loop script's own
@@ -113,7 +113,7 @@ def add(name, value):
 for r in range(rounds):
     rust, simulated = rust_single()
     py = python_single()
-    add("Rust GraspEnv, Rust loop", rust)
+    add("Rust TaskEnv, Rust loop", rust)
     add("FairGraspEnv from Python", py)
     add("  ratio: Python per-step cost / Rust's", rust / py)
     add("  share of steps that ran physics [%]", 100 * simulated)

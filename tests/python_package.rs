@@ -2,17 +2,17 @@
 //! `scripts/python-package-test.sh` in its own venv (created on the first run), with the
 //! extension `cargo test --workspace` has just built (`deps/lib_native.so`, beside this test's
 //! binary; the script builds it with maturin if it is missing). Before, this test plays one
-//! `full` episode in the Rust `GraspEnv` and hands its observations to pytest, which must see
+//! `full` episode in the Rust `TaskEnv` and hands its observations to pytest, which must see
 //! the very same bits from Python.
 
 mod common;
 
-use fairgrasp_env::{Action, GraspEnv, config::presets};
+use fairgrasp_env::{Action, TaskEnv, config::presets};
 
 /// One `full` episode from scenario 11 under smooth deterministic actions: the seed, the actions,
 /// the observations (as the f64 values of their f32s, so JSON carries them exactly) and rewards.
 fn rust_reference() -> serde_json::Value {
-    let mut env = GraspEnv::new(presets::load("full").unwrap()).unwrap();
+    let mut env = TaskEnv::new(presets::load("full").unwrap()).unwrap();
     let (first, _) = env.reset(11).unwrap();
     let as_f64 = |o: &fairgrasp_env::Observation| -> Vec<f64> {
         o.to_array().iter().map(|v| f64::from(*v)).collect()

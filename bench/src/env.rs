@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 
 use fairgrasp_env::vec::VecEnv;
-use fairgrasp_env::{Action, EnvConfig, EnvError, GraspEnv};
+use fairgrasp_env::{Action, EnvConfig, EnvError, TaskEnv};
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -123,7 +123,7 @@ pub fn bench_env(
         });
     }
     let config = &spec.config;
-    let mut env = GraspEnv::new(config.clone())?;
+    let mut env = TaskEnv::new(config.clone())?;
     // One untimed reset first: the first one pays for cold caches and allocations, which would
     // otherwise be charged to the soft reset alone.
     env.reset(0)?;

@@ -8,7 +8,7 @@ use fairgrasp_env::config::presets;
 use serde::Serialize;
 
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
-use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
+use fairgrasp_rl::agent::task_vec_env::TaskVecEnv;
 use fairgrasp_rl::ppo::free_env::FreeEnv;
 use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
 use fairgrasp_rl::ppo::normalizer::RunningNorm;
@@ -87,7 +87,7 @@ pub fn bench_ppo(iterations: u32, preset: &str) -> Result<PpoBench, BenchError> 
     let ppo_s = t.elapsed().as_secs_f64() / iterations as f64;
 
     let env_config = presets::load(preset)?;
-    let mut env = GraspVecEnv::new(&env_config, agent, n_envs, 2, 0)?;
+    let mut env = TaskVecEnv::new(&env_config, agent, n_envs, 2, 0)?;
     let mut p = ppo(&config, dim);
     let t = Instant::now();
     for k in 0..iterations {

@@ -7,7 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 
 use fairgrasp_env::episode::Policy;
-use fairgrasp_env::{Action, EnvConfig, EnvError, GraspEnv, Observation};
+use fairgrasp_env::{Action, EnvConfig, EnvError, Observation, TaskEnv};
 
 /// A policy that always says 0: with noise 1 the soak's actions are uniform in [−1, 1]⁷.
 pub struct ZeroActions;
@@ -83,7 +83,7 @@ pub fn soak(
     seed: u64,
     progress: &mut dyn FnMut(u64),
 ) -> Result<SoakReport, EnvError> {
-    let mut env = GraspEnv::new(config.clone())?;
+    let mut env = TaskEnv::new(config.clone())?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut report = SoakReport::default();
     let record_error = |report: &mut SoakReport, e: EnvError| {

@@ -1,5 +1,5 @@
 //! fairgrasp-env: the FR3 grasping environment in rapier3d: a robot, a task and a scenario,
-//! composed by [`GraspEnv`] over a simulator facade.
+//! composed by [`TaskEnv`] over a simulator facade.
 //!
 //! - [`robot`]: the arm (servo or multibody) and its gripper; applies an action, reports joint
 //!   and gripper state.
@@ -11,7 +11,7 @@
 //!   is simulated.
 //! - [`sim`]: the facade that alone touches rapier (the world, its contacts, the exact shapes
 //!   used for checks without rapier).
-//! - [`mod@env`]: [`GraspEnv`] itself: the observation, the action and observation spaces, the
+//! - [`mod@env`]: [`TaskEnv`] itself: the observation, the action and observation spaces, the
 //!   step, the free-space steps that skip rapier.
 //! - [`episode`]: the [`Policy`](episode::Policy) trait, the evaluation loop, lockstep runs and
 //!   the recorded trajectory.
@@ -32,4 +32,10 @@ pub mod vec;
 pub use cell::mount::Mount;
 pub use config::{ArmSimulation, ConfigError, EnvConfig, HOME_JOINTS, TaskKind};
 pub use env::obs::Observation;
-pub use env::{Action, EnvError, GraspEnv, Info, ServoSetpoint, Step};
+pub use env::{Action, EnvError, Info, ServoSetpoint, Step, TaskEnv};
+
+/// The old name of [`TaskEnv`] (it runs every task: lift, place, stack), kept for one release.
+#[deprecated(
+    note = "renamed `TaskEnv` (it runs every task); the old name goes in the next release"
+)]
+pub type GraspEnv = TaskEnv;

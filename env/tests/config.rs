@@ -1,7 +1,7 @@
 //! Configuration: defaults, TOML round trip, and refusals that name the field.
 
 use fairgrasp_env::config::RandomizationConfig;
-use fairgrasp_env::{ConfigError, EnvConfig, EnvError, GraspEnv};
+use fairgrasp_env::{ConfigError, EnvConfig, EnvError, TaskEnv};
 
 #[test]
 fn defaults_are_the_seeds_numbers() {
@@ -179,7 +179,7 @@ fn a_config_file_error_names_the_file() {
 fn the_env_refuses_an_invalid_config_at_construction() {
     let mut c = EnvConfig::default();
     c.physics.substeps = 0;
-    match GraspEnv::new(c) {
+    match TaskEnv::new(c) {
         Err(EnvError::Config(ConfigError::Invalid { field, .. })) => {
             assert_eq!(field, "physics.substeps")
         }

@@ -4,16 +4,16 @@
 mod common;
 
 use fairgrasp_env::task::Failure;
-use fairgrasp_env::{Action, ArmSimulation, EnvConfig, EnvError, GraspEnv};
+use fairgrasp_env::{Action, ArmSimulation, EnvConfig, EnvError, TaskEnv};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 const ARMS: [ArmSimulation; 2] = [ArmSimulation::Servo, ArmSimulation::Multibody];
 
-fn make_env(arm: ArmSimulation) -> GraspEnv {
+fn make_env(arm: ArmSimulation) -> TaskEnv {
     let mut cfg = EnvConfig::default();
     cfg.arm.model = arm;
-    GraspEnv::new(cfg).unwrap()
+    TaskEnv::new(cfg).unwrap()
 }
 
 #[test]
@@ -72,7 +72,7 @@ fn random_actions(seed: u64, n: usize) -> Vec<Action> {
         .collect()
 }
 
-fn rollout(env: &mut GraspEnv, seed: u64, actions: &[Action]) -> Vec<[f32; 23]> {
+fn rollout(env: &mut TaskEnv, seed: u64, actions: &[Action]) -> Vec<[f32; 23]> {
     let (obs, _) = env.reset(seed).unwrap();
     let mut trace = vec![obs.to_array()];
     for a in actions {
@@ -94,11 +94,11 @@ fn the_same_seed_and_actions_give_bit_identical_observations() {
     for arm in ARMS {
         cfg.arm.model = arm;
         let actions = random_actions(3, 60);
-        let mut env = GraspEnv::new(cfg.clone()).unwrap();
+        let mut env = TaskEnv::new(cfg.clone()).unwrap();
         let first = rollout(&mut env, 11, &actions);
         let _ = rollout(&mut env, 12, &actions); // another episode in between
         let again = rollout(&mut env, 11, &actions);
-        let fresh = rollout(&mut GraspEnv::new(cfg.clone()).unwrap(), 11, &actions);
+        let fresh = rollout(&mut TaskEnv::new(cfg.clone()).unwrap(), 11, &actions);
         assert_eq!(first, again, "{arm:?}: soft reset replay differs");
         assert_eq!(
             first, fresh,

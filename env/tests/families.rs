@@ -5,7 +5,7 @@
 use fairgrasp_env::scenario::camera_offset::CameraOffset;
 use fairgrasp_env::scenario::nudge::NudgeEvent;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, config::presets};
+use fairgrasp_env::{Action, EnvConfig, TaskEnv, config::presets};
 use fairgrasp_kinematics::Pose;
 
 const FAMILIES: [&str; 3] = ["miscalibrated", "miscalibrated_b", "nudged"];
@@ -78,7 +78,7 @@ fn bad_family_values_are_refused_naming_the_field() {
 }
 
 /// The observed cube in the table frame: centre \[m\] and yaw \[rad\].
-fn observed_in_table(env: &GraspEnv, obs: &fairgrasp_env::Observation) -> [f64; 3] {
+fn observed_in_table(env: &TaskEnv, obs: &fairgrasp_env::Observation) -> [f64; 3] {
     env.mount()
         .table_in_base
         .inverse()
@@ -90,7 +90,7 @@ fn the_miscalibration_moves_the_observed_pose_by_exactly_the_configured_transfor
     for name in ["miscalibrated", "miscalibrated_b"] {
         let config = presets::load(name).unwrap();
         let CameraOffset { origin, xyz, yaw } = config.randomization.camera_offset.unwrap();
-        let mut env = GraspEnv::new(config).unwrap();
+        let mut env = TaskEnv::new(config).unwrap();
         for seed in 0..8 {
             let (obs, _) = env.reset(seed).unwrap();
             let truth = env.mount().base_to_table(&env.object_in_base());
@@ -126,7 +126,7 @@ fn world_xyz(pose: &Pose) -> [f64; 3] {
 
 /// Steps `env` with the arm still and the gripper open for `n` steps; returns the cube (base
 /// frame) after each.
-fn hold_still(env: &mut GraspEnv, n: usize) -> Vec<Pose> {
+fn hold_still(env: &mut TaskEnv, n: usize) -> Vec<Pose> {
     (0..n)
         .map(|_| {
             env.step(&Action([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]))
@@ -142,7 +142,7 @@ fn a_nudge_happens_once_by_the_drawn_amount_and_leaves_the_cube_at_rest_on_the_t
     let table_top = config.scene.table_height;
     let half = config.scene.cube_size / 2.0;
     let nudge = config.randomization.nudge.unwrap();
-    let mut env = GraspEnv::new(config).unwrap();
+    let mut env = TaskEnv::new(config).unwrap();
     for seed in 0..12 {
         env.reset(seed).unwrap();
         let drawn = env
@@ -217,7 +217,7 @@ fn a_nudge_happens_once_by_the_drawn_amount_and_leaves_the_cube_at_rest_on_the_t
 #[test]
 fn no_nudge_while_the_gripper_is_near() {
     let config = presets::load("nudged").unwrap();
-    let mut env = GraspEnv::new(config).unwrap();
+    let mut env = TaskEnv::new(config).unwrap();
     let (_, info) = env.reset(3).unwrap();
     let mut scenario = info.scenario.unwrap();
     let mut drawn = scenario.nudge.unwrap();
@@ -242,7 +242,7 @@ fn no_nudge_while_the_gripper_is_near() {
 #[test]
 fn the_same_seed_gives_the_same_nudged_episode() {
     let config = presets::load("nudged").unwrap();
-    let run = |env: &mut GraspEnv| {
+    let run = |env: &mut TaskEnv| {
         env.reset(7).unwrap();
         let poses = hold_still(env, 30);
         (
@@ -251,10 +251,10 @@ fn the_same_seed_gives_the_same_nudged_episode() {
             poses.iter().map(|p| p.xyz()).collect::<Vec<_>>(),
         )
     };
-    let mut a = GraspEnv::new(config.clone()).unwrap();
+    let mut a = TaskEnv::new(config.clone()).unwrap();
     let first = run(&mut a);
     let again = run(&mut a);
-    let fresh = run(&mut GraspEnv::new(config).unwrap());
+    let fresh = run(&mut TaskEnv::new(config).unwrap());
     assert_eq!(first, again);
     assert_eq!(first, fresh);
     assert!(matches!(first.1, Some(NudgeEvent::Pushed { .. })));

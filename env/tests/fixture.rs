@@ -4,7 +4,7 @@
 //! leans on a wall, or sits on it when its centre of mass is over it); none sinks into the
 //! table or a wall beyond a millimetre.
 
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, TaskKind};
+use fairgrasp_env::{Action, EnvConfig, TaskEnv, TaskKind};
 use nalgebra::{Isometry3, Point3, Vector3};
 
 fn place_config() -> EnvConfig {
@@ -28,7 +28,7 @@ fn drop_cube(dx: f64, yaw: f64, above: f64) -> ([f64; 3], f64, f64) {
     let cfg = place_config();
     let table = cfg.scene.table_height;
     let half = 0.5 * cfg.scene.cube_size;
-    let mut env = GraspEnv::new(cfg).unwrap();
+    let mut env = TaskEnv::new(cfg).unwrap();
     env.reset(0).unwrap();
     let fixture = env.fixture_in_base().expect("a place env has a fixture");
     let base = env.base_in_world().iso;

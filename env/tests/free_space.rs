@@ -5,16 +5,16 @@ mod common;
 
 use fairgrasp_env::env::free_space::joint_reach;
 use fairgrasp_env::task::Failure;
-use fairgrasp_env::{Action, ArmSimulation, EnvConfig, GraspEnv, Step};
+use fairgrasp_env::{Action, ArmSimulation, EnvConfig, Step, TaskEnv};
 
-fn env_with(free_space: bool) -> GraspEnv {
+fn env_with(free_space: bool) -> TaskEnv {
     let mut config = common::config(ArmSimulation::Servo);
     config.physics.free_space = free_space;
-    GraspEnv::new(config).unwrap()
+    TaskEnv::new(config).unwrap()
 }
 
 /// Largest difference between the two fingers' travels \[m\].
-fn finger_gap(a: &GraspEnv, b: &GraspEnv) -> f64 {
+fn finger_gap(a: &TaskEnv, b: &TaskEnv) -> f64 {
     (0..2)
         .map(|f| (a.finger_travel()[f] - b.finger_travel()[f]).abs())
         .fold(0.0, f64::max)
@@ -99,7 +99,7 @@ fn links_driven_into_the_table_or_each_other_collide_alike_with_and_without_phys
 }
 
 /// Drives a top-down grasp and lift; returns every step.
-fn grasp_and_lift(env: &mut GraspEnv, seed: u64) -> Vec<Step> {
+fn grasp_and_lift(env: &mut TaskEnv, seed: u64) -> Vec<Step> {
     env.reset(seed).unwrap();
     let (grasp, above) = common::grasp_targets(env);
     let mut steps = Vec::new();
@@ -170,7 +170,7 @@ fn the_free_space_switch_is_deterministic_seed_replays_are_bit_identical() {
 fn the_multibody_arm_always_simulates() {
     let mut config = EnvConfig::default();
     config.arm.model = ArmSimulation::Multibody;
-    let mut env = GraspEnv::new(config).unwrap();
+    let mut env = TaskEnv::new(config).unwrap();
     env.reset(0).unwrap();
     for _ in 0..5 {
         assert!(env.step(&Action::hold_open()).unwrap().info.simulated);
@@ -214,7 +214,7 @@ fn only_a_self_collision_ends_a_training_episode_when_the_task_says_so() {
         config.task.terminate_on_collision = false;
         config.task.terminate_on_self_collision = ends_on_self;
         for (action, self_collision) in [(into_table, false), (into_itself, true)] {
-            let mut env = GraspEnv::new(config.clone()).unwrap();
+            let mut env = TaskEnv::new(config.clone()).unwrap();
             env.reset(3).unwrap();
             let mut step = || env.step(&Action(action)).unwrap();
             let hit = (0..200)

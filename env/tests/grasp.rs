@@ -3,10 +3,10 @@
 
 mod common;
 
-use fairgrasp_env::{ArmSimulation, GraspEnv};
+use fairgrasp_env::{ArmSimulation, TaskEnv};
 
 fn lift_and_hold(arm: ArmSimulation) {
-    let mut env = GraspEnv::new(common::config(arm)).unwrap();
+    let mut env = TaskEnv::new(common::config(arm)).unwrap();
     env.reset(0).unwrap();
     let (grasp, above) = common::grasp_targets(&env);
     common::drive(&mut env, above, -1.0, 50);
@@ -75,7 +75,7 @@ fn multibody_arm_lifts_the_cube_10_cm_and_holds_it_2_s_without_slip_or_sinking()
 
 #[test]
 fn open_fingers_let_go_and_the_cube_falls_back_to_the_table() {
-    let mut env = GraspEnv::new(common::config(ArmSimulation::Servo)).unwrap();
+    let mut env = TaskEnv::new(common::config(ArmSimulation::Servo)).unwrap();
     env.reset(0).unwrap();
     let rest_z = env.object_in_base().xyz()[2];
     let (grasp, above) = common::grasp_targets(&env);

@@ -1,6 +1,6 @@
 //! The mount and its table frame: "up" is the world's, for any base pose.
 
-use fairgrasp_env::{EnvConfig, GraspEnv, Mount};
+use fairgrasp_env::{EnvConfig, Mount, TaskEnv};
 use fairgrasp_kinematics::Pose;
 
 fn mount(xyz: [f64; 3], rpy: [f64; 3]) -> Mount {
@@ -55,7 +55,7 @@ fn the_env_reports_the_mount_it_was_built_with() {
     let mut cfg = EnvConfig::default();
     cfg.arm.base_rpy = [0.05, 0.1, -0.7];
     cfg.arm.base_xyz = [0.0, 0.0, 0.5];
-    let env = GraspEnv::new(cfg.clone()).unwrap();
+    let env = TaskEnv::new(cfg.clone()).unwrap();
     assert_eq!(*env.mount(), Mount::from_config(&cfg));
     assert!((env.mount().base_height_above_table() + 0.1).abs() < 1e-12);
 }

@@ -5,10 +5,10 @@ mod common;
 
 use fairgrasp_env::config::TaskConfig;
 use fairgrasp_env::task::{Failure, TaskState, judge_protective_stop};
-use fairgrasp_env::{ArmSimulation, ConfigError, EnvConfig, GraspEnv, Step};
+use fairgrasp_env::{ArmSimulation, ConfigError, EnvConfig, Step, TaskEnv};
 
 /// The cube centre's height in `world` \[m\].
-fn object_world_z(env: &GraspEnv) -> f64 {
+fn object_world_z(env: &TaskEnv) -> f64 {
     (env.base_in_world().iso * env.object_in_base().iso)
         .translation
         .z
@@ -20,7 +20,7 @@ fn object_world_z(env: &GraspEnv) -> f64 {
 fn press_closed_fingers_onto_the_cube(arm: ArmSimulation, threshold: f64) -> (Step, f64) {
     let mut config = common::config(arm);
     config.task.protective_stop_force = threshold;
-    let mut env = GraspEnv::new(config).unwrap();
+    let mut env = TaskEnv::new(config).unwrap();
     env.reset(0).unwrap();
     let rest_z = object_world_z(&env);
     let (grasp, above) = common::grasp_targets(&env);
@@ -143,7 +143,7 @@ fn a_protective_stop_is_never_a_success_even_when_lifted_and_held() {
 fn a_finger_hitting_the_table_stops_the_robot_even_without_collision_termination() {
     let mut config = common::config(ArmSimulation::Servo);
     config.task.terminate_on_collision = false;
-    let mut env = GraspEnv::new(config).unwrap();
+    let mut env = TaskEnv::new(config).unwrap();
     env.reset(0).unwrap();
     // Beside the cube, 6.5 cm below the grasp pose: the open fingers reach the table first.
     let target = common::beside_and_below_grasp(&env);

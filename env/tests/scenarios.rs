@@ -3,7 +3,7 @@
 use fairgrasp_env::config::RandomizationConfig;
 use fairgrasp_env::scenario::curriculum::{Curriculum, CurriculumConfig};
 use fairgrasp_env::scenario::{Scenario, object_pose_in_base, scenario_set, top_down_grasp};
-use fairgrasp_env::{EnvConfig, GraspEnv, HOME_JOINTS, Mount};
+use fairgrasp_env::{EnvConfig, HOME_JOINTS, Mount, TaskEnv};
 use fairgrasp_kinematics::ArmKind;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -116,13 +116,13 @@ fn scenarios_from_a_tilted_base_rest_flat_on_the_table_and_grasp_along_gravity()
 fn a_base_tilted_past_15_degrees_is_refused_naming_the_field() {
     let mut cfg = EnvConfig::default();
     cfg.arm.base_rpy = [0.2, 0.2, 0.0]; // 16.2°
-    let err = GraspEnv::new(cfg.clone())
+    let err = TaskEnv::new(cfg.clone())
         .err()
         .expect("refused")
         .to_string();
     assert!(err.contains("arm.base_rpy") && err.contains("15°"), "{err}");
     cfg.arm.base_rpy = [0.18, 0.18, 1.0]; // 14.6°
-    assert!(GraspEnv::new(cfg).is_ok());
+    assert!(TaskEnv::new(cfg).is_ok());
 }
 
 #[test]
@@ -132,7 +132,7 @@ fn a_mount_with_no_graspable_workspace_is_refused_with_a_message_that_says_so() 
         ..EnvConfig::default()
     };
     cfg.arm.base_xyz[2] = cfg.scene.table_height + 1.2; // 1.2 m above the table top
-    let mut env = GraspEnv::new(cfg).unwrap();
+    let mut env = TaskEnv::new(cfg).unwrap();
     let err = env.reset(0).expect_err("no workspace").to_string();
     assert!(
         err.contains("no graspable object position") && err.contains("1.200 m above the table"),
@@ -170,7 +170,7 @@ fn reset_to_a_scenario_puts_the_cube_where_it_says_resting_on_the_table() {
         ..EnvConfig::default()
     };
     cfg.arm.base_rpy = [0.0, 0.0, 0.7]; // a yawed, level base: positions are in its frame
-    let mut env = GraspEnv::new(cfg.clone()).unwrap();
+    let mut env = TaskEnv::new(cfg.clone()).unwrap();
     let scenario = Scenario::sample(&cfg, 4).unwrap();
     env.reset_to(&scenario);
     let xyz = env.object_in_base().xyz();
@@ -314,7 +314,7 @@ fn with_both_sides_a_one_sided_policy_stays_in_its_stage() {
 #[test]
 fn perception_noise_shifts_only_the_observed_cube_and_is_fixed_per_episode() {
     let config = fairgrasp_env::config::presets::load("hard").unwrap();
-    let mut env = GraspEnv::new(config).unwrap();
+    let mut env = TaskEnv::new(config).unwrap();
     let (obs, info) = env.reset(3).unwrap();
     let scenario = info.scenario.unwrap();
     let actual = env.object_in_base().xyz();

@@ -13,7 +13,7 @@ use fairgrasp_env::sim::contacts::CollisionFilter;
 use fairgrasp_env::sim::convert::{from_rapier, to_rapier};
 use fairgrasp_env::sim::scene::{Part, finger_in_tool0};
 use fairgrasp_env::sim::shapes::{CheckedPairs, RobotShapes};
-use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_env::{EnvConfig, TaskEnv};
 use fairgrasp_kinematics::geometry::Cuboid;
 use fairgrasp_kinematics::{EndFrame, Pose};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
@@ -36,16 +36,16 @@ const MOUNTS: [([f64; 3], [f64; 3]); 4] = [
     ([0.0, 0.0, 0.9], [0.12, 0.12, 3.0]),
 ];
 
-fn env_on(mount: &([f64; 3], [f64; 3])) -> GraspEnv {
+fn env_on(mount: &([f64; 3], [f64; 3])) -> TaskEnv {
     let mut config = EnvConfig::default();
     (config.arm.base_xyz, config.arm.base_rpy) = *mount;
-    GraspEnv::new(config).expect("a valid mount")
+    TaskEnv::new(config).expect("a valid mount")
 }
 
 /// Random joints within the limits \[rad\] and finger travels within [0, travel] \[m\]; every
 /// other draw puts the TCP, pointing down, from 3 cm below to 8 cm above the table top (by IK),
 /// so that the pads and the palm graze the table.
-fn random_configuration(env: &GraspEnv, rng: &mut ChaCha8Rng) -> Configuration {
+fn random_configuration(env: &TaskEnv, rng: &mut ChaCha8Rng) -> Configuration {
     let model = env.model();
     let travel = [0; 2].map(|_| rng.random_range(0.0..=model.gripper.finger_travel));
     let q = std::array::from_fn(|i| rng.random_range(model.joints[i].lower..model.joints[i].upper));
@@ -67,7 +67,7 @@ fn random_configuration(env: &GraspEnv, rng: &mut ChaCha8Rng) -> Configuration {
 }
 
 /// Moves rapier's robot bodies to joints `q` and finger travels `travel`.
-fn place_bodies(env: &mut GraspEnv, q: &[f64; 6], travel: [f64; 2]) {
+fn place_bodies(env: &mut TaskEnv, q: &[f64; 6], travel: [f64; 2]) {
     let model = env.model().clone();
     let base = *env.base_in_world();
     let (world, handles) = env.world_mut();
@@ -85,7 +85,7 @@ fn place_bodies(env: &mut GraspEnv, q: &[f64; 6], travel: [f64; 2]) {
 }
 
 /// Every robot and table collider: its part, world pose and shape.
-fn colliders(env: &mut GraspEnv) -> Vec<(Part, Pose3, SharedShape)> {
+fn colliders(env: &mut TaskEnv) -> Vec<(Part, Pose3, SharedShape)> {
     let (world, handles) = env.world_mut();
     let mut out: Vec<_> = handles
         .parts

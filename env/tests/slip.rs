@@ -8,7 +8,7 @@
 
 mod common;
 
-use fairgrasp_env::{ArmSimulation, EnvConfig, GraspEnv};
+use fairgrasp_env::{ArmSimulation, EnvConfig, TaskEnv};
 
 const G: f64 = 9.81;
 
@@ -37,7 +37,7 @@ fn capacity_over_weight(cfg: &EnvConfig) -> f64 {
 }
 
 fn grasp_and_lift(cfg: EnvConfig) -> Lift {
-    let mut env = GraspEnv::new(cfg).unwrap();
+    let mut env = TaskEnv::new(cfg).unwrap();
     env.reset(0).unwrap();
     let (grasp, above) = common::grasp_targets(&env);
     common::drive(&mut env, above, -1.0, 50);

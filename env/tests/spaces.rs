@@ -4,7 +4,7 @@
 use fairgrasp_env::config::{ArmSimulation, RandomizationConfig};
 use fairgrasp_env::env::obs::{OBS_DIM, OBS_NAMES};
 use fairgrasp_env::env::spaces::{ACT_DIM, action_space, observation_space};
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
+use fairgrasp_env::{Action, EnvConfig, Observation, TaskEnv};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -15,7 +15,7 @@ fn flat(obs: &Observation) -> Vec<f64> {
 #[test]
 fn the_spaces_name_every_entry_with_finite_bounds() {
     let cfg = EnvConfig::default();
-    let env = GraspEnv::new(cfg.clone()).unwrap();
+    let env = TaskEnv::new(cfg.clone()).unwrap();
     let obs = observation_space(&cfg, env.model());
     assert_eq!(obs.len(), OBS_DIM);
     assert_eq!(obs.names, OBS_NAMES.to_vec());
@@ -40,7 +40,7 @@ fn random_rollouts_on_both_arm_models_stay_inside_the_observation_space() {
         };
         cfg.arm.model = arm;
         cfg.arm.action_scale = 3.0; // fast joints: the velocity bounds are tested
-        let mut env = GraspEnv::new(cfg.clone()).unwrap();
+        let mut env = TaskEnv::new(cfg.clone()).unwrap();
         let space = observation_space(&cfg, env.model());
         let mut rng = ChaCha8Rng::seed_from_u64(3);
         let mut steps = 0;

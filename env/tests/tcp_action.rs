@@ -3,17 +3,17 @@
 mod common;
 
 use fairgrasp_env::config::{ActionSpace, RewardKind};
-use fairgrasp_env::{Action, ArmSimulation, EnvConfig, GraspEnv};
+use fairgrasp_env::{Action, ArmSimulation, EnvConfig, TaskEnv};
 
-fn tcp_env(reward: RewardKind) -> GraspEnv {
+fn tcp_env(reward: RewardKind) -> TaskEnv {
     let mut config: EnvConfig = common::config(ArmSimulation::Servo);
     config.arm.action_space = ActionSpace::Tcp;
     config.task.reward = reward;
-    GraspEnv::new(config).unwrap()
+    TaskEnv::new(config).unwrap()
 }
 
 /// A proportional task-space action toward `target` (base_link = table frame, level base).
-fn toward(env: &GraspEnv, target: [f64; 3], grip: f64) -> Action {
+fn toward(env: &TaskEnv, target: [f64; 3], grip: f64) -> Action {
     let tcp = env.tcp_in_base().xyz();
     let speed = env.config().arm.tcp_speed;
     let mut a = [0.0; 7];
@@ -54,7 +54,7 @@ fn tcp_actions_move_the_gripper_straight_to_a_point_and_keep_it_pointing_down() 
 fn a_yaw_action_turns_the_gripper_about_the_vertical() {
     let mut env = tcp_env(RewardKind::Distance);
     env.reset(0).unwrap();
-    let yaw = |env: &GraspEnv| {
+    let yaw = |env: &TaskEnv| {
         let x = env.tcp_in_base().iso.rotation * nalgebra::Vector3::x();
         x.y.atan2(x.x)
     };
@@ -91,11 +91,11 @@ fn the_staged_reward_grows_as_the_gripper_nears_the_cube() {
 fn a_scripted_task_space_grasp_lifts_the_cube() {
     let mut config: EnvConfig = fairgrasp_env::config::presets::load("sector").unwrap();
     config.arm.action_space = ActionSpace::Tcp;
-    let mut env = GraspEnv::new(config).unwrap();
+    let mut env = TaskEnv::new(config).unwrap();
     let mut successes = 0;
     for seed in 0..10 {
         env.reset(seed).unwrap();
-        let yaw_of = |env: &GraspEnv| {
+        let yaw_of = |env: &TaskEnv| {
             let x = env.tcp_in_base().iso.rotation * nalgebra::Vector3::x();
             x.y.atan2(x.x)
         };

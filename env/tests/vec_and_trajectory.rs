@@ -2,7 +2,7 @@
 
 use fairgrasp_env::episode::trajectory::{Recorder, Trajectory};
 use fairgrasp_env::vec::VecEnv;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
+use fairgrasp_env::{Action, EnvConfig, Observation, TaskEnv};
 use fairgrasp_types::body::compose;
 
 fn cfg() -> EnvConfig {
@@ -68,8 +68,8 @@ fn the_batch_holds_each_envs_own_observation_and_episode_seed() {
     let first = v.reset().unwrap().to_vec();
     let seeds = v.batch().seeds.clone();
     assert_eq!(seeds, vec![500, 1_000_500, 2_000_500]);
-    let mut alone: Vec<GraspEnv> = (0..3)
-        .map(|_| GraspEnv::new(config.clone()).unwrap())
+    let mut alone: Vec<TaskEnv> = (0..3)
+        .map(|_| TaskEnv::new(config.clone()).unwrap())
         .collect();
     for (e, env) in alone.iter_mut().enumerate() {
         assert_eq!(env.reset(seeds[e]).unwrap().0, first[e]);
@@ -103,7 +103,7 @@ fn the_batch_holds_each_envs_own_observation_and_episode_seed() {
 
 #[test]
 fn an_episode_exports_to_csv_and_json_with_one_row_per_step() {
-    let mut env = GraspEnv::new(EnvConfig::default()).unwrap();
+    let mut env = TaskEnv::new(EnvConfig::default()).unwrap();
     let (obs, _) = env.reset(0).unwrap();
     let mut t = Trajectory::default();
     t.record_reset(&env, obs.gripper_opening);

@@ -6,7 +6,7 @@
 use fairgrasp_env::episode::trajectory::Recorder;
 use fairgrasp_env::episode::{Outcome, run_recorded};
 use fairgrasp_env::scenario::Scenario;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, Step};
+use fairgrasp_env::{Action, EnvConfig, Step, TaskEnv};
 use fairgrasp_planner::stream::{
     EpisodeJoints, Resampled, StreamLimits, StreamViolation, check_stream, resample,
 };
@@ -44,19 +44,19 @@ struct JointLog {
 }
 
 impl JointLog {
-    fn push(&mut self, env: &GraspEnv) {
+    fn push(&mut self, env: &TaskEnv) {
         self.joints.push(env.joints());
         self.velocities.push(env.joint_velocities());
     }
 }
 
 impl Recorder for JointLog {
-    fn record_reset(&mut self, env: &GraspEnv, _opening: f64) {
+    fn record_reset(&mut self, env: &TaskEnv, _opening: f64) {
         *self = JointLog::default();
         self.push(env);
     }
 
-    fn record_step(&mut self, env: &GraspEnv, _: &Action, _: &Step, _: Option<&str>) {
+    fn record_step(&mut self, env: &TaskEnv, _: &Action, _: &Step, _: Option<&str>) {
         self.push(env);
         self.gripper.push(env.gripper_command());
     }
@@ -78,7 +78,7 @@ pub fn export_episode(
     method.check_task(config)?;
     let calibration = calibration_of(config, "the exported preset")?;
     let mut policy = method.policy(config, &calibration);
-    let mut env = GraspEnv::new(config.clone()).map_err(CompareError::from)?;
+    let mut env = TaskEnv::new(config.clone()).map_err(CompareError::from)?;
     let mut log = JointLog::default();
     let record =
         run_recorded(&mut env, policy.as_mut(), scenario, &mut log).map_err(CompareError::from)?;

@@ -6,7 +6,7 @@
 use fairgrasp_env::cell::Cell;
 use fairgrasp_env::episode::Outcome;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_env::{EnvConfig, TaskEnv};
 use fairgrasp_evaluate::compare::methods::Method;
 use fairgrasp_evaluate::export::export_episode;
 use fairgrasp_planner::stream::check::peaks;
@@ -25,7 +25,7 @@ fn export_and_play(
     let config: EnvConfig = fairgrasp_env::config::presets::load(preset).unwrap();
     let limits = StreamLimits::of(&Cell::from_config(&config).model);
     let scenarios = scenario_set(&config, seed, n).unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let (mut exported, mut replayed, mut lag, mut step) = (0, 0, 0.0f64, 0.0f64);
     for (k, scenario) in scenarios.iter().enumerate() {
         let resolved = Method::resolve(method, config.task.kind).unwrap();

@@ -7,7 +7,7 @@
 
 use std::time::Instant;
 
-use fairgrasp_env::GraspEnv;
+use fairgrasp_env::TaskEnv;
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::run_episode;
 use fairgrasp_env::scenario::scenario_set;
@@ -37,7 +37,7 @@ fn main() {
     let episodes: usize = args.next().and_then(|n| n.parse().ok()).unwrap_or(100);
     let config = presets::load(&preset).expect("a preset");
     let scenarios = scenario_set(&config, 0, episodes).expect("scenarios");
-    let mut env = GraspEnv::new(config.clone()).expect("an env");
+    let mut env = TaskEnv::new(config.clone()).expect("an env");
     let mut script = ScriptedGrasp::new(&config, BaselineConfig::default());
     let (wall, cpu) = (Instant::now(), cpu_seconds());
     let (mut steps, mut successes) = (0usize, 0usize);

@@ -4,11 +4,11 @@
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{EvalReport, Outcome, run_episode};
 use fairgrasp_env::scenario::{Scenario, scenario_set};
-use fairgrasp_env::{EnvConfig, GraspEnv, HOME_JOINTS};
+use fairgrasp_env::{EnvConfig, HOME_JOINTS, TaskEnv};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
 fn evaluate(config: &EnvConfig, seed: u64, n: usize) -> EvalReport {
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let scenarios = scenario_set(config, seed, n).unwrap();
     let mut policy = ScriptedGrasp::new(config, BaselineConfig::default());
     let results = scenarios
@@ -48,7 +48,7 @@ fn the_same_seed_gives_the_same_outcomes() {
 fn an_unreachable_object_is_an_ik_failure_not_a_panic() {
     let mut config = EnvConfig::default();
     config.scene.table_size = [3.0, 3.0];
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let far = Scenario {
         seed: 0,
         object_xy: [1.2, 0.0],
@@ -70,7 +70,7 @@ fn an_unreachable_object_is_an_ik_failure_not_a_panic() {
 #[test]
 fn planned_trajectories_stay_within_the_fr3_velocity_and_acceleration_limits() {
     let config = presets::load("sector").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let scenarios = scenario_set(&config, 3, 10).unwrap();
     let model = env.model().clone();
     let mut policy = ScriptedGrasp::new(&config, BaselineConfig::default());

@@ -7,7 +7,7 @@ use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{EvalReport, Policy, run_episode};
 use fairgrasp_env::scenario::perception::observe_object;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{EnvConfig, GraspEnv, Mount};
+use fairgrasp_env::{EnvConfig, Mount, TaskEnv};
 use fairgrasp_kinematics::Pose;
 use fairgrasp_planner::lift::calibrated::TOUCH_ERROR;
 use fairgrasp_planner::{BaselineConfig, CalibratedScript, CameraCalibration, ScriptedGrasp};
@@ -74,7 +74,7 @@ fn the_calibration_finds_each_cells_camera_error_and_none_where_there_is_none() 
 }
 
 fn success(config: &EnvConfig, policy: &mut dyn Policy, episodes: usize) -> EvalReport {
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let results = scenario_set(config, 7, episodes)
         .unwrap()
         .iter()
@@ -118,7 +118,7 @@ fn where_the_error_changes_every_episode_the_calibration_is_refused_and_nothing_
         let calibration = CameraCalibration::of(&config).unwrap();
         let why = calibration.fit.clone().unwrap_err();
         assert!(why.contains("beyond the bound"), "{name}: {why}");
-        let mut env = GraspEnv::new(config.clone()).unwrap();
+        let mut env = TaskEnv::new(config.clone()).unwrap();
         let mut open = ScriptedGrasp::new(&config, BaselineConfig::default());
         let mut calibrated = CalibratedScript::new(&config, calibration);
         for s in scenario_set(&config, 7, 20).unwrap() {

@@ -5,14 +5,14 @@
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{EvalReport, Outcome, Policy, run_episode};
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
+use fairgrasp_env::{Action, EnvConfig, Observation, TaskEnv};
 use fairgrasp_planner::lift::residual::{OracleResidual, ResidualScript};
 use fairgrasp_planner::{ClosedLoopGrasp, TaskResidual};
 
 const EPISODES: usize = 100;
 
 fn rate(config: &EnvConfig, policy: &mut dyn Policy) -> EvalReport {
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let scenarios = scenario_set(config, 0, EPISODES).unwrap();
     let results = scenarios
         .iter()
@@ -70,7 +70,7 @@ fn the_squeeze_maps_its_command_to_a_grip_force_the_env_applies() {
     let config = presets::load("heavy_slippery").unwrap();
     for (command, newtons) in [(1.0, 12.0), (0.0, 5.0), (-1.0, 1.0)] {
         let mut oracle = OracleResidual::squeezing(&config, command);
-        let mut env = GraspEnv::new(config.clone()).unwrap();
+        let mut env = TaskEnv::new(config.clone()).unwrap();
         let scenario = scenario_set(&config, 3, 1).unwrap()[0];
         let (obs, _) = env.reset_to(&scenario);
         oracle.reset(scenario.seed);
@@ -86,7 +86,7 @@ fn the_squeeze_maps_its_command_to_a_grip_force_the_env_applies() {
         env.reset_to(&scenario);
         assert_eq!(env.grip_force(), config.gripper.force);
     }
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     for bad in [0.0, -1.0, f64::NAN, 101.0] {
         let e = env.set_grip_force(bad).unwrap_err().to_string();
         assert!(e.contains("grip force") && e.contains("(0, 100]"), "{e}");

@@ -6,7 +6,7 @@ use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{EpisodeRecord, EvalReport, Outcome, Policy, run_episode};
 use fairgrasp_env::scenario::nudge::NudgeEvent;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_env::{EnvConfig, TaskEnv};
 use fairgrasp_planner::grasp::{candidate_yaws, tcp_yaw};
 use fairgrasp_planner::{
     BaselineConfig, ClosedLoopConfig, ClosedLoopGrasp, CubeSource, Phase, ScriptedGrasp,
@@ -20,7 +20,7 @@ fn run(
     config: &EnvConfig,
     policy: &mut dyn Policy,
 ) -> (Vec<EpisodeRecord>, Vec<Option<NudgeEvent>>) {
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let scenarios = scenario_set(config, 0, EPISODES).unwrap();
     scenarios
         .iter()
@@ -106,7 +106,7 @@ fn every_push_is_made_during_the_approach_far_from_the_gripper() {
 fn the_same_seed_gives_the_same_family_episodes_for_every_script() {
     for name in ["miscalibrated", "nudged"] {
         let config = presets::load(name).unwrap();
-        let mut env = GraspEnv::new(config.clone()).unwrap();
+        let mut env = TaskEnv::new(config.clone()).unwrap();
         let scenarios = scenario_set(&config, 4, 3).unwrap();
         let mut policies: Vec<Box<dyn Policy>> = vec![
             Box::new(ScriptedGrasp::new(&config, BaselineConfig::default())),
@@ -117,7 +117,7 @@ fn the_same_seed_gives_the_same_family_episodes_for_every_script() {
             for s in &scenarios {
                 let a = run_episode(&mut env, policy.as_mut(), s, None).unwrap();
                 let event = env.nudge_event();
-                let mut fresh = GraspEnv::new(config.clone()).unwrap();
+                let mut fresh = TaskEnv::new(config.clone()).unwrap();
                 let b = run_episode(&mut fresh, policy.as_mut(), s, None).unwrap();
                 assert_eq!(a, b, "{name}");
                 assert_eq!(event, fresh.nudge_event(), "{name}");
@@ -161,7 +161,7 @@ impl Policy for MisleadUntilClose {
 #[test]
 fn the_closed_loop_retries_a_missed_grasp_once_and_then_grasps() {
     let config = presets::load("full").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let scenarios = scenario_set(&config, 2, 4).unwrap();
     let model = env.model().clone();
     let mount = *env.mount();

@@ -3,13 +3,13 @@
 //! the scenario's drawn angle and stays held, tilted, through the carry; without the setting
 //! nothing turns. Physical facts read from the simulator, not from the hook's record alone.
 
-use fairgrasp_env::GraspEnv;
+use fairgrasp_env::TaskEnv;
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::Policy;
 use fairgrasp_planner::ScriptedPlace;
 
 /// The cube's tilt from standing on a face \[rad\].
-fn tilt(env: &GraspEnv) -> f64 {
+fn tilt(env: &TaskEnv) -> f64 {
     let r = env.object_in_base().iso.rotation.to_rotation_matrix();
     let upright = (0..3).map(|i| r[(2, i)].abs()).fold(0.0, f64::max);
     upright.clamp(-1.0, 1.0).acos()
@@ -30,7 +30,7 @@ struct Carry {
 
 fn carry(preset: &str, seed: u64) -> Carry {
     let config = presets::load(preset).unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let mut script = ScriptedPlace::new(&config);
     let (mut obs, _) = env.reset(seed).unwrap();
     script.reset(seed);
@@ -127,7 +127,7 @@ fn spirals_and_seats(seeds: std::ops::Range<u64>, floor_band: Option<f64>) -> (u
     };
     let (mut spiralled, mut seated) = (0, 0);
     for seed in seeds {
-        let mut env = GraspEnv::new(config.clone()).unwrap();
+        let mut env = TaskEnv::new(config.clone()).unwrap();
         let mut script = ScriptedPlace::with_search(&config, params);
         let (mut obs, _) = env.reset(seed).unwrap();
         script.reset(seed);

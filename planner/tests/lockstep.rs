@@ -7,7 +7,7 @@
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{Policy, run_episode, run_lockstep};
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_env::{EnvConfig, TaskEnv};
 use fairgrasp_planner::{
     BaselineConfig, CalibratedScript, CameraCalibration, ClosedLoopGrasp, ScriptedGrasp,
 };
@@ -28,7 +28,7 @@ fn scripts(config: &EnvConfig) -> Vec<Box<dyn Policy>> {
 fn lockstep_equals_alone(preset: &str, episodes: usize) -> usize {
     let config = presets::load(preset).unwrap();
     let scenarios = scenario_set(&config, 0, episodes).unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let (mut together, mut alone) = (scripts(&config), scripts(&config));
     let mut shared = 0;
     for (k, scenario) in scenarios.iter().enumerate() {

@@ -3,14 +3,14 @@
 //! switching search that reads a tilted cube from its first touch. Physical facts read from the
 //! simulator.
 
-use fairgrasp_env::GraspEnv;
+use fairgrasp_env::TaskEnv;
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{Policy, run_episode};
 use fairgrasp_env::scenario::Scenario;
 use fairgrasp_planner::ScriptedPlace;
 
 /// The cube's tilt from standing on a face \[rad\].
-fn tilt(env: &GraspEnv) -> f64 {
+fn tilt(env: &TaskEnv) -> f64 {
     let r = env.object_in_base().iso.rotation.to_rotation_matrix();
     let upright = (0..3).map(|i| r[(2, i)].abs()).fold(0.0, f64::max);
     upright.clamp(-1.0, 1.0).acos()
@@ -25,7 +25,7 @@ fn the_cycle_time_is_the_episodes_simulated_time_and_the_takt_judges_it() {
     let step = config.physics.dt * config.physics.substeps as f64;
     let scenario = Scenario::sample(&config, 7).unwrap();
     let run = |config: &fairgrasp_env::EnvConfig| {
-        let mut env = GraspEnv::new(config.clone()).unwrap();
+        let mut env = TaskEnv::new(config.clone()).unwrap();
         let mut script = ScriptedPlace::new(config);
         run_episode(&mut env, &mut script, &scenario, None).unwrap()
     };
@@ -57,7 +57,7 @@ fn the_cycle_time_is_the_episodes_simulated_time_and_the_takt_judges_it() {
     }
     // The lift task runs on no takt: every success counts.
     let lift = presets::load("sector").unwrap();
-    let mut env = GraspEnv::new(lift.clone()).unwrap();
+    let mut env = TaskEnv::new(lift.clone()).unwrap();
     let mut grasp = fairgrasp_planner::ScriptedGrasp::new(&lift, Default::default());
     let s = Scenario::sample(&lift, 0).unwrap();
     let r = run_episode(&mut env, &mut grasp, &s, None).unwrap();
@@ -78,7 +78,7 @@ fn the_squaring_turns_a_tilted_cube_back_within_two_degrees() {
     q.hold = 0.5;
     let mut squared = 0;
     for seed in 0..6 {
-        let mut env = GraspEnv::new(config.clone()).unwrap();
+        let mut env = TaskEnv::new(config.clone()).unwrap();
         let mut script = ScriptedPlace::with_squaring(&config, config.task.place.square);
         let (mut obs, _) = env.reset(seed).unwrap();
         script.reset(seed);
@@ -142,7 +142,7 @@ fn the_switch_reads_the_family_from_the_first_touch() {
         ("place_grasp_error", false),
     ] {
         let config = presets::load(preset).unwrap();
-        let mut env = GraspEnv::new(config.clone()).unwrap();
+        let mut env = TaskEnv::new(config.clone()).unwrap();
         let mut script = ScriptedPlace::with_switch(&config, switch);
         let (mut touched, mut right) = (0, 0);
         for seed in 0..16 {

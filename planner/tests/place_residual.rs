@@ -1,7 +1,7 @@
 //! The place residual's interface ([`PlaceResidual`]): at a zero command it is the engineer's
 //! force-guided search step for step, and a held correction moves where the search presses.
 
-use fairgrasp_env::GraspEnv;
+use fairgrasp_env::TaskEnv;
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::Policy;
 use fairgrasp_planner::place::residual::{FEATURE_DIM, PlaceResidual};
@@ -15,7 +15,7 @@ fn actions(
     mut act: impl FnMut(&fairgrasp_env::Observation) -> fairgrasp_env::Action,
 ) -> (Vec<[f64; 7]>, Option<fairgrasp_env::episode::Outcome>) {
     let config = presets::load(preset).unwrap();
-    let mut env = GraspEnv::new(config).unwrap();
+    let mut env = TaskEnv::new(config).unwrap();
     let (mut obs, _) = env.reset(seed).unwrap();
     let mut out = Vec::new();
     loop {

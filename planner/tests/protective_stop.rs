@@ -6,7 +6,7 @@ use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{Outcome, Policy, evaluate_seeded};
 use fairgrasp_env::scenario::{Scenario, scenario_set};
 use fairgrasp_env::task::Failure;
-use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_env::{EnvConfig, TaskEnv};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 
 /// The most the cube centre may go below its resting height \[m\].
@@ -22,13 +22,13 @@ struct Episode {
 }
 
 /// The cube centre's height in `world` \[m\].
-fn object_world_z(env: &GraspEnv) -> f64 {
+fn object_world_z(env: &TaskEnv) -> f64 {
     (env.base_in_world().iso * env.object_in_base().iso)
         .translation
         .z
 }
 
-fn run(env: &mut GraspEnv, policy: &mut ScriptedGrasp, scenario: &Scenario) -> Episode {
+fn run(env: &mut TaskEnv, policy: &mut ScriptedGrasp, scenario: &Scenario) -> Episode {
     let (mut obs, _) = env.reset_to(scenario);
     policy.reset(scenario.seed);
     let rest_z = object_world_z(env);
@@ -57,7 +57,7 @@ fn baseline(config: &EnvConfig, n: usize) -> Vec<Episode> {
             .chunks(n.div_ceil(2))
             .map(|part| {
                 scope.spawn(move || {
-                    let mut env = GraspEnv::new(config.clone()).unwrap();
+                    let mut env = TaskEnv::new(config.clone()).unwrap();
                     let mut policy = ScriptedGrasp::new(config, BaselineConfig::default());
                     part.iter()
                         .map(|s| run(&mut env, &mut policy, s))

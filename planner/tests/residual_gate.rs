@@ -6,7 +6,7 @@
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{EvalReport, Outcome, Policy, run_episode};
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, Observation};
+use fairgrasp_env::{Action, EnvConfig, Observation, TaskEnv};
 use fairgrasp_planner::lift::residual::{FEATURE_DIM, ResidualScript};
 use fairgrasp_planner::{
     BaselineConfig, OracleResidual, Phase, ScriptedGrasp, TaskCorrection, TaskResidual,
@@ -73,7 +73,7 @@ impl Policy for Constant {
 #[test]
 fn a_zero_residual_is_the_open_loop_script_exactly() {
     let config = presets::load("miscalibrated").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let scenarios = scenario_set(&config, 3, 4).unwrap();
     let mut script = ScriptedGrasp::new(&config, BaselineConfig::default());
     let mut zero = Constant::new(&config, [0.0; 7], 0);
@@ -87,7 +87,7 @@ fn a_zero_residual_is_the_open_loop_script_exactly() {
 #[test]
 fn a_held_correction_moves_the_grasp_by_that_much_and_is_frozen_once_closed() {
     let config = presets::load("fixed").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let s = &scenario_set(&config, 0, 1).unwrap()[0];
     let mut plain = Constant::new(&config, [0.0; 7], 0);
     run_episode(&mut env, &mut plain, s, None).unwrap();
@@ -114,7 +114,7 @@ fn a_held_correction_moves_the_grasp_by_that_much_and_is_frozen_once_closed() {
 #[test]
 fn the_close_can_be_advanced_or_delayed() {
     let config = presets::load("fixed").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let s = &scenario_set(&config, 0, 1).unwrap()[0];
     let count = |p: &Constant, phase: Phase| p.phases.iter().filter(|x| **x == phase).count();
     let mut plain = Constant::new(&config, [0.0; 7], 0);
@@ -149,7 +149,7 @@ fn the_close_can_be_advanced_or_delayed() {
 #[test]
 fn the_features_show_a_push_and_the_correction() {
     let config = presets::load("nudged").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let s = &scenario_set(&config, 1, 1).unwrap()[0];
     let (mut obs, _) = env.reset_to(s);
     let mut residual = ResidualScript::new(&config);
@@ -179,7 +179,7 @@ fn the_features_show_a_push_and_the_correction() {
 fn the_oracle_residual_reaches_97_percent_on_each_family_through_the_interface() {
     for name in ["miscalibrated", "miscalibrated_b", "nudged", "wrist_camera"] {
         let config = presets::load(name).unwrap();
-        let mut env = GraspEnv::new(config.clone()).unwrap();
+        let mut env = TaskEnv::new(config.clone()).unwrap();
         let scenarios = scenario_set(&config, 0, EPISODES).unwrap();
         let mut oracle = OracleResidual::new(&config);
         let results = scenarios
@@ -199,7 +199,7 @@ fn the_oracle_residual_reaches_97_percent_on_each_family_through_the_interface()
 fn the_wrist_view_enters_the_features_only_when_the_camera_sees_the_cube() {
     let config = presets::load("wrist_camera").unwrap();
     let range = config.randomization.wrist_camera.unwrap().range;
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let s = &scenario_set(&config, 2, 1).unwrap()[0];
     let (mut obs, _) = env.reset_to(s);
     let mut residual = ResidualScript::new(&config);

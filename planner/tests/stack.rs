@@ -3,7 +3,7 @@
 //! second cube's top (it neither sinks into it nor slides off); the camera's error on the second
 //! cube sets it down off centre.
 
-use fairgrasp_env::GraspEnv;
+use fairgrasp_env::TaskEnv;
 use fairgrasp_env::config::presets;
 use fairgrasp_env::episode::{Outcome, Policy, evaluate_seeded};
 use fairgrasp_planner::stack;
@@ -45,7 +45,7 @@ fn the_stack_script_stacks_98_percent_of_300_noise_free_scenarios() {
 /// Runs `script` on scenario `seed` of `env` to the episode's end: whether it succeeded, and
 /// the cube's pose (`base_link`) when the script began to retreat (the gripper open).
 fn run(
-    env: &mut GraspEnv,
+    env: &mut TaskEnv,
     script: &mut dyn Policy,
     seed: u64,
 ) -> (bool, Option<fairgrasp_kinematics::Pose>) {
@@ -68,7 +68,7 @@ fn run(
 fn a_stacked_cube_rests_on_the_second_cubes_top_once_released() {
     let config = presets::load("stack").unwrap();
     let size = config.scene.cube_size;
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let mut script = stack::force_lower(&config);
     for seed in 0..3 {
         let (success, released) = run(&mut env, &mut script, seed);
@@ -130,7 +130,7 @@ fn the_cameras_error_on_the_second_cube_sets_the_cube_down_off_centre() {
 fn the_stack_residual_at_zero_is_the_force_lower_and_shows_the_policy_bounded_features() {
     use fairgrasp_planner::task_residual::FEATURE_DIM;
     let config = presets::load("stack_camera_error").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let mut residual = fairgrasp_planner::tasks::task_residual(&config, false);
     let bounds = residual.feature_bounds(1.0);
     for seed in 0..4 {

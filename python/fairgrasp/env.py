@@ -110,7 +110,7 @@ class FairGraspEnv(gym.Env, EzPickle):
 
     def reset(self, *, seed=None, options=None):
         """Starts an episode. ``reset(seed=s)`` plays scenario ``s`` (the Rust
-        ``GraspEnv::reset(s)``, bit for bit); later resets without a seed draw the next scenario
+        ``TaskEnv::reset(s)``, bit for bit); later resets without a seed draw the next scenario
         seeds from a generator seeded with ``s``."""
         super().reset(seed=seed)
         if seed is not None:

@@ -1,10 +1,10 @@
-//! One env as Python steps it (plain Rust, no Python types): the `GraspEnv`, and for a recipe
+//! One env as Python steps it (plain Rust, no Python types): the `TaskEnv`, and for a recipe
 //! the agent's side ([`EnvAgent`]: the observation becomes the policy input, the policy's output
 //! the env action, as in `fairgrasp train`) and the curriculum (its stage sets the scenario
 //! randomisation; it advances on the episodes this env plays).
 
 use fairgrasp_env::env::obs::Observation;
-use fairgrasp_env::{Action, EnvError, GraspEnv, Info, Step};
+use fairgrasp_env::{Action, EnvError, Info, Step, TaskEnv};
 use fairgrasp_policy::agent::{AgentConfig, EnvAgent};
 
 use crate::curriculum::EnvCurriculum;
@@ -13,7 +13,7 @@ use crate::setup::Setup;
 
 /// One env with its agent side and curriculum.
 pub(crate) struct AgentEnv {
-    env: GraspEnv,
+    env: TaskEnv,
     agent: Option<(AgentConfig, EnvAgent)>,
     curriculum: EnvCurriculum,
     /// The observation handed out last: the policy input (the env's flat observation without
@@ -25,7 +25,7 @@ pub(crate) struct AgentEnv {
 
 impl AgentEnv {
     pub fn new(setup: &Setup) -> Result<Self, EnvError> {
-        let mut env = GraspEnv::new(setup.config.clone())?;
+        let mut env = TaskEnv::new(setup.config.clone())?;
         let curriculum = EnvCurriculum::new(setup);
         if let Some(r) = curriculum.randomization() {
             env.set_randomization(r)?;
@@ -42,7 +42,7 @@ impl AgentEnv {
         })
     }
 
-    pub fn env(&self) -> &GraspEnv {
+    pub fn env(&self) -> &TaskEnv {
         &self.env
     }
 

@@ -4,13 +4,13 @@
 use std::time::Instant;
 
 use fairgrasp_env::vec::VecEnv;
-use fairgrasp_env::{Action, GraspEnv};
+use fairgrasp_env::{Action, TaskEnv};
 use numpy::{PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use crate::args::{env_config, value_error};
 
-/// Steps one `GraspEnv` of `preset` through `actions` [steps, 7] in a Rust loop (GIL released),
+/// Steps one `TaskEnv` of `preset` through `actions` [steps, 7] in a Rust loop (GIL released),
 /// resetting to seeds `seed`, `seed + 1`, ... as episodes end: (wall seconds of the loop, share
 /// of the steps that ran rigid-body physics).
 #[pyfunction]
@@ -28,7 +28,7 @@ pub(crate) fn bench_rust_env(
         .chunks(7)
         .map(|c| Action(c.try_into().unwrap_or([0.0; 7])))
         .collect();
-    let mut env = GraspEnv::new(env_config(preset, "servo", None)?).map_err(value_error)?;
+    let mut env = TaskEnv::new(env_config(preset, "servo", None)?).map_err(value_error)?;
     py.detach(|| -> Result<(f64, f64), fairgrasp_env::EnvError> {
         let mut next = seed;
         env.reset(next)?;

@@ -6,7 +6,7 @@ use std::sync::Mutex;
 use fairgrasp_env::env::obs::OBS_DIM;
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::episode::trajectory::{Recorder, Trajectory};
-use fairgrasp_env::{GraspEnv, Observation};
+use fairgrasp_env::{Observation, TaskEnv};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_report::charts::replay::{SIZE, replay_frame_rgb};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
@@ -30,7 +30,7 @@ type StepTuple<'py> = (
 /// A played episode: the flat observations [steps + 1, obs], the rewards, the last info.
 type PlayedEpisode<'py> = (Bound<'py, PyArray2<f32>>, Vec<f64>, Bound<'py, PyDict>);
 
-/// One grasping env (the Rust `GraspEnv`), or with a recipe the env that recipe trains on (its
+/// One grasping env (the Rust `TaskEnv`), or with a recipe the env that recipe trains on (its
 /// agent's input and output, its curriculum): `reset(seed)`, `step(action)`; infos as dicts
 /// (see `info.rs`).
 #[pyclass(module = "fairgrasp._native")]
@@ -236,7 +236,7 @@ impl Baseline {
         let config = self.config.clone();
         let (flat, rewards, info) = py
             .detach(|| -> Result<_, fairgrasp_env::EnvError> {
-                let mut env = GraspEnv::new(config)?;
+                let mut env = TaskEnv::new(config)?;
                 let (mut obs, _) = env.reset(seed)?;
                 script.reset(seed);
                 let (mut flat, mut rewards) = (obs.to_array().to_vec(), Vec::new());

@@ -1,4 +1,4 @@
-"""The gymnasium env: every registered id passes check_env; bit-identical to the Rust GraspEnv;
+"""The gymnasium env: every registered id passes check_env; bit-identical to the Rust TaskEnv;
 bad actions raise ValueError naming the index; pickling round-trips; infos carry the outcome."""
 
 import pickle

@@ -7,7 +7,7 @@ use fairgrasp_env::config::{ActionSpace, GripperCommand, RewardKind, TcpSaturati
 use fairgrasp_env::episode::run_episode;
 use fairgrasp_env::episode::trajectory::Trajectory;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{Action, GraspEnv};
+use fairgrasp_env::{Action, TaskEnv};
 use fairgrasp_policy::recipe::EnvFor;
 use fairgrasp_rl::agent::grasp_agent::Mode;
 use fairgrasp_rl::run::checkpoint::load_model;
@@ -24,7 +24,7 @@ fn a_task_space_action_becomes_joint_actions_that_move_the_tcp_that_way() {
         ..Default::default()
     };
     let map = agent.task_space(&config).unwrap();
-    let mut env = GraspEnv::new(config).unwrap();
+    let mut env = TaskEnv::new(config).unwrap();
     env.reset(0).unwrap();
     let start = env.tcp_in_base().xyz();
     // Straight down and to the left; a positive gripper command closes it fully (binary).
@@ -77,8 +77,8 @@ fn the_shipped_pure_policy_acts_the_same_through_an_env_configured_for_its_task_
     raw_meta.agent.action_space = ActionSpace::Joint; // pure + joint: the output, clipped
     let mut through_agent = agent_policy(&meta, &model, &joint_config);
     let mut through_env = agent_policy(&raw_meta, &model, &tcp_config);
-    let mut joint_env = GraspEnv::new(joint_config.clone()).unwrap();
-    let mut tcp_env = GraspEnv::new(tcp_config).unwrap();
+    let mut joint_env = TaskEnv::new(joint_config.clone()).unwrap();
+    let mut tcp_env = TaskEnv::new(tcp_config).unwrap();
     let mut successes = 0;
     for s in &scenario_set(&joint_config, 11, 12).unwrap() {
         let (mut a, mut b) = (Trajectory::default(), Trajectory::default());

@@ -4,7 +4,7 @@
 use burn::tensor::Device;
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{GraspEnv, config::presets};
+use fairgrasp_env::{TaskEnv, config::presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
 use fairgrasp_rl::ppo::PpoConfig;
@@ -33,7 +33,7 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
 #[test]
 fn a_fresh_residual_agent_acts_exactly_like_the_baseline() {
     let config = presets::load("sector").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let scenario = scenario_set(&config, 4, 1).unwrap()[0];
     let (meta, model) = fresh_meta(AgentConfig::default());
     let mut agent = agent_policy(&meta, &model, &config);
@@ -79,7 +79,7 @@ fn a_checkpoint_round_trip_gives_identical_actions() {
     assert_eq!(loaded_meta.version, checkpoint::CHECKPOINT_VERSION);
     assert_eq!(without_checksum, meta);
     let config = presets::load("sector").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let (obs, _) = env.reset(1).unwrap();
     let mut a = agent_policy(&meta, &model, &config);
     let mut b = agent_policy(&loaded_meta, &loaded, &config);

@@ -5,7 +5,7 @@
 //! measured steps run. The grasp envs and the scripted baseline may allocate inside their own
 //! `step`/`reset`/`act` (rapier, the grasp planner); that part is measured separately by doing
 //! exactly the same work one env at a time (same episode seeds, same actions), and the test
-//! asserts that the vectorised path (`VecEnv`, `GraspVecEnv` and the `StepBatch` it hands to PPO)
+//! asserts that the vectorised path (`VecEnv`, `TaskVecEnv` and the `StepBatch` it hands to PPO)
 //! adds exactly zero allocations to it. This file holds one test so no other test's allocations
 //! are counted.
 
@@ -14,10 +14,10 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use fairgrasp_env::episode::Policy;
 use fairgrasp_env::vec::VecEnv;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, config::presets};
+use fairgrasp_env::{Action, EnvConfig, TaskEnv, config::presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig, Mode};
-use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
+use fairgrasp_rl::agent::task_vec_env::TaskVecEnv;
 use fairgrasp_rl::ppo::vec_api::VecEnvironment;
 
 struct Counting;
@@ -84,7 +84,7 @@ fn action(e: usize) -> [f32; ACT_DIM] {
 /// (`BASE_SEED + e · 1 000 000 + k`); with `baseline`, the baseline acts on every observation
 /// (and on an ended episode's last one) and its action is what the env receives.
 struct Alone {
-    env: GraspEnv,
+    env: TaskEnv,
     e: usize,
     episodes: u64,
     baseline: Option<ScriptedGrasp>,
@@ -94,7 +94,7 @@ struct Alone {
 impl Alone {
     fn new(config: &EnvConfig, e: usize, with_baseline: bool) -> Self {
         let mut alone = Self {
-            env: GraspEnv::new(config.clone()).unwrap(),
+            env: TaskEnv::new(config.clone()).unwrap(),
             e,
             episodes: 0,
             baseline: with_baseline.then(|| ScriptedGrasp::new(config, BaselineConfig::default())),
@@ -159,7 +159,7 @@ fn grasp_vec_env(config: &EnvConfig, mode: Mode) -> u64 {
         mode,
         ..AgentConfig::default()
     };
-    let mut v = GraspVecEnv::new(config, agent, N_ENVS, THREADS, BASE_SEED).unwrap();
+    let mut v = TaskVecEnv::new(config, agent, N_ENVS, THREADS, BASE_SEED).unwrap();
     // Pure: the fixed actions; residual: a zero correction, so the env gets the baseline's.
     let actions: Vec<f32> = match mode {
         Mode::Pure => (0..N_ENVS).flat_map(action).collect(),
@@ -186,16 +186,16 @@ fn a_vectorised_step_adds_no_allocation_to_the_envs_own() {
     let residual = fewest(|| grasp_vec_env(&config, Mode::Residual));
     eprintln!(
         "allocations over {MEASURED} steps × {N_ENVS} envs ({THREADS} threads): envs alone \
-         {envs_alone}, VecEnv {vec}, GraspVecEnv pure {pure}; envs + baselines alone \
-         {envs_and_baselines_alone}, GraspVecEnv residual {residual}"
+         {envs_alone}, VecEnv {vec}, TaskVecEnv pure {pure}; envs + baselines alone \
+         {envs_and_baselines_alone}, TaskVecEnv residual {residual}"
     );
     assert_eq!(vec, envs_alone, "VecEnv's own allocations");
     assert_eq!(
         pure, envs_alone,
-        "GraspVecEnv's own allocations (pure agent)"
+        "TaskVecEnv's own allocations (pure agent)"
     );
     assert_eq!(
         residual, envs_and_baselines_alone,
-        "GraspVecEnv's own allocations (residual agent)"
+        "TaskVecEnv's own allocations (residual agent)"
     );
 }

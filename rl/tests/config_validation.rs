@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_env::{EnvConfig, TaskEnv};
 use fairgrasp_rl::run::train::TrainConfig;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -237,7 +237,7 @@ fn random_mutations_of_an_env_config_load_and_step_or_are_refused_naming_the_fie
             Ok(config) => {
                 loaded += 1;
                 // What validation lets through must build, reset and step (or refuse there).
-                if let Ok(mut env) = GraspEnv::new(config)
+                if let Ok(mut env) = TaskEnv::new(config)
                     && env.reset(0).is_ok()
                 {
                     for _ in 0..3 {

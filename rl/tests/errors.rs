@@ -4,7 +4,7 @@
 use burn::tensor::Device;
 use fairgrasp_env::config::presets;
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
-use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
+use fairgrasp_rl::agent::task_vec_env::TaskVecEnv;
 use fairgrasp_rl::ppo::PpoConfig;
 use fairgrasp_rl::ppo::vec_api::{VecEnvError, VecEnvironment};
 use fairgrasp_rl::run::checkpoint;
@@ -73,7 +73,7 @@ fn a_diverging_run_stops_with_the_update_and_keeps_a_loadable_finite_latest() {
 #[test]
 fn a_non_finite_action_is_refused_naming_the_env() {
     let config = presets::load("fixed").unwrap();
-    let mut env = GraspVecEnv::new(&config, AgentConfig::default(), 2, 1, 0).unwrap();
+    let mut env = TaskVecEnv::new(&config, AgentConfig::default(), 2, 1, 0).unwrap();
     env.reset().unwrap();
     let mut actions = vec![0.0f32; 2 * ACT_DIM];
     actions[ACT_DIM + 3] = f32::NAN;

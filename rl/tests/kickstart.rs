@@ -8,7 +8,7 @@ use fairgrasp_policy::checkpoint::load_actor;
 use fairgrasp_policy::recipe::EnvFor;
 use fairgrasp_policy::shipped::ShippedPolicy;
 use fairgrasp_rl::agent::grasp_agent::ACT_DIM;
-use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
+use fairgrasp_rl::agent::task_vec_env::TaskVecEnv;
 use fairgrasp_rl::ppo::free_env::FreeEnv;
 use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
 use fairgrasp_rl::ppo::normalizer::RunningNorm;
@@ -145,7 +145,7 @@ fn the_generalists_teachers_label_the_entries_their_agents_command_with_their_ow
     let envs = config.env_configs(EnvFor::Evaluation).unwrap();
     let k = kickstart::load(config.kickstart.as_ref().unwrap(), &config.agent, &envs).unwrap();
     // Real inputs: one env of each preset (full, nudged, wrist_camera, heavy_slippery).
-    let mut vec_env = GraspVecEnv::mixed(&envs, config.agent.clone(), 4, 1, 11).unwrap();
+    let mut vec_env = TaskVecEnv::mixed(&envs, config.agent.clone(), 4, 1, 11).unwrap();
     let dim = vec_env.obs_dim();
     let raw = vec_env.reset().unwrap().to_vec();
     let mut targets = vec![9.0; 4 * ACT_DIM];

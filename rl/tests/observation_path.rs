@@ -1,14 +1,14 @@
 //! Training and evaluation feed the baseline the same typed observation: the vectorised training
-//! path (`GraspVecEnv`) and the single-env evaluation path (`GraspEnv` + `ScriptedGrasp`), on the
+//! path (`TaskVecEnv`) and the single-env evaluation path (`TaskEnv` + `ScriptedGrasp`), on the
 //! same scenario seeds with the same actions, give bit-identical baseline actions and policy
 //! inputs, at every step, at episode ends and after auto-resets.
 
 use fairgrasp_env::episode::Policy;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv, config::presets};
+use fairgrasp_env::{Action, EnvConfig, TaskEnv, config::presets};
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig};
-use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
 use fairgrasp_rl::agent::script::Script;
+use fairgrasp_rl::agent::task_vec_env::TaskVecEnv;
 use fairgrasp_rl::ppo::vec_api::VecEnvironment;
 
 const N_ENVS: usize = 2;
@@ -37,10 +37,10 @@ fn config() -> EnvConfig {
 
 fn training_path(config: &EnvConfig, agent: &AgentConfig) -> Vec<Trace> {
     let dim = agent.input_dim();
-    let mut env = GraspVecEnv::new(config, agent.clone(), N_ENVS, 2, BASE_SEED).unwrap();
+    let mut env = TaskVecEnv::new(config, agent.clone(), N_ENVS, 2, BASE_SEED).unwrap();
     let mut traces: Vec<Trace> = (0..N_ENVS).map(|_| Trace::default()).collect();
     let first = env.reset().unwrap().to_vec();
-    let record = |traces: &mut Vec<Trace>, env: &GraspVecEnv, inputs: &[f32]| {
+    let record = |traces: &mut Vec<Trace>, env: &TaskVecEnv, inputs: &[f32]| {
         for (e, t) in traces.iter_mut().enumerate() {
             t.actions.push(env.baseline_action(e).unwrap());
             t.inputs.push(inputs[e * dim..(e + 1) * dim].to_vec());
@@ -65,16 +65,16 @@ fn training_path(config: &EnvConfig, agent: &AgentConfig) -> Vec<Trace> {
     traces
 }
 
-/// The evaluation path for env `e`: one `GraspEnv`, its episodes' seeds as the vectorised env
+/// The evaluation path for env `e`: one `TaskEnv`, its episodes' seeds as the vectorised env
 /// draws them (`BASE_SEED + e · 1 000 000 + k`), the baseline acting on the env's observation.
 fn evaluation_path(config: &EnvConfig, agent: &AgentConfig, e: usize) -> Trace {
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let mut baseline = ScriptedGrasp::new(config, BaselineConfig::default());
     // The input's baseline part comes from the action passed in; this one never acts.
     let joint = Script::joint(config);
     let mut trace = Trace::default();
     let mut episode = 0;
-    let start = |env: &mut GraspEnv, baseline: &mut ScriptedGrasp, episode: &mut u64| {
+    let start = |env: &mut TaskEnv, baseline: &mut ScriptedGrasp, episode: &mut u64| {
         let seed = BASE_SEED + e as u64 * 1_000_000 + *episode;
         *episode += 1;
         baseline.reset(seed);

@@ -4,7 +4,7 @@
 
 use fairgrasp_env::config::{ActionSpace, presets};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig, Mode};
-use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
+use fairgrasp_rl::agent::task_vec_env::TaskVecEnv;
 use fairgrasp_rl::ppo::vec_api::VecEnvironment;
 use fairgrasp_rl::run::train::TrainConfig;
 
@@ -21,7 +21,7 @@ fn squeezing() -> AgentConfig {
 fn constant_output_success(agent: AgentConfig, squeeze: f32, steps: usize) -> (usize, usize) {
     let config = presets::load("heavy_slippery").unwrap();
     let n = 8;
-    let mut env = GraspVecEnv::new(&config, agent, n, 2, 11).unwrap();
+    let mut env = TaskVecEnv::new(&config, agent, n, 2, 11).unwrap();
     env.reset().unwrap();
     let mut action = vec![0.0f32; n * ACT_DIM];
     for e in 0..n {
@@ -62,8 +62,7 @@ fn a_full_squeeze_lifts_the_heavy_slippery_cubes_in_training_envs_and_no_squeeze
 fn a_mixed_run_steps_each_env_on_its_own_preset() {
     let light = presets::load("full").unwrap();
     let heavy = presets::load("heavy_slippery").unwrap();
-    let mut env =
-        GraspVecEnv::mixed(&[light.clone(), heavy.clone()], squeezing(), 6, 2, 3).unwrap();
+    let mut env = TaskVecEnv::mixed(&[light.clone(), heavy.clone()], squeezing(), 6, 2, 3).unwrap();
     env.reset().unwrap();
     let batch = env.inner_mut().batch();
     let masses: Vec<f64> = batch

@@ -5,11 +5,11 @@ use burn::tensor::Device;
 use fairgrasp_env::config::ActionSpace;
 use fairgrasp_env::episode::{Policy, run_episode};
 use fairgrasp_env::scenario::scenario_set;
-use fairgrasp_env::{GraspEnv, config::presets};
+use fairgrasp_env::{TaskEnv, config::presets};
 use fairgrasp_planner::lift::residual::FEATURE_DIM;
 use fairgrasp_planner::{BaselineConfig, ScriptedGrasp};
 use fairgrasp_rl::agent::grasp_agent::{ACT_DIM, AgentConfig, Mode, OBS_DIM};
-use fairgrasp_rl::agent::grasp_env::GraspVecEnv;
+use fairgrasp_rl::agent::task_vec_env::TaskVecEnv;
 use fairgrasp_rl::ppo::PpoConfig;
 use fairgrasp_rl::ppo::model::{ActorCritic, ModelConfig};
 use fairgrasp_rl::ppo::vec_api::VecEnvironment;
@@ -38,7 +38,7 @@ fn fresh(agent: AgentConfig, zero: bool) -> (CheckpointMeta, ActorCritic) {
 #[test]
 fn an_untrained_task_residual_is_the_open_loop_script_and_a_random_one_is_not() {
     let config = presets::load("miscalibrated").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let scenarios = scenario_set(&config, 9, 3).unwrap();
     let (meta, model) = fresh(task_residual(), true);
     assert_eq!(meta.input_dim, OBS_DIM + FEATURE_DIM);
@@ -61,7 +61,7 @@ fn an_untrained_task_residual_is_the_open_loop_script_and_a_random_one_is_not() 
 fn the_vectorised_input_carries_the_phase_and_the_correction() {
     let config = presets::load("fixed").unwrap();
     let agent = task_residual();
-    let mut env = GraspVecEnv::new(&config, agent.clone(), 2, 1, 5).unwrap();
+    let mut env = TaskVecEnv::new(&config, agent.clone(), 2, 1, 5).unwrap();
     assert_eq!(env.obs_dim(), OBS_DIM + FEATURE_DIM);
     env.reset().unwrap();
     // +y at full rate: the correction feature grows while the script approaches.
@@ -147,7 +147,7 @@ fn input_names_match_the_input_and_a_mask_prefix_must_name_some() {
 fn masking_the_wrist_view_changes_nothing_before_the_wrist_camera_sees_the_cube() {
     // A random (non-zero) actor, so the features matter; the wrist camera preset.
     let config = presets::load("wrist_camera").unwrap();
-    let mut env = GraspEnv::new(config.clone()).unwrap();
+    let mut env = TaskEnv::new(config.clone()).unwrap();
     let s = &scenario_set(&config, 3, 1).unwrap()[0];
     let (meta, model) = fresh(task_residual(), false);
     let wrist = meta.agent.input_indices(&config, "wrist").unwrap();

@@ -7,7 +7,7 @@ use std::process::ExitCode;
 
 use anyhow::{Context, bail};
 use clap::Args;
-use fairgrasp_env::GraspEnv;
+use fairgrasp_env::TaskEnv;
 use fairgrasp_env::episode::Outcome;
 use fairgrasp_kinematics::Pose;
 use fairgrasp_planner::stream::file::{Format, parse};
@@ -50,7 +50,7 @@ pub fn run(a: &PlaybackArgs) -> anyhow::Result<ExitCode> {
     let limits = StreamLimits::of(&model);
     check_stream(&stream.joints, stream.period_sec, &limits)
         .map_err(|v| anyhow::anyhow!("{shown}: {v}; not played (a controller must not get it)"))?;
-    let mut env = GraspEnv::new(chosen.config.clone())?;
+    let mut env = TaskEnv::new(chosen.config.clone())?;
     let report = play(&mut env, &chosen.scenario, &stream).with_context(|| shown.to_string())?;
     let exported = source["outcome"].as_str();
     let ok = report.outcome == Outcome::Success;

@@ -12,7 +12,7 @@ use fairgrasp_kinematics::collision::segment_distance;
 use serde::{Serialize, Serializer};
 
 use crate::config::EnvConfig;
-use crate::env::{Action, EnvError, GraspEnv};
+use crate::env::{Action, EnvError, TaskEnv};
 use crate::scenario::Scenario;
 use crate::sim::contacts::{PairKind, TouchingPair};
 
@@ -121,7 +121,7 @@ impl SceneDiagnosis {
 }
 
 /// The scenario of `seed`, or the config's unchecked one and the reason it was refused.
-fn scenario_or_refusal(env: &GraspEnv, seed: u64) -> (Scenario, Option<String>) {
+fn scenario_or_refusal(env: &TaskEnv, seed: u64) -> (Scenario, Option<String>) {
     match Scenario::sample_in(env.cell(), env.config(), seed) {
         Ok(s) => (s, None),
         Err(e) => (Scenario::unchecked(env.config(), seed), Some(e.to_string())),
@@ -131,7 +131,7 @@ fn scenario_or_refusal(env: &GraspEnv, seed: u64) -> (Scenario, Option<String>) 
 /// The touching pairs after resetting to `scenario` and one step that holds the arm still, and
 /// how far the object is from its spawn on the table plane \[m\].
 fn contacts_at_start(
-    env: &mut GraspEnv,
+    env: &mut TaskEnv,
     scenario: &Scenario,
 ) -> Result<(Vec<TouchingPair>, f64), EnvError> {
     env.reset_to(scenario);
@@ -182,7 +182,7 @@ pub fn diagnose_scene(
     seed: u64,
     seeds: u64,
 ) -> Result<SceneDiagnosis, EnvError> {
-    let mut env = GraspEnv::new(config.clone())?;
+    let mut env = TaskEnv::new(config.clone())?;
     let (scenario, refused) = scenario_or_refusal(&env, seed);
     let (pairs, object_pushed_m) = contacts_at_start(&mut env, &scenario)?;
     let object_xyz_base = env.object_in_base().xyz();

@@ -1,4 +1,4 @@
-//! `GraspEnv`: the gym-style interface. `reset(seed)` and `step(&Action)`.
+//! `TaskEnv`: the gym-style interface. `reset(seed)` and `step(&Action)`.
 //!
 //! An action is 6 joint-velocity commands and 1 gripper command, each in [-1, 1]: joints move at
 //! `action · arm.action_scale` rad/s (or, with `arm.action_space = "tcp"`, entries 0–3 are the
@@ -9,10 +9,10 @@
 pub mod diagnostics;
 mod drive;
 pub mod free_space;
-pub mod grasp_env;
 pub mod obs;
 pub mod spaces;
 pub mod step;
+pub mod task_env;
 mod task_facts;
 
-pub use grasp_env::*;
+pub use task_env::*;

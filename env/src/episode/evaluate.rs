@@ -2,7 +2,7 @@
 //! evaluation loop that runs any policy on a list of scenarios the same way.
 
 use crate::env::obs::Observation;
-use crate::env::{Action, EnvError, GraspEnv, Step};
+use crate::env::{Action, EnvError, Step, TaskEnv};
 use crate::episode::trajectory::{Recorder, Trajectory};
 use crate::scenario::Scenario;
 use crate::scenario::perception::{ObservedObject, true_object};
@@ -31,7 +31,7 @@ pub trait Policy {
         None
     }
     /// The squeeze per finger \[N\] the policy asks for with its latest `act` (applied before the
-    /// step, as [`GraspEnv::set_grip_force`]); `None` (the default) keeps the env's.
+    /// step, as [`TaskEnv::set_grip_force`]); `None` (the default) keeps the env's.
     fn grip_force(&self) -> Option<f64> {
         None
     }
@@ -62,7 +62,7 @@ impl<P: Policy + ?Sized> Policy for Box<P> {
 
 /// Runs one episode of `policy` from `scenario`; records it into `trajectory` if given.
 pub fn run_episode(
-    env: &mut GraspEnv,
+    env: &mut TaskEnv,
     policy: &mut dyn Policy,
     scenario: &Scenario,
     trajectory: Option<&mut Trajectory>,
@@ -77,13 +77,13 @@ pub fn run_episode(
 struct NoRecord;
 
 impl Recorder for NoRecord {
-    fn record_reset(&mut self, _: &GraspEnv, _: f64) {}
-    fn record_step(&mut self, _: &GraspEnv, _: &Action, _: &Step, _: Option<&str>) {}
+    fn record_reset(&mut self, _: &TaskEnv, _: f64) {}
+    fn record_step(&mut self, _: &TaskEnv, _: &Action, _: &Step, _: Option<&str>) {}
 }
 
 /// Runs one episode of `policy` from `scenario`, handing the reset and every step to `recorder`.
 pub fn run_recorded(
-    env: &mut GraspEnv,
+    env: &mut TaskEnv,
     policy: &mut dyn Policy,
     scenario: &Scenario,
     recorder: &mut dyn Recorder,
@@ -125,7 +125,7 @@ pub fn evaluate<P: Policy>(
             .enumerate()
             .map(|(c, part)| {
                 scope.spawn(move || -> Result<Vec<EpisodeRecord>, EnvError> {
-                    let mut env = GraspEnv::new(config.clone())?;
+                    let mut env = TaskEnv::new(config.clone())?;
                     let mut policy = make();
                     let mut out = Vec::with_capacity(part.len());
                     for (j, scenario) in part.iter().enumerate() {

@@ -14,7 +14,7 @@
 //! presets where the scripts agree and where they do not).
 
 use crate::env::obs::Observation;
-use crate::env::{Action, EnvError, GraspEnv};
+use crate::env::{Action, EnvError, TaskEnv};
 use crate::episode::evaluate::{EpisodeRecord, Outcome, Policy, run_episode};
 use crate::scenario::Scenario;
 use crate::scenario::perception::ObservedObject;
@@ -39,7 +39,7 @@ fn same_answer(x: (&Action, Option<f64>), y: (&Action, Option<f64>)) -> bool {
 /// group of policies whose actions agree at every step (see the module's text). With one policy
 /// it is `run_episode`.
 pub fn run_lockstep<P: Policy>(
-    env: &mut GraspEnv,
+    env: &mut TaskEnv,
     policies: &mut [P],
     scenario: &Scenario,
 ) -> Result<Vec<EpisodeRecord>, EnvError> {
@@ -56,7 +56,7 @@ pub fn run_lockstep<P: Policy>(
 /// Simulates `group[0]`'s episode, showing the others the same observations and truths; fills
 /// the records of the leader and of those that agreed at every step, returns the others.
 fn simulate_group<P: Policy>(
-    env: &mut GraspEnv,
+    env: &mut TaskEnv,
     policies: &mut [P],
     group: &[usize],
     scenario: &Scenario,

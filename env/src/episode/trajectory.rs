@@ -12,7 +12,7 @@ use fairgrasp_types::body::{BodyShape, Geometry, Pose7, WorldBox};
 pub use fairgrasp_types::trajectory::{Trajectory, TrajectoryRow, TrajectoryScene};
 use nalgebra::Isometry3;
 
-use crate::env::{Action, GraspEnv, Step};
+use crate::env::{Action, Step, TaskEnv};
 use crate::scenario::nudge::NudgeEvent;
 use crate::sim::scene;
 use crate::task::Failure;
@@ -21,20 +21,20 @@ use crate::task::Failure;
 pub trait Recorder {
     /// Records the state right after a reset (`opening`: the gripper opening \[m\]); clears
     /// earlier rows.
-    fn record_reset(&mut self, env: &GraspEnv, opening: f64);
+    fn record_reset(&mut self, env: &TaskEnv, opening: f64);
     /// Records the state after a step; `phase` is the policy's phase when it chose the action
     /// ([`crate::episode::Policy::phase`]).
-    fn record_step(&mut self, env: &GraspEnv, action: &Action, step: &Step, phase: Option<&str>);
+    fn record_step(&mut self, env: &TaskEnv, action: &Action, step: &Step, phase: Option<&str>);
 }
 
 impl Recorder for Trajectory {
-    fn record_reset(&mut self, env: &GraspEnv, opening: f64) {
+    fn record_reset(&mut self, env: &TaskEnv, opening: f64) {
         self.rows.clear();
         self.outcome = None;
         push(self, env, [0.0; 7], 0.0, opening);
     }
 
-    fn record_step(&mut self, env: &GraspEnv, action: &Action, step: &Step, phase: Option<&str>) {
+    fn record_step(&mut self, env: &TaskEnv, action: &Action, step: &Step, phase: Option<&str>) {
         push(self, env, action.0, step.reward, step.obs.gripper_opening);
         let row = self.rows.len() - 1;
         let events = events_of(env, step, row);
@@ -50,7 +50,7 @@ impl Recorder for Trajectory {
 
 /// What happened in the step that led to row `row`: a collision, a protective stop, the cube
 /// off the table, or pushed before this step's action.
-fn events_of(env: &GraspEnv, step: &Step, row: usize) -> Vec<String> {
+fn events_of(env: &TaskEnv, step: &Step, row: usize) -> Vec<String> {
     let mut events = Vec::new();
     match &step.info.failure {
         Some(Failure::Collision(a, b)) => events.push(format!("collision: {a} – {b}")),
@@ -84,7 +84,7 @@ fn events_of(env: &GraspEnv, step: &Step, row: usize) -> Vec<String> {
 }
 
 /// Appends the env's current state as a row (the scene with the first row).
-fn push(t: &mut Trajectory, env: &GraspEnv, action: [f64; 7], reward: f64, opening: f64) {
+fn push(t: &mut Trajectory, env: &TaskEnv, action: [f64; 7], reward: f64, opening: f64) {
     let step = t.rows.len();
     let cfg = &env.config().physics;
     let (tcp, object) = (env.tcp_in_base(), env.object_in_base());
@@ -186,7 +186,7 @@ fn body_shapes(model: &ArmModel) -> Vec<BodyShape> {
 }
 
 /// The table, cube, mount and robot geometry of `env`'s scene.
-fn scene_of(env: &GraspEnv, capsule_names: Vec<String>) -> TrajectoryScene {
+fn scene_of(env: &TaskEnv, capsule_names: Vec<String>) -> TrajectoryScene {
     let config = env.config();
     let scene = &config.scene;
     let base = env.base_in_world();
@@ -225,7 +225,7 @@ fn scene_of(env: &GraspEnv, capsule_names: Vec<String>) -> TrajectoryScene {
 
 /// The task's fixture's boxes (the place task's walls, the stack task's second cube), on the
 /// body after the robot's (none for a task without a fixture).
-fn fixture_shapes(env: &GraspEnv) -> Vec<BodyShape> {
+fn fixture_shapes(env: &TaskEnv) -> Vec<BodyShape> {
     if env.fixture_in_base().is_none() {
         return Vec::new();
     }

@@ -61,7 +61,7 @@ fn part_contacts<'a>(
 /// Every pair of the narrow phase closer than `TOUCH_DISTANCE`, deepest first, judged by
 /// `filter`. Pairs excluded by collision groups, and pairs of two bodies forces never move (the
 /// servo arm's links and palm, the table), are never computed and do not appear here
-/// (`GraspEnv::touching_pairs` adds the latter from the exact shapes).
+/// (`TaskEnv::touching_pairs` adds the latter from the exact shapes).
 pub fn touching_pairs(
     world: &PhysicsWorld,
     handles: &SceneHandles,

@@ -26,7 +26,7 @@ pub enum Failure {
 
 impl Failure {
     /// A collision between two robot parts (arm or gripper against itself). A collision names
-    /// the table first when the table is in it (`GraspEnv`'s one order of parts), and the cube
+    /// the table first when the table is in it (`TaskEnv`'s one order of parts), and the cube
     /// is never in one.
     pub fn is_self_collision(&self) -> bool {
         matches!(self, Failure::Collision(first, _) if first != crate::sim::part::TABLE_PART_NAME)

@@ -3,7 +3,7 @@
 
 use crate::config::RandomizationConfig;
 use crate::env::obs::Observation;
-use crate::env::{Action, EnvError, GraspEnv, Info};
+use crate::env::{Action, EnvError, Info, TaskEnv};
 
 /// One batched step (or reset), one entry per environment in index order.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -83,7 +83,7 @@ pub(crate) fn seed_for(base: u64, env: usize, episode: u64) -> u64 {
 
 /// The environments one thread owns, and their outcomes.
 pub(crate) struct Chunk {
-    pub(crate) envs: Vec<GraspEnv>,
+    pub(crate) envs: Vec<TaskEnv>,
     /// Episodes started so far, per environment.
     pub(crate) episodes: Vec<u64>,
     pub(crate) first_index: usize,

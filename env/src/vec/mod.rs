@@ -6,7 +6,7 @@
 //! `base_seed + i · 1 000 000 + k`, so a run is reproducible whatever the number of threads.
 //!
 //! The batch holds the environments' own [`Observation`](crate::Observation)s (f64, `base_link`),
-//! not a flattened copy: a policy reads exactly what a single [`GraspEnv`](crate::GraspEnv) would
+//! not a flattened copy: a policy reads exactly what a single [`TaskEnv`](crate::TaskEnv) would
 //! have handed it.
 //!
 //! A step allocates nothing of its own once every buffer has reached its size (after the first

@@ -6,7 +6,7 @@
 //! `base_seed + i · 1 000 000 + k`, so a run is reproducible whatever the number of threads.
 //!
 //! The batch holds the environments' own [`Observation`]s (f64, `base_link`), not a flattened
-//! copy: a policy reads exactly what a single [`GraspEnv`] would have handed it.
+//! copy: a policy reads exactly what a single [`TaskEnv`] would have handed it.
 //!
 //! A step allocates nothing of its own once every buffer has reached its size (after the first
 //! reset and step): the actions handed to a worker, a chunk's outcomes and the batch handed back
@@ -16,7 +16,7 @@
 
 use crate::config::{EnvConfig, RandomizationConfig};
 use crate::env::obs::Observation;
-use crate::env::{Action, EnvError, GraspEnv};
+use crate::env::{Action, EnvError, TaskEnv};
 use crate::vec::chunk::{Chunk, VecStep};
 use crate::vec::worker::{Job, Worker, spawn_worker};
 
@@ -67,7 +67,7 @@ impl VecEnv {
         while first_index < n {
             let len = per_thread.min(n - first_index);
             let envs = (first_index..first_index + len)
-                .map(|i| GraspEnv::new(config_of(i).clone()))
+                .map(|i| TaskEnv::new(config_of(i).clone()))
                 .collect::<Result<Vec<_>, _>>()?;
             chunks.push(Chunk {
                 envs,
@@ -135,7 +135,7 @@ impl VecEnv {
     }
 
     /// [`VecEnv::step`], each env `i` first squeezing with `grip[i]` per finger \[N\] if given
-    /// ([`GraspEnv::set_grip_force`]; an empty `grip` changes nothing).
+    /// ([`TaskEnv::set_grip_force`]; an empty `grip` changes nothing).
     pub fn step_gripping(
         &mut self,
         actions: &[Action],

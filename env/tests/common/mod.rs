@@ -2,10 +2,10 @@
 #![allow(dead_code)]
 
 use fairgrasp_env::scenario::top_down_grasp;
-use fairgrasp_env::{Action, ArmSimulation, EnvConfig, GraspEnv, Step};
+use fairgrasp_env::{Action, ArmSimulation, EnvConfig, Step, TaskEnv};
 
 /// Action driving the joints toward `target` \[rad\] with gripper command `grip`.
-pub fn toward(env: &GraspEnv, target: [f64; 6], grip: f64) -> Action {
+pub fn toward(env: &TaskEnv, target: [f64; 6], grip: f64) -> Action {
     let q = env.joints();
     let scale = env.config().arm.action_scale;
     let mut a = [0.0; 7];
@@ -26,7 +26,7 @@ pub fn config(arm: ArmSimulation) -> EnvConfig {
 }
 
 /// Runs `steps` steps toward `target`; panics on an env error; returns the last step.
-pub fn drive(env: &mut GraspEnv, target: [f64; 6], grip: f64, steps: usize) -> Step {
+pub fn drive(env: &mut TaskEnv, target: [f64; 6], grip: f64, steps: usize) -> Step {
     let mut last = None;
     for _ in 0..steps {
         let action = toward(env, target, grip);
@@ -42,7 +42,7 @@ pub fn drive(env: &mut GraspEnv, target: [f64; 6], grip: f64, steps: usize) -> S
 }
 
 /// Grasp and pre-grasp joints for the current object, nearest to the current joints.
-pub fn grasp_targets(env: &GraspEnv) -> ([f64; 6], [f64; 6]) {
+pub fn grasp_targets(env: &TaskEnv) -> ([f64; 6], [f64; 6]) {
     top_down_grasp(
         env.model(),
         env.mount(),
@@ -54,7 +54,7 @@ pub fn grasp_targets(env: &GraspEnv) -> ([f64; 6], [f64; 6]) {
 
 /// Joints that put the TCP 12 cm beside the grasp pose (clear of the cube) and 6.5 cm below it,
 /// where the open fingers are inside the table.
-pub fn beside_and_below_grasp(env: &GraspEnv) -> [f64; 6] {
+pub fn beside_and_below_grasp(env: &TaskEnv) -> [f64; 6] {
     let (grasp, _) = grasp_targets(env);
     let mut below = env.model().fk_tcp(&grasp);
     below.iso.translation.vector.y += 0.12;

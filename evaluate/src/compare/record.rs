@@ -7,7 +7,7 @@
 use fairgrasp_env::episode::run_episode;
 use fairgrasp_env::episode::trajectory::Trajectory;
 use fairgrasp_env::scenario::Scenario;
-use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_env::{EnvConfig, TaskEnv};
 use fairgrasp_types::Outcome;
 use fairgrasp_types::work_queue::run_in_order;
 
@@ -45,10 +45,10 @@ pub fn record_episodes(
         .collect();
     let calibration = &calibration_of(config, "the recorded preset")?;
     // Each worker makes its env with its first job (making one can fail).
-    let run = |env: &mut Option<GraspEnv>, j: usize| -> Result<Recording, CompareError> {
+    let run = |env: &mut Option<TaskEnv>, j: usize| -> Result<Recording, CompareError> {
         let env = match env {
             Some(env) => env,
-            None => env.insert(GraspEnv::new(config.clone())?),
+            None => env.insert(TaskEnv::new(config.clone())?),
         };
         let (method, scenario) = jobs[j];
         let mut policy = make_policy(method, scripts, learned, config, calibration);

@@ -17,7 +17,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use fairgrasp_env::episode::{EpisodeRecord, EvalReport, Policy, run_lockstep};
 use fairgrasp_env::scenario::Scenario;
-use fairgrasp_env::{EnvConfig, GraspEnv};
+use fairgrasp_env::{EnvConfig, TaskEnv};
 use fairgrasp_planner::CameraCalibration;
 use fairgrasp_types::work_queue::run_in_order;
 
@@ -37,7 +37,7 @@ pub(crate) struct PresetWork<'a> {
 /// A worker's env (with the index of its preset) and the policies of one unit (with its preset
 /// and unit).
 type WorkerState = (
-    Option<(usize, GraspEnv)>,
+    Option<(usize, TaskEnv)>,
     Option<((usize, usize), Vec<Box<dyn Policy>>)>,
 );
 
@@ -97,7 +97,7 @@ pub(crate) fn evaluate_all(
         let work = &presets[p];
         let env = match env {
             Some((q, env)) if *q == p => env,
-            _ => &mut env.insert((p, GraspEnv::new(work.config.clone())?)).1,
+            _ => &mut env.insert((p, TaskEnv::new(work.config.clone())?)).1,
         };
         let policies = match policies {
             Some((key, policies)) if *key == (p, u) => policies,

@@ -6,7 +6,7 @@
 
 use fairgrasp_env::episode::Outcome;
 use fairgrasp_env::scenario::Scenario;
-use fairgrasp_env::{EnvError, GraspEnv, ServoSetpoint};
+use fairgrasp_env::{EnvError, ServoSetpoint, TaskEnv};
 
 use crate::stream::servo::ServoStream;
 
@@ -41,7 +41,7 @@ pub enum PlaybackError {
 /// Plays `stream` in `env` on `scenario`, with the arm placed at the stream's first sample,
 /// until the env ends the episode (success, failure, or its step limit).
 pub fn play(
-    env: &mut GraspEnv,
+    env: &mut TaskEnv,
     scenario: &Scenario,
     stream: &ServoStream,
 ) -> Result<PlaybackReport, PlaybackError> {

@@ -26,7 +26,7 @@ pub struct EpisodeJoints<'a> {
     /// The joints \[rad\] after the reset and after every env step.
     pub waypoints: &'a [[f64; 6]],
     /// The joints' velocities \[rad/s\] at the same moments
-    /// ([`fairgrasp_env::GraspEnv::joint_velocities`]).
+    /// ([`fairgrasp_env::TaskEnv::joint_velocities`]).
     pub velocities: &'a [[f64; 6]],
     /// Duration of an env step \[s\].
     pub step_sec: f64,

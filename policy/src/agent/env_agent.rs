@@ -1,6 +1,6 @@
 //! One env's side of an agent: the script a residual agent works on (none in pure mode) and the
 //! joint baseline's action for the current observation. The trainer's vectorised env
-//! (`fairgrasp_rl::agent::grasp_env`) and Python's recipe envs (`python/src/agent_env.rs`) step
+//! (`fairgrasp_rl::agent::task_vec_env`) and Python's recipe envs (`python/src/agent_env.rs`) step
 //! an env through it, so both hand the policy the same input and the env the same action.
 //!
 //! Per step: [`EnvAgent::observe`] at each observation (the joint baseline acts, the policy

@@ -19,7 +19,7 @@ use fairgrasp_policy::recipe::EnvFor;
 use fairgrasp_types::write_atomic;
 
 use crate::agent::grasp_agent::ACT_DIM;
-use crate::agent::grasp_env::GraspVecEnv;
+use crate::agent::task_vec_env::TaskVecEnv;
 use crate::ppo::model::ActorCritic;
 use crate::ppo::teacher::Kickstart;
 use crate::ppo::{Ppo, UpdateStats};
@@ -55,7 +55,7 @@ struct Run<'a> {
     run_dir: PathBuf,
     meta: CheckpointMeta,
     ppo: Ppo,
-    env: GraspVecEnv,
+    env: TaskVecEnv,
     curriculum: Option<Curriculum>,
     /// Best evaluation success rate so far (-1 before any).
     best: f64,
@@ -342,7 +342,7 @@ fn open_run<'a>(
         .map_err(fairgrasp_env::EnvError::from)?;
     scenario_set(env_config, config.seed, 1)
         .map_err(|e| TrainError::Config(format!("preset {}: {e}", config.preset)))?;
-    let env = GraspVecEnv::mixed(
+    let env = TaskVecEnv::mixed(
         &mixture,
         config.agent.clone(),
         config.n_envs,

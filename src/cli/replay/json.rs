@@ -17,7 +17,7 @@ use anyhow::{Context, bail};
 use fairgrasp_env::episode::trajectory::Trajectory;
 use fairgrasp_env::scenario::Scenario;
 use fairgrasp_env::sim::part::Part;
-use fairgrasp_env::{Action, EnvConfig, GraspEnv};
+use fairgrasp_env::{Action, EnvConfig, TaskEnv};
 use fairgrasp_types::fs::write_atomic;
 use serde_json::{Value, json};
 
@@ -110,7 +110,7 @@ fn measure_forces(
     scenario: &Scenario,
     trajectory: &Trajectory,
 ) -> anyhow::Result<Option<Vec<StepForces>>> {
-    let mut env = GraspEnv::new(config.clone())?;
+    let mut env = TaskEnv::new(config.clone())?;
     env.reset_to(scenario);
     let mut forces = vec![StepForces::default()];
     for row in trajectory.rows.iter().skip(1) {
@@ -140,13 +140,13 @@ fn measure_forces(
 }
 
 /// The env's joints and cube position equal `row`'s within 1 µm (rad, m).
-fn same_state(env: &GraspEnv, row: &fairgrasp_env::episode::trajectory::TrajectoryRow) -> bool {
+fn same_state(env: &TaskEnv, row: &fairgrasp_env::episode::trajectory::TrajectoryRow) -> bool {
     let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-6);
     close(&env.joints(), &row.joints) && close(&env.object_in_base().xyz(), &row.object_xyz)
 }
 
 /// The pad–cube forces and the strongest robot contact of the env's last physics substep.
-fn contact_forces(env: &mut GraspEnv) -> StepForces {
+fn contact_forces(env: &mut TaskEnv) -> StepForces {
     let (world, handles) = env.world_mut();
     let dt = f64::from(world.integration_parameters.dt);
     let mut out = StepForces::default();

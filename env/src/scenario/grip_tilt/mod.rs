@@ -7,7 +7,7 @@
 //! - [`draw`]: the scenario's angle ([`draw_grip_tilt`], drawn with the fixture's contact
 //!   conditions in [`crate::scenario::fixture`], kept in `FixturePose::grip_tilt`);
 //! - [`hook`]: the turn carried out before a step's action ([`GripTiltHook`], called at the top
-//!   of `GraspEnv::step`), and what became of it ([`GripTiltEvent`]).
+//!   of `TaskEnv::step`), and what became of it ([`GripTiltEvent`]).
 
 pub mod draw;
 pub mod hook;

@@ -5,7 +5,7 @@
 //!   ([`NudgeConfig`]) and its rules;
 //! - [`draw`]: the scenario's push ([`Nudge`], drawn by [`draw_nudge`] in `Scenario::sample`);
 //! - [`hook`]: the push carried out before the drawn step's action ([`NudgeHook`], called at the
-//!   top of `GraspEnv::step`), and what became of it ([`NudgeEvent`]).
+//!   top of `TaskEnv::step`), and what became of it ([`NudgeEvent`]).
 //!
 //! Frames: the push is drawn in the table frame ([`crate::Mount`]), the event's positions are in
 //! `world`.

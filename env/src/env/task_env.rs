@@ -1,4 +1,4 @@
-//! `GraspEnv`: the gym-style interface. `reset(seed)` and `step(&Action)`.
+//! `TaskEnv`: the gym-style interface. `reset(seed)` and `step(&Action)`.
 //!
 //! An action is 6 joint-velocity commands and 1 gripper command, each in [-1, 1]: joints move at
 //! `action · arm.action_scale` rad/s (or, with `arm.action_space = "tcp"`, entries 0–3 are the
@@ -7,7 +7,7 @@
 //! or failure, `truncated` the time limit or a physics fault; never both.
 //!
 //! This file reads in the order of an episode: building the env, the reset, then
-//! [`GraspEnv::step`] and each part it calls in the order it calls them (the scenario's events,
+//! [`TaskEnv::step`] and each part it calls in the order it calls them (the scenario's events,
 //! the action, the arm's motion in free space or physics, the contacts, the observation, the
 //! task's judgement, the episode's record), then what the env lets a caller read.
 
@@ -43,7 +43,7 @@ const SETTLE_SUBSTEPS: usize = 24;
 
 /// The FR3 grasping environment: the robot, the task and the episode's scenario, composed over
 /// the simulator facade.
-pub struct GraspEnv {
+pub struct TaskEnv {
     config: EnvConfig,
     /// Which arm, mounted how, simulated how.
     cell: Cell,
@@ -70,8 +70,8 @@ pub struct GraspEnv {
     grip_tilt: GripTiltHook,
 }
 
-impl GraspEnv {
-    /// Builds the world once (validating the config); call [`GraspEnv::reset`] before stepping.
+impl TaskEnv {
+    /// Builds the world once (validating the config); call [`TaskEnv::reset`] before stepping.
     pub fn new(config: EnvConfig) -> Result<Self, EnvError> {
         config.validate()?;
         let cell = Cell::from_config(&config);
@@ -238,7 +238,7 @@ impl GraspEnv {
     /// [`ServoSetpoint`] per physics substep (`physics.substeps` of them). The arm's rate limiter
     /// (FR3 velocity limits, `arm.max_acceleration`) still applies, so a setpoint it cannot
     /// follow is reached late, never jumped to. Every such step runs physics (no free-space
-    /// shortcut). Judged, observed and recorded like [`GraspEnv::step`].
+    /// shortcut). Judged, observed and recorded like [`TaskEnv::step`].
     pub fn step_servo(&mut self, setpoints: &[ServoSetpoint]) -> Result<Step, EnvError> {
         if self.done {
             return Err(EnvError::EpisodeOver);

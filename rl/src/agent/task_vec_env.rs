@@ -1,4 +1,4 @@
-//! The grasping environment as PPO sees it: vectorised, each env stepped through its
+//! Every task's environment as PPO sees it: vectorised, each env stepped through its
 //! [`EnvAgent`] (the script in residual mode): the baseline's action appended to each
 //! observation and the policy's output composed with it, or the task script's features appended
 //! and the policy's output correcting it. Python's recipe envs step through the same
@@ -18,7 +18,7 @@ use fairgrasp_env::robot::tcp_action::TaskSpaceAction;
 use fairgrasp_policy::agent::EnvAgent;
 
 /// Vectorised grasp envs plus one agent side (script) per env.
-pub struct GraspVecEnv {
+pub struct TaskVecEnv {
     inner: VecEnv,
     agent: AgentConfig,
     /// Task-space to joint actions (`agent.action_space = "tcp"`).
@@ -33,7 +33,7 @@ pub struct GraspVecEnv {
     batch: StepBatch,
 }
 
-impl GraspVecEnv {
+impl TaskVecEnv {
     /// `n` envs on `threads` threads; episode seeds start at `seed`.
     pub fn new(
         config: &EnvConfig,
@@ -93,7 +93,7 @@ impl GraspVecEnv {
     }
 }
 
-impl VecEnvironment for GraspVecEnv {
+impl VecEnvironment for TaskVecEnv {
     fn n_envs(&self) -> usize {
         self.agents.len()
     }
