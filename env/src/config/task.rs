@@ -41,7 +41,7 @@ impl TaskKind {
         }
     }
 
-    /// Its name in a preset's `[task] kind` and in messages (`lift`, `place`).
+    /// Its name in a preset's `[task] kind` and in messages (`lift`, `place`, `stack`).
     pub fn name(self) -> &'static str {
         self.spec().name
     }
@@ -124,7 +124,8 @@ const STACK: TaskSpec = TaskSpec {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(from = "TaskToml", into = "TaskToml")]
 pub struct TaskConfig {
-    /// `lift` (the default) or `place` (seat the cube in the fixture, `[task.place]`).
+    /// `lift` (the default), `place` (seat the cube in the fixture, `[task.place]`) or `stack`
+    /// (set it down on a second cube, `[task.stack]`).
     pub kind: TaskKind,
     /// The place task's fixture and seated criterion (used when `kind = "place"`).
     pub place: PlaceConfig,
