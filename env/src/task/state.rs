@@ -32,9 +32,16 @@ pub fn tcp_object_distance(s: &TaskState) -> f64 {
         .sqrt()
 }
 
-/// The TCP's distance to the object plus the object's to `seat` (where the task sets its centre
-/// down), world \[m\]: how far a task that carries the cube somewhere still has to go.
-pub fn distance_via_object(s: &TaskState, seat: [f64; 3]) -> f64 {
+/// How far a task that carries the cube onto or into its fixture still has to go, world \[m\]:
+/// the TCP's distance to the object plus the object's to its seat, the point
+/// `centre_above_fixture` \[m\] above the fixture's origin (`f.fixture`) where the task sets
+/// its centre down.
+pub fn distance_via_object(s: &TaskState, f: &PlaceFacts, centre_above_fixture: f64) -> f64 {
+    let seat = [
+        f.fixture[0],
+        f.fixture[1],
+        f.fixture[2] + centre_above_fixture,
+    ];
     let to = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
     to(s.tcp, s.object) + to(s.object, seat)
 }

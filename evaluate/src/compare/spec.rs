@@ -68,9 +68,12 @@ impl CompareSpec {
             .find(|p| p.config.task.kind != self.presets[0].config.task.kind)
         {
             return request(format!(
-                "--preset {} is a {:?} preset and {} a {:?} one: the two tasks have different \
+                "--preset {} is a {} preset and {} a {} one: the two tasks have different \
                  scripts; compare each task's presets on their own",
-                self.presets[0].name, self.presets[0].config.task.kind, p.name, p.config.task.kind
+                self.presets[0].name,
+                self.presets[0].config.task.kind.name(),
+                p.name,
+                p.config.task.kind.name()
             ));
         }
         if self.episodes == 0 {

@@ -10,20 +10,14 @@ use fairgrasp_env::EnvConfig;
 use crate::place::residual::PlaceResidual;
 use crate::{ScriptedPlace, SearchParams};
 
-/// The force lower: the search's descent at 1 cm/s until the wrist feels 1.5 N up, then the
-/// release. A floor band of 1 m puts every touch below the "rim" (there is none), so the search
-/// never spirals; without a touch it stops where the open-loop lower would. The spiral's
-/// settings are the search's defaults: unused, its radius is only the unit of a residual's
-/// spiral features.
+/// The force lower: the search's descent (at the search's default 1 cm/s) until the wrist feels
+/// its default 1.5 N up, then the release. A floor band of 1 m counts every touch as the floor's
+/// (there is no rim), so the search never spirals; without a touch it stops where the open-loop
+/// lower would. The spiral's settings stay the defaults: unused, its radius is only the unit of
+/// a residual's spiral features.
 pub const FORCE_LOWER: SearchParams = SearchParams {
-    descend_speed: 0.01,
-    contact_force: 1.5,
-    admittance: 0.004,
-    pitch: 0.003,
-    speed: 0.01,
-    max_radius: 0.009,
     floor_band: Some(1.0),
-    check_floor: false,
+    ..SearchParams::DEFAULT
 };
 
 /// The open-loop stack script for `env` (its `[task.stack]`): the cube set down a cube's edge

@@ -28,12 +28,7 @@ pub fn is_placed(s: &TaskState, f: &PlaceFacts, p: &PlaceConfig) -> bool {
 /// How far the task still has to go \[m\]: the TCP to the cube, plus the cube to where it sits
 /// seated in the pocket (what the distance reward pays for in this task).
 pub fn distance_to_go(s: &TaskState, f: &PlaceFacts) -> f64 {
-    let seated = [
-        f.fixture[0],
-        f.fixture[1],
-        f.fixture[2] + 0.5 * s.object_size,
-    ];
-    distance_via_object(s, seated)
+    distance_via_object(s, f, 0.5 * s.object_size)
 }
 
 #[cfg(test)]

@@ -117,18 +117,24 @@ pub struct SearchParams {
     pub check_floor: bool,
 }
 
+impl SearchParams {
+    /// The defaults, as a constant: a control built on the search's settings (the stack task's
+    /// force lower) states only what it changes.
+    pub const DEFAULT: SearchParams = SearchParams {
+        descend_speed: 0.01,
+        contact_force: 1.5,
+        admittance: 0.004,
+        pitch: 0.003,
+        speed: 0.01,
+        max_radius: 0.009,
+        floor_band: None,
+        check_floor: false,
+    };
+}
+
 impl Default for SearchParams {
     fn default() -> Self {
-        Self {
-            descend_speed: 0.01,
-            contact_force: 1.5,
-            admittance: 0.004,
-            pitch: 0.003,
-            speed: 0.01,
-            max_radius: 0.009,
-            floor_band: None,
-            check_floor: false,
-        }
+        Self::DEFAULT
     }
 }
 

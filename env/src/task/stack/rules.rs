@@ -23,12 +23,7 @@ pub fn is_success(s: &TaskState, f: &PlaceFacts, c: &StackConfig) -> bool {
 /// How far the task still has to go \[m\]: the TCP to the cube, plus the cube to where it sits
 /// stacked, its centre one and a half edges above the second cube's footprint.
 pub fn distance_to_go(s: &TaskState, f: &PlaceFacts) -> f64 {
-    let stacked = [
-        f.fixture[0],
-        f.fixture[1],
-        f.fixture[2] + 1.5 * s.object_size,
-    ];
-    distance_via_object(s, stacked)
+    distance_via_object(s, f, 1.5 * s.object_size)
 }
 
 #[cfg(test)]
