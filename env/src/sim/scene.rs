@@ -136,7 +136,12 @@ fn insert_robot_collider(
     body: RigidBodyHandle,
     part: Part,
 ) {
-    let collider = collider.solver_groups(robot_solver_groups()).build();
+    let mut collider = collider.solver_groups(robot_solver_groups());
+    if matches!(part, Part::Palm | Part::Finger(_)) {
+        // Their far speculative contacts are dropped (`sim::world::FarContacts`).
+        collider = collider.active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
+    }
+    let collider = collider.build();
     let h = world
         .colliders
         .insert_with_parent(collider, body, &mut world.bodies);

@@ -19,6 +19,26 @@ use crate::sim::snapshot::Snapshot;
 const MOTOR_STIFFNESS: f32 = 2.0e4;
 const MOTOR_DAMPING: f32 = 4.0e2;
 
+/// The farthest a solver contact of the palm or a finger strut may be \[m\]: rapier 0.36 makes
+/// speculative contacts out to its prediction distance, 2 cm here (`normalized_prediction_distance`
+/// 0.02 × a 1 m length unit), and the palm and struts, a few millimetres to 2 cm above and beside
+/// a cube between the pads, gave the solver three such manifolds on every simulated substep. One
+/// farther than this acts only if the gap closes by more within the physics step (> 1.2 m/s at
+/// 1/240 s). The pads keep rapier's full margin: they close on the cube fast.
+pub const FAR_CONTACT: f32 = 0.005;
+
+/// The physics hook that drops the palm's and the finger struts' solver contacts farther than
+/// [`FAR_CONTACT`] (the colliders that ask for it: `sim::scene::build`).
+struct FarContacts;
+
+impl PhysicsHooks for FarContacts {
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+        if let Some(rigid) = context.rigid_mut() {
+            rigid.solver_contacts.retain(|c| c.dist < FAR_CONTACT);
+        }
+    }
+}
+
 /// The rapier world of one env, its named bodies, and the state it resets to.
 pub struct Sim {
     world: PhysicsWorld,
@@ -53,7 +73,7 @@ impl Sim {
 
     /// Advances the physics by one time step.
     pub fn step(&mut self) {
-        self.world.step();
+        self.world.step_with_events(&FarContacts, &());
     }
 
     /// The object's pose in `world`.
