@@ -25,7 +25,11 @@ use crate::sim::part::Part;
 use crate::sim::shapes::{CheckedPairs, RobotShapes};
 
 /// The closest any robot part may come to the object, at any moment of a free-space step \[m\]:
-/// rapier's default contact prediction distance (2 mm) with room to spare.
+/// closer than this, the step runs physics. rapier 0.36 makes speculative contacts out to 2 cm
+/// (`normalized_prediction_distance` 0.02 × a 1 m length unit), but a contact farther than the
+/// gap the bodies close within one substep exerts no force, and a free step moves only the
+/// robot, bounded per substep by `FreeSpace::motion_bound`; the free-space equivalence tests
+/// (`env/tests/free_space.rs`, `planner/tests/free_space.rs`) hold at this margin.
 pub const CONTACT_MARGIN: f64 = 0.005;
 /// Below these the object counts as at rest \[m/s, rad/s\] (a sleeping object always does).
 pub const REST_SPEED: f64 = 0.002;
