@@ -28,7 +28,8 @@ const MOTOR_DAMPING: f32 = 4.0e2;
 pub const FAR_CONTACT: f32 = 0.005;
 
 /// The physics hook that drops the palm's and the finger struts' solver contacts farther than
-/// [`FAR_CONTACT`] (the colliders that ask for it: `sim::scene::build`).
+/// [`FAR_CONTACT`] (the colliders that ask for it are marked in `sim::scene`, where the robot's
+/// colliders are inserted).
 struct FarContacts;
 
 impl PhysicsHooks for FarContacts {
