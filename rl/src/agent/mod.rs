@@ -1,6 +1,6 @@
 //! The grasping agents as PPO trains them. The agents themselves (config, policy input and
 //! action, the residual's script) are burn-free and live in `fairgrasp-policy`
-//! (`policy/src/agent/`), re-exported here; this room adds the grasp env as PPO sees it.
+//! (`policy/src/agent/`), re-exported here; this room adds the env of every task as PPO sees it.
 //!
 //! - [`task_vec_env`]: the env of every task as a [`crate::ppo::vec_api::VecEnvironment`].
 
