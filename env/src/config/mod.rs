@@ -1,7 +1,8 @@
 //! The environment's configuration: plain serde data with defaults ([`env_config`], the task's
 //! settings in [`task`], the rewards' weights in [`reward`]), loaded from TOML and checked with
 //! messages that name the field ([`validate`], and `validate_families`, which calls each
-//! scenario family's rules; all written with `check`; [`numbers`], [`error`]), the named presets
+//! scenario family's rules; all written with `check`; [`numbers`], [`error`]; every list read
+//! whole, [`lists`]), the named presets
 //! ([`presets`]), and where a key is written in a TOML text ([`toml_lines`]).
 //!
 //! A task's or a scenario family's own settings live in its folder (`settings.rs`, plain data
@@ -18,6 +19,7 @@
 pub(crate) mod check;
 pub mod env_config;
 pub mod error;
+pub mod lists;
 pub mod numbers;
 pub mod presets;
 pub mod range;

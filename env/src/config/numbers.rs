@@ -70,7 +70,7 @@ pub fn first_bad_number(config: &impl serde::Serialize) -> Option<(String, Strin
     first_non_finite(&value).map(|(field, v)| (field, v.to_string(), "must be a finite number"))
 }
 
-/// A TOML error as a message that says where: `line N: `the line` (column C): what`, the line
+/// A TOML error as a message that says where: `line N: `the line` (column C): field: what`, the line
 /// counted with LF, CRLF and CR line ends alike and quoted as a bounded excerpt
 /// ([`fairgrasp_types::text`]; the parser's own message quoted the whole line, a 1 MB line
 /// whole, and a file with old-Mac CR line ends whole as its line 1). For the errors the parser
@@ -94,8 +94,17 @@ pub fn toml_error_message(text: &str, error: &toml::de::Error) -> String {
         } else {
             ""
         };
+        // The dotted key the line belongs to (`task.stack.base_radius`), when the line ends
+        // are ones the key scanner counts as the parser does.
+        let field = bare_cr
+            .is_none()
+            .then(|| crate::config::toml_lines::path_at_line(text, line))
+            .flatten()
+            .map_or_else(String::new, |f| {
+                format!("{}: ", excerpt(&f, MAX_QUOTED_CHARS))
+            });
         return format!(
-            "line {line}: `{}` (column {column}): {message}{hint}",
+            "line {line}: `{}` (column {column}): {field}{message}{hint}",
             quote(quoted)
         );
     }
@@ -140,7 +149,9 @@ mod tests {
         for end in ["\n", "\r\n"] {
             let m = message(&(lines.join(end) + end));
             assert!(
-                m.starts_with("line 5: `cube_mass = \"heavy\"` (column 13): invalid type"),
+                m.starts_with(
+                    "line 5: `cube_mass = \"heavy\"` (column 13): scene.cube_mass: invalid type"
+                ),
                 "{end:?}: {m}"
             );
         }

@@ -68,8 +68,15 @@ impl EnvConfig {
         })
     }
 
-    /// Parses TOML text and validates it.
+    /// Parses TOML text and validates it: every list read whole first
+    /// ([`crate::config::lists`]: a list of another length than its field's is refused naming
+    /// the field), then the typed reading, whose errors cite the line, then [`Self::validate`].
     pub fn from_toml_str(text: &str) -> Result<Self, ConfigError> {
+        // A text that does not parse (or holds an integer beyond ±9.2·10¹⁸, which only the
+        // typed reader takes) is the typed reader's to refuse.
+        if let Ok(doc) = toml::from_str::<toml::Table>(text) {
+            crate::config::lists::check_lists::<EnvConfig>(&doc)?;
+        }
         let config: EnvConfig = toml::from_str(text).map_err(|e| ConfigError::File {
             path: "<string>".into(),
             message: toml_error_message(text, &e),

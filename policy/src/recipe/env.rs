@@ -63,6 +63,13 @@ pub fn with_env_table(
     };
     let mut table = toml::Table::try_from(&env).map_err(|e| invalid(e.to_string()))?;
     overlay(&mut table, overrides);
+    // Every list whole, as a preset file's (a list longer than its field was read short).
+    fairgrasp_env::config::lists::check_lists::<EnvConfig>(&table).map_err(|e| match e {
+        ConfigError::Invalid { field, value, rule } => {
+            invalid(format!("env.{field} = {value}: {rule}"))
+        }
+        other => invalid(other.to_string()),
+    })?;
     let text = toml::to_string(&table).map_err(|e| invalid(e.to_string()))?;
     // Errors name the field as `env.<path>` (the merged text's lines are nobody's): the loader
     // of the training config finds the line the user wrote it on.
