@@ -140,19 +140,22 @@ fn the_place_tasks_contact_conditions_and_search_tuning_are_refused_out_of_range
     );
 }
 
-/// An angle range may be negative, down to −π: the message states that bound, not "must not be
-/// negative" (issue 60's example).
+/// An angle range may be negative, down to −π, and goes up to π (one turn, issue 70: its
+/// upper end had no bound): the message states those bounds, not "must not be negative"
+/// (issue 60's example).
 #[test]
-fn an_angle_range_below_minus_pi_is_refused_stating_its_real_bound() {
-    let m = refused("[randomization]\nangle = [-3.5, 1.0]\n");
-    assert!(
-        m.contains("randomization.angle")
-            && m.contains("-3.5")
-            && m.contains("[-3.141592653589793, inf) rad"),
-        "{m}"
-    );
-    assert!(!m.contains("negative"), "{m}");
-    EnvConfig::from_toml_str("[randomization]\nangle = [-3.0, 1.0]\n").unwrap();
+fn an_angle_range_beyond_a_turn_is_refused_stating_its_real_bound() {
+    for angle in ["[-3.5, 1.0]", "[-1.0, 3.5]"] {
+        let m = refused(&format!("[randomization]\nangle = {angle}\n"));
+        assert!(
+            m.contains("randomization.angle")
+                && m.contains("3.5")
+                && m.contains("[-3.141592653589793, 3.141592653589793] rad"),
+            "{m}"
+        );
+        assert!(!m.contains("negative"), "{m}");
+    }
+    EnvConfig::from_toml_str("[randomization]\nangle = [-3.0, 3.0]\n").unwrap();
 }
 
 #[test]

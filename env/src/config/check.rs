@@ -114,11 +114,45 @@ impl std::fmt::Display for Bounds {
     }
 }
 
-/// A distance's range \[m\].
-pub(crate) const DISTANCE: Bounds = Bounds::at_least(0.0).unit("m");
+/// The bounds of a `[min, max]` range a sampler draws from, with the reason for them: both ends
+/// finite (a draw between `1e308` and its square overflows, and one between `-1e308` and
+/// `1e308` has no width a generator can scale), each the bound the sampler and the scene need.
+/// Every range of every table is checked against one ([`check_range`]); a bound with an end at
+/// ±∞ cannot be made (a constant one fails to compile, another one panics when it is made).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RangeBounds {
+    /// Where both ends must lie.
+    pub bounds: Bounds,
+    /// Why, as the refusal states it after the bounds (`(the FR3's reach …)`).
+    pub reason: &'static str,
+}
 
-/// An angle about the vertical \[rad\]: from −π up.
-pub(crate) const ANGLE_FROM_MINUS_PI: Bounds = Bounds::at_least(-std::f64::consts::PI).unit("rad");
+impl RangeBounds {
+    /// `bounds` for a range, with its `reason`; both ends of `bounds` must be finite.
+    pub const fn new(bounds: Bounds, reason: &'static str) -> RangeBounds {
+        assert!(
+            bounds.low.is_finite() && bounds.high.is_finite(),
+            "a range's bounds must be finite: the sampler draws between its ends"
+        );
+        RangeBounds { bounds, reason }
+    }
+}
+
+/// The farthest a drawn position on the table may lie from the point under the base \[m\]:
+/// a sector's radius (the cube's, the fixture's, the second cube's).
+pub const MAX_TABLE_RADIUS: f64 = 1.0;
+
+/// A sector's radius on the table \[m\], from the point under the base origin.
+pub(crate) const SECTOR_RADIUS: RangeBounds = RangeBounds::new(
+    Bounds::closed(0.0, MAX_TABLE_RADIUS).unit("m"),
+    "(the FR3 reaches 0.622 m from its shoulder: no mount reaches a cube 1 m from the base)",
+);
+
+/// A sector's angle about the vertical, from the base's heading \[rad\].
+pub(crate) const SECTOR_ANGLE: RangeBounds = RangeBounds::new(
+    Bounds::closed(-std::f64::consts::PI, std::f64::consts::PI).unit("rad"),
+    "(one turn about the base: -π and π are both straight behind it)",
+);
 
 /// A number a setting holds: a float or a count, shown in a refusal as it was written.
 pub trait SettingNumber: Copy + std::fmt::Debug {
@@ -185,14 +219,16 @@ pub fn check_in(
     }
 }
 
-/// A `[min, max]` range (a [`crate::config::Range`] or a pair of counts): finite, ordered, and both ends within `bounds` (the message states
-/// them).
+/// A `[min, max]` range (a [`crate::config::Range`] or a pair of counts): finite, ordered, and
+/// both ends within `bounds`, whose ends are finite ([`RangeBounds`]); the refusal names the
+/// field, the value, the bounds and their reason.
 pub(crate) fn check_range<N: SettingNumber>(
     range: &[N; 2],
-    field: &'static str,
-    bounds: Bounds,
+    field: &str,
+    bounds: RangeBounds,
 ) -> Result<(), ConfigError> {
     let [min, max] = range.map(N::as_f64);
+    let RangeBounds { bounds, reason } = bounds;
     check(
         min.is_finite() && max.is_finite(),
         field,
@@ -206,7 +242,7 @@ pub(crate) fn check_range<N: SettingNumber>(
     Err(ConfigError::Invalid {
         field: field.to_string(),
         value: format!("{range:?}"),
-        rule: format!("both ends must be in {bounds}").into(),
+        rule: format!("both ends must be in {bounds} {reason}").into(),
     })
 }
 
@@ -233,11 +269,18 @@ mod tests {
             e.to_string(),
             "task.max_steps = 100001: must be in [1, 100000]"
         );
-        let e =
-            check_range(&[-3.5, 1.0], "randomization.angle", Bounds::at_least(-3.0)).unwrap_err();
+        let e = check_range(&[-3.5, 1.0], "randomization.angle", SECTOR_ANGLE).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "randomization.angle = [-3.5, 1.0]: both ends must be in [-3, inf)"
+            "randomization.angle = [-3.5, 1.0]: both ends must be in [-3.141592653589793, \
+             3.141592653589793] rad (one turn about the base: -π and π are both straight behind it)"
+        );
+        let e = check_range(&[0.3, 1e308], "task.stack.base_radius", SECTOR_RADIUS).unwrap_err();
+        assert!(
+            e.to_string().starts_with(
+                "task.stack.base_radius = [0.3, 1e308]: both ends must be in [0, 1] m (the FR3"
+            ),
+            "{e}"
         );
     }
 }

@@ -32,7 +32,7 @@ mod validate_families;
 pub use crate::task::place::settings::{
     PlaceConfig, SEARCH_BOUNDS, SearchBound, SearchParams, SquareParams, SwitchParams,
 };
-pub use check::{Bounds, SettingNumber, bounds_rule, check_in};
+pub use check::{Bounds, MAX_TABLE_RADIUS, RangeBounds, SettingNumber, bounds_rule, check_in};
 pub use env_config::*;
 pub use error::ConfigError;
 pub use range::Range;

@@ -5,7 +5,9 @@ use std::path::Path;
 
 use fairgrasp_kinematics::Pose;
 
-use crate::config::check::{ANGLE_FROM_MINUS_PI, Bounds, DISTANCE, check, check_in, check_range};
+use crate::config::check::{
+    Bounds, RangeBounds, SECTOR_ANGLE, SECTOR_RADIUS, check, check_in, check_range,
+};
 use crate::config::env_config::{EnvConfig, SIMULATED_ARM};
 pub use crate::config::error::ConfigError;
 pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
@@ -41,6 +43,10 @@ pub const MAX_SOLVER_ITERATIONS: usize = 100;
 pub const MAX_EPISODE_STEPS: usize = 100_000;
 /// Where a body may stand on a coordinate, world frame \[m\]: within the largest table's side.
 const ON_THE_TABLE: Bounds = Bounds::closed(-10.0, 10.0).unit("m");
+/// The FR3's payload \[kg\]: the heaviest cube a scene may hold.
+const PAYLOAD: f64 = 3.0;
+/// A friction coefficient: the table's, the cube's, the pads', a drawn one.
+const FRICTION: Bounds = Bounds::closed(0.0, 10.0);
 /// A grip force \[N\]: the gripper's own and the control's.
 const GRIP_FORCE: Bounds = Bounds::above_to(0.0, 100.0).unit("N");
 
@@ -217,12 +223,7 @@ impl EnvConfig {
     fn validate_gripper(&self) -> Result<(), ConfigError> {
         let g = &self.gripper;
         check_in(g.force, "gripper.force", GRIP_FORCE, "")?;
-        check_in(
-            g.pad_friction,
-            "gripper.pad_friction",
-            Bounds::closed(0.0, 10.0),
-            "",
-        )?;
+        check_in(g.pad_friction, "gripper.pad_friction", FRICTION, "")?;
         if let Some(force) = self.control.grip_force {
             check_in(
                 force,
@@ -250,12 +251,7 @@ impl EnvConfig {
         {
             check_in(*side, field, Bounds::above_to(0.2, 10.0).unit("m"), "")?;
         }
-        check_in(
-            s.table_friction,
-            "scene.table_friction",
-            Bounds::closed(0.0, 10.0),
-            "",
-        )?;
+        check_in(s.table_friction, "scene.table_friction", FRICTION, "")?;
         check_in(
             s.cube_size,
             "scene.cube_size",
@@ -265,15 +261,10 @@ impl EnvConfig {
         check_in(
             s.cube_mass,
             "scene.cube_mass",
-            Bounds::above_to(0.0, 3.0).unit("kg"),
+            Bounds::above_to(0.0, PAYLOAD).unit("kg"),
             "(the FR3's payload)",
         )?;
-        check_in(
-            s.cube_friction,
-            "scene.cube_friction",
-            Bounds::closed(0.0, 10.0),
-            "",
-        )?;
+        check_in(s.cube_friction, "scene.cube_friction", FRICTION, "")?;
         for (v, field) in s
             .cube_xy
             .iter()
@@ -288,13 +279,21 @@ impl EnvConfig {
     /// `validate_families`').
     fn validate_randomization(&self) -> Result<(), ConfigError> {
         let r = &self.randomization;
-        check_range(&r.radius, "randomization.radius", DISTANCE)?;
-        check_range(&r.angle, "randomization.angle", ANGLE_FROM_MINUS_PI)?;
+        check_range(&r.radius, "randomization.radius", SECTOR_RADIUS)?;
+        check_range(&r.angle, "randomization.angle", SECTOR_ANGLE)?;
         if let Some(f) = &r.friction {
-            check_range(f, "randomization.friction", Bounds::at_least(0.0))?;
+            let bounds = RangeBounds::new(FRICTION, "(scene.cube_friction's range)");
+            check_range(f, "randomization.friction", bounds)?;
         }
         if let Some(m) = &r.mass_scale {
-            check_range(m, "randomization.mass_scale", Bounds::above(0.0))?;
+            // A factor on scene.cube_mass, which has a range of its own (checked before); at
+            // most 10⁶ (a cube of 5e-324 kg would make the payload's bound infinite).
+            let most = (PAYLOAD / self.scene.cube_mass).min(1e6);
+            let bounds = RangeBounds::new(
+                Bounds::above_to(0.0, most),
+                "(the drawn mass, scene.cube_mass times the factor, within the FR3's 3 kg payload)",
+            );
+            check_range(m, "randomization.mass_scale", bounds)?;
         }
         // Noise beyond this puts the start joints outside anything a scenario means.
         check_in(

@@ -1,7 +1,7 @@
 //! The grip tilt's bounds and rule (`[task.place] grip_tilt`, a `[min, max]` range of angles
 //! \[rad\]).
 
-use crate::config::check::{Bounds, check_range};
+use crate::config::check::{Bounds, RangeBounds, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
 
@@ -15,10 +15,12 @@ pub const MAX_GRIP_TILT: f64 = 0.35;
 /// Refuses a grip tilt range that is not finite, ordered, non-negative and within
 /// [`MAX_GRIP_TILT`], naming `task.place.grip_tilt`.
 pub fn check_grip_tilt(grip_tilt: &Range) -> Result<(), ConfigError> {
-    // More than 20° and the turned cube reaches the palm.
     check_range(
         grip_tilt,
         "task.place.grip_tilt",
-        Bounds::closed(0.0, MAX_GRIP_TILT).unit("rad"),
+        RangeBounds::new(
+            Bounds::closed(0.0, MAX_GRIP_TILT).unit("rad"),
+            "(20°: more and the turned cube reaches the palm)",
+        ),
     )
 }

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{Bounds, check, check_in, check_range};
+use crate::config::check::{Bounds, RangeBounds, check, check_in, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
 
@@ -34,13 +34,18 @@ impl NudgeConfig {
         check_range(
             &self.distance,
             "randomization.nudge.distance",
-            Bounds::above_to(0.0, MAX_NUDGE).unit("m"),
+            RangeBounds::new(
+                Bounds::above_to(0.0, MAX_NUDGE).unit("m"),
+                "(MAX_NUDGE, 15 cm: a nudge during the approach, not a throw across the table)",
+            ),
         )?;
-        // The push comes before the episode's last step (task.max_steps).
         check_range(
             &self.step,
             "randomization.nudge.step",
-            Bounds::from_below(0.0, max_steps as f64).unit("steps"),
+            RangeBounds::new(
+                Bounds::from_below(0.0, max_steps as f64).unit("steps"),
+                "(before the episode's last step, task.max_steps)",
+            ),
         )?;
         check_in(
             self.min_tcp_distance,

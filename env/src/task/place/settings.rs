@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{Bounds, check_in, check_range};
+use crate::config::check::{Bounds, RangeBounds, check_in, check_range};
 use crate::config::error::ConfigError;
 use crate::config::range::Range;
 use crate::scenario::error_mix::settings::ErrorMix;
@@ -327,7 +327,10 @@ fn check_contact_conditions(p: &PlaceConfig) -> Result<(), ConfigError> {
         check_range(
             friction,
             "task.place.fixture_friction",
-            Bounds::closed(0.0, 2.0),
+            RangeBounds::new(
+                Bounds::closed(0.0, 2.0),
+                "(a friction coefficient between the walls and the cube)",
+            ),
         )?;
     }
     Ok(())
