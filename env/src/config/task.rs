@@ -10,9 +10,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::config::error::ConfigError;
 use crate::config::reward::{DistanceReward, StagedReward};
-use crate::scenario::fixture::settings::{FixtureBox, FixtureSite};
-use crate::task::place::settings::{PlaceConfig, check_place};
-use crate::task::stack::settings::{StackConfig, check_stack};
+use crate::scenario::fixture::settings::{FixtureBox, FixtureSite, SiteKeys};
+use crate::task::place::settings::{PLACE_SITE_KEYS, PlaceConfig, check_place};
+use crate::task::stack::settings::{STACK_SITE_KEYS, StackConfig, check_stack};
 
 /// Which task an env runs (`[task] kind`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -59,6 +59,9 @@ pub struct TaskSpec {
     /// cube of edge `cube_size` \[m\] (`None`: the scene has no fixture). The fixture is a
     /// fixed body the cube goes onto or into, drawn per scenario (`env/src/scenario/fixture/`).
     pub site: fn(&TaskConfig, f64) -> Option<FixtureSite>,
+    /// The names of the site's settings in the task's table (`None`: no fixture), for a draw
+    /// that finds no place for the fixture and names the numbers that make it impossible.
+    pub site_keys: Option<&'static SiteKeys>,
     /// The fixture's boxes in its frame, for a cube of edge `cube_size` \[m\] (empty without
     /// a fixture).
     pub fixture_boxes: fn(&TaskConfig, f64) -> Vec<FixtureBox>,
@@ -76,18 +79,58 @@ pub struct TaskSpec {
     /// The shipped recipe (`assets/experiments/<name>.toml`) a task-space residual trains with
     /// on the task's presets that have no recipe of their own.
     pub residual_recipe: &'static str,
+    /// The first field of the task's own table (`[task.<name>]`) that a config sets away from
+    /// its default, as its dotted name and its value (`None`: the task has no table, or the
+    /// config leaves it at its defaults). A config of another task may not set any
+    /// (`EnvConfig::validate` refuses it naming the table and the config's task): the table
+    /// is this task's, and another task's draw would read some of it.
+    pub settings_set: fn(&TaskConfig) -> Option<(String, String)>,
+}
+
+/// The first field of `settings` (the table `table`) whose value differs from `default`'s, as
+/// its dotted name and its value (`unset` for one the settings leave out).
+fn first_set_field<T: Serialize>(
+    table: &str,
+    settings: &T,
+    default: &T,
+) -> Option<(String, String)> {
+    fn differs(path: String, a: &toml::Value, b: Option<&toml::Value>) -> Option<(String, String)> {
+        match (a, b) {
+            (toml::Value::Table(a), Some(toml::Value::Table(b))) => a
+                .iter()
+                .find_map(|(k, v)| differs(format!("{path}.{k}"), v, b.get(k)))
+                .or_else(|| {
+                    b.keys()
+                        .find(|k| !a.contains_key(*k))
+                        .map(|k| (format!("{path}.{k}"), "unset".to_string()))
+                }),
+            (a, Some(b)) if a == b => None,
+            (a, _) => Some((
+                path,
+                fairgrasp_types::text::excerpt(
+                    &a.to_string(),
+                    fairgrasp_types::text::MAX_QUOTED_CHARS,
+                ),
+            )),
+        }
+    }
+    let settings = toml::Value::try_from(settings).ok()?;
+    let default = toml::Value::try_from(default).ok()?;
+    differs(table.to_string(), &settings, Some(&default))
 }
 
 /// The lift task to the shared code: no fixture, the staged reward (written for it), no takt.
 const LIFT: TaskSpec = TaskSpec {
     name: "lift",
     site: |_, _| None,
+    site_keys: None,
     fixture_boxes: |_, _| Vec::new(),
     fixture_part: "",
     check: |_, _| Ok(()),
     refuses_staged_reward: None,
     takt: |_| None,
     residual_recipe: "residual_miscalibrated",
+    settings_set: |_| None,
 };
 
 /// The place task to the shared code: the fixture in the scene, drawn per scenario; the distance
@@ -95,6 +138,7 @@ const LIFT: TaskSpec = TaskSpec {
 const PLACE: TaskSpec = TaskSpec {
     name: "place",
     site: |task, _| Some(task.place.site()),
+    site_keys: Some(&PLACE_SITE_KEYS),
     fixture_boxes: |task, cube_size| task.place.wall_boxes(cube_size),
     fixture_part: "fixture_wall",
     check: |task, cube_size| check_place(&task.place, cube_size),
@@ -103,6 +147,7 @@ const PLACE: TaskSpec = TaskSpec {
     ),
     takt: |task| Some(task.place.takt),
     residual_recipe: "residual_place_grasp_error",
+    settings_set: |task| first_set_field("task.place", &task.place, &PlaceConfig::default()),
 };
 
 /// The stack task to the shared code: the second cube as the fixture, drawn per scenario; the
@@ -110,6 +155,7 @@ const PLACE: TaskSpec = TaskSpec {
 const STACK: TaskSpec = TaskSpec {
     name: "stack",
     site: |task, cube_size| Some(task.stack.site(cube_size)),
+    site_keys: Some(&STACK_SITE_KEYS),
     fixture_boxes: |_, cube_size| StackConfig::base_boxes(cube_size),
     fixture_part: "fixture_cube",
     check: |task, cube_size| check_stack(&task.stack, cube_size),
@@ -118,6 +164,7 @@ const STACK: TaskSpec = TaskSpec {
     ),
     takt: |task| Some(task.stack.takt),
     residual_recipe: "residual_stack",
+    settings_set: |task| first_set_field("task.stack", &task.stack, &StackConfig::default()),
 };
 
 /// The task, its success, reward and time limit.

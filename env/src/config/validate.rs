@@ -275,6 +275,33 @@ impl EnvConfig {
         Ok(())
     }
 
+    /// A task's table is its own: a config whose task is `stack` may not set a field of
+    /// `[task.place]` (its mix, its grip tilt: the fixture's draw would apply them to the second
+    /// cube), nor one of `place` `[task.stack]`, nor a `lift` one either; refused naming the
+    /// field, its table and the config's task.
+    fn validate_own_tables(&self) -> Result<(), ConfigError> {
+        let t = &self.task;
+        for other in crate::config::TaskKind::ALL {
+            if other == t.kind {
+                continue;
+            }
+            if let Some((field, value)) = (other.spec().settings_set)(t) {
+                let (table, task) = (other.name(), t.kind.name());
+                return Err(ConfigError::Invalid {
+                    field,
+                    value,
+                    rule: format!(
+                        "[task.{table}] is the {table} task's table, and this config's task is \
+                         {task} (task.kind = \"{task}\"): a config carries only its own task's \
+                         table; remove [task.{table}], or set task.kind = \"{table}\""
+                    )
+                    .into(),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// The randomisation's ranges and noise levels (`[randomization]`; the families' fields are
     /// `validate_families`').
     fn validate_randomization(&self) -> Result<(), ConfigError> {
@@ -305,8 +332,10 @@ impl EnvConfig {
         check_perception_noise(r.observed_position_noise, r.observed_yaw_noise)
     }
 
-    /// The task's fields (`[task]`, the staged reward's weights, `[task.place]`).
+    /// The task's fields (`[task]`, the staged reward's weights, `[task.place]`), after
+    /// [`Self::validate_own_tables`].
     fn validate_task(&self) -> Result<(), ConfigError> {
+        self.validate_own_tables()?;
         let t = &self.task;
         check_in(
             t.max_steps,

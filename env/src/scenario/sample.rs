@@ -11,6 +11,7 @@ use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
 use crate::config::EnvConfig;
 use crate::scenario::error_mix::draw::{draw_error_family, keep_only};
+use crate::scenario::fixture::settings::{FixtureSite, SiteKeys};
 use crate::scenario::fixture::{FixturePose, draw_fixture};
 use crate::scenario::graspable::top_down_grasp;
 use crate::scenario::noise::{gauss, uniform_in_sector};
@@ -74,11 +75,68 @@ pub struct UngraspableRegion {
     pub base_height_above_table: f64,
     /// Tilt of the base from upright \[rad\].
     pub base_tilt: f64,
+    /// The task's fixture, when some cube positions left it no place (`None`: every failed
+    /// draw was the cube's own).
+    pub fixture: Option<FixtureMiss>,
+}
+
+/// Cube positions beside which the task's fixture found no place: where its numbers are.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FixtureMiss {
+    /// The names of its site's settings (its task's table).
+    pub keys: &'static SiteKeys,
+    /// Its site, as the config gives it.
+    pub site: FixtureSite,
+    /// Cube positions drawn, and how many of them left the fixture no place.
+    pub cubes: usize,
+    pub misses: usize,
+}
+
+impl FixtureMiss {
+    /// Why the fixture found no place, naming its table's numbers.
+    fn describe(&self) -> String {
+        let (k, site) = (self.keys, &self.site);
+        let table = k.table;
+        if site.randomize {
+            format!(
+                "no place for the fixture of [{table}] beside {} of {} cube positions drawn: \
+                 its sector {} {:?} / {} {:?}, at least {} {} m from the cube, has no position \
+                 the FR3 reaches top-down with the cube held; change [{table}]'s numbers (or \
+                 the cube's sector, randomization.radius / angle)",
+                self.misses,
+                self.cubes,
+                k.radius,
+                site.radius,
+                k.angle,
+                site.angle,
+                k.min_distance_from_cube,
+                site.min_distance_from_cube,
+            )
+        } else {
+            format!(
+                "the fixture of [{table}] at {} {:?} ({table}.randomize = false) is not at \
+                 least {} {} m from the cube or is not reached top-down with the cube held, \
+                 beside {} of {} cube positions drawn; move it",
+                k.xy[0].trim_end_matches("[0]"),
+                site.xy,
+                k.min_distance_from_cube,
+                site.min_distance_from_cube,
+                self.misses,
+                self.cubes,
+            )
+        }
+    }
 }
 
 impl UngraspableRegion {
     fn describe(&self) -> String {
+        let fixture = self.fixture.as_ref();
         let what = match self.fixed_xy {
+            // Every cube position was refused for want of a place for the fixture: its table's
+            // numbers make the draw impossible.
+            _ if fixture.is_some_and(|f| f.misses == f.cubes) => {
+                fixture.map(FixtureMiss::describe).unwrap_or_default()
+            }
             Some(xy) => format!(
                 "scene.cube_xy {xy:?} (randomization.position = false) has no collision-free \
                  top-down grasp within the FR3's joint limits, or the cube would spawn inside \
@@ -89,6 +147,13 @@ impl UngraspableRegion {
                  {:?} lies outside what the FR3 reaches top-down",
                 self.draws, self.radius, self.angle
             ),
+        };
+        let what = match fixture {
+            Some(f) if f.misses < f.cubes => format!(
+                "{what} ({} of the {} cube positions drawn left the fixture of [{}] no place)",
+                f.misses, f.cubes, f.keys.table
+            ),
+            _ => what,
         };
         let level = self.base_tilt < 1e-6 && self.base_height_above_table.abs() < 1e-6;
         if level {
@@ -147,11 +212,15 @@ impl Scenario {
         let r = &config.randomization;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let (model, mount) = (&cell.model, cell.mount);
+        // Cube positions drawn, and how many left the fixture no place (for the refusal).
+        let (mut cubes, mut fixture_misses) = (0, 0);
         for _ in 0..MAX_DRAWS {
             let mut s = draw_start(config, model, seed, &mut rng);
+            cubes += 1;
             let pose =
                 mount.resting_object_in_base(s.object_xy, s.object_yaw, config.scene.cube_size);
             let Ok(fixture) = fixture_for(config, cell, seed, s.object_xy, &s.start_joints) else {
+                fixture_misses += 1;
                 if r.position {
                     continue; // another cube position may leave room for the fixture
                 }
@@ -188,6 +257,7 @@ impl Scenario {
             fixed_xy: (!r.position).then_some(config.scene.cube_xy),
             base_height_above_table: mount.base_height_above_table(),
             base_tilt: mount.tilt(),
+            fixture: fixture_miss(config, cubes, fixture_misses),
         })
     }
 }
@@ -265,6 +335,19 @@ fn fixture_for(
     )
     .map(Some)
     .ok_or(())
+}
+
+/// The fixture's part in a failed draw: its site and how many of `cubes` positions left it no
+/// place (`None` when none did, or the task has no fixture).
+fn fixture_miss(config: &EnvConfig, cubes: usize, misses: usize) -> Option<FixtureMiss> {
+    let spec = config.task.kind.spec();
+    let site = (spec.site)(&config.task, config.scene.cube_size)?;
+    (misses > 0).then_some(FixtureMiss {
+        keys: spec.site_keys?,
+        site,
+        cubes,
+        misses,
+    })
 }
 
 /// A seeded list of `n` scenarios, identical for every policy evaluated on it: scenario `i` is

@@ -308,17 +308,19 @@ fn check_fixture(p: &PlaceConfig, cube_size: f64) -> Result<(), ConfigError> {
         check_in(value, field, Bounds::above_to(0.0, high).unit(unit), "")?;
     }
     check_grasp_height(p.grasp_height, cube_size, "task.place.grasp_height")?;
-    check_site(
-        &p.site(),
-        &SiteKeys {
-            xy: ["task.place.fixture_xy[0]", "task.place.fixture_xy[1]"],
-            radius: "task.place.fixture_radius",
-            angle: "task.place.fixture_angle",
-            observed_position_noise: "task.place.observed_position_noise",
-            observed_yaw_noise: "task.place.observed_yaw_noise",
-        },
-    )
+    check_site(&p.site(), &PLACE_SITE_KEYS)
 }
+
+/// The names of the fixture's site in `[task.place]`.
+pub const PLACE_SITE_KEYS: SiteKeys = SiteKeys {
+    table: "task.place",
+    xy: ["task.place.fixture_xy[0]", "task.place.fixture_xy[1]"],
+    radius: "task.place.fixture_radius",
+    angle: "task.place.fixture_angle",
+    min_distance_from_cube: "task.place.min_distance_from_cube",
+    observed_position_noise: "task.place.observed_position_noise",
+    observed_yaw_noise: "task.place.observed_yaw_noise",
+};
 
 /// The grip's tilt and the fixture's friction, drawn per episode.
 fn check_contact_conditions(p: &PlaceConfig) -> Result<(), ConfigError> {

@@ -116,14 +116,16 @@ pub(crate) fn check_stack(s: &StackConfig, cube_size: f64) -> Result<(), ConfigE
         check_in(value, field, Bounds::above_to(0.0, high).unit(unit), "")?;
     }
     check_grasp_height(s.grasp_height, cube_size, "task.stack.grasp_height")?;
-    check_site(
-        &s.site(cube_size),
-        &SiteKeys {
-            xy: ["task.stack.base_xy[0]", "task.stack.base_xy[1]"],
-            radius: "task.stack.base_radius",
-            angle: "task.stack.base_angle",
-            observed_position_noise: "task.stack.observed_position_noise",
-            observed_yaw_noise: "task.stack.observed_yaw_noise",
-        },
-    )
+    check_site(&s.site(cube_size), &STACK_SITE_KEYS)
 }
+
+/// The names of the second cube's site in `[task.stack]`.
+pub const STACK_SITE_KEYS: SiteKeys = SiteKeys {
+    table: "task.stack",
+    xy: ["task.stack.base_xy[0]", "task.stack.base_xy[1]"],
+    radius: "task.stack.base_radius",
+    angle: "task.stack.base_angle",
+    min_distance_from_cube: "task.stack.min_distance_from_cube",
+    observed_position_noise: "task.stack.observed_position_noise",
+    observed_yaw_noise: "task.stack.observed_yaw_noise",
+};
