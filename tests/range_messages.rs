@@ -450,6 +450,207 @@ fn every_recipe_number_is_refused_outside_the_bounds_its_message_states() {
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
 
+/// What every end of every list is set to: none of them is a value any field may take.
+const HOSTILE_ENDS: [f64; 5] = [1e308, -1e308, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+
+/// Every list of numbers in `value` (a range `[min, max]`, a position, the home joints), as its
+/// path, its length and whether it holds integers.
+fn number_lists(value: &toml::Value, path: Vec<Step>, out: &mut Vec<(Vec<Step>, usize, bool)>) {
+    match value {
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                let mut p = path.clone();
+                p.push(Step::Key(k.clone()));
+                number_lists(v, p, out);
+            }
+        }
+        toml::Value::Array(a) if a.iter().all(|v| v.is_integer() || v.is_float()) => {
+            out.push((path, a.len(), a.iter().all(|v| v.is_integer())));
+        }
+        _ => {}
+    }
+}
+
+/// Every range and every list of a fixed length, walked in every shipped preset with its
+/// defaults written out (so every list of every table, present and future, that a preset of
+/// its task carries: the settings have no list of their ranges apart from themselves): each
+/// end set to 1e308, -1e308, NaN, inf and -inf, and the list made one element longer (a
+/// number, then a string) and one shorter, must be refused naming the field (the sampler
+/// panicked on `task.stack.base_radius = [0.3, 1e308]`; `fixture_friction = [0.3, 1.2, 9.0]`
+/// was read as `[0.3, 1.2]`). A far end is refused stating bounds whose ends are finite.
+#[test]
+fn every_list_refuses_hostile_ends_and_other_lengths_naming_the_field() {
+    let load = |d: &toml::Table| {
+        EnvConfig::from_toml_str(&toml::to_string(d).unwrap())
+            .err()
+            .map(|e| e.to_string())
+    };
+    let mut seen = BTreeSet::new();
+    let mut problems = Vec::new();
+    for (preset, _, _) in presets::PRESETS {
+        let full = presets::load(preset).unwrap().to_toml();
+        let doc: toml::Table = toml::from_str(&full).unwrap();
+        let mut lists = Vec::new();
+        number_lists(&toml::Value::Table(doc.clone()), Vec::new(), &mut lists);
+        for (path, len, integer) in lists {
+            let leaf = Leaf {
+                path: path.clone(),
+                integer,
+            };
+            let field = leaf.name();
+            if !seen.insert(field.clone()) {
+                continue;
+            }
+            let Some(toml::Value::Array(list)) = get(&doc, &path) else {
+                unreachable!("the path was read from this document")
+            };
+            let mut expect = |d: &toml::Table, what: String, bounded: bool| match load(d) {
+                None => problems.push(format!("{preset}: {field} {what}: accepted")),
+                Some(m) if !names_field(&m, &field) && !m.contains(&format!("{field}:")) => {
+                    problems.push(format!(
+                        "{preset}: {field} {what}: the refusal does not name the field: {m}"
+                    ))
+                }
+                Some(m)
+                    if bounded
+                        && stated_bounds(&m)
+                            .is_none_or(|b| !b.low.is_finite() || !b.high.is_finite()) =>
+                {
+                    problems.push(format!(
+                        "{preset}: {field} {what}: no finite bounds stated: {m}"
+                    ))
+                }
+                Some(_) => {}
+            };
+            for i in 0..len {
+                let mut end = path.clone();
+                end.push(Step::Index(i));
+                for v in HOSTILE_ENDS {
+                    let mut d = doc.clone();
+                    set(&mut d, &end, toml::Value::Float(v));
+                    // A far end of a list of floats states finite bounds: the low end pulled
+                    // down, the high end pushed up (the other way round a pair is disordered).
+                    let bounded =
+                        !integer && ((v == 1e308 && i + 1 == len) || (v == -1e308 && i == 0));
+                    expect(&d, format!("[{i}] = {v}"), bounded);
+                }
+                if integer {
+                    for v in [i64::MAX, i64::MIN] {
+                        let mut d = doc.clone();
+                        set(&mut d, &end, toml::Value::Integer(v));
+                        expect(&d, format!("[{i}] = {v}"), false);
+                    }
+                }
+            }
+            let lengths: [(Vec<toml::Value>, &str); 3] = [
+                (
+                    list.iter().chain(list.last()).cloned().collect(),
+                    "one element longer",
+                ),
+                (
+                    list.iter()
+                        .cloned()
+                        .chain([toml::Value::String("junk".into())])
+                        .collect(),
+                    "one string longer",
+                ),
+                (list[..len - 1].to_vec(), "one element shorter"),
+            ];
+            for (other, what) in lengths {
+                let mut d = doc.clone();
+                set(&mut d, &path, toml::Value::Array(other));
+                expect(&d, what.to_string(), false);
+            }
+        }
+    }
+    for walked in [
+        "randomization.radius",
+        "randomization.angle",
+        "randomization.friction",
+        "randomization.mass_scale",
+        "randomization.nudge.distance",
+        "randomization.nudge.step",
+        "randomization.camera_offset.xyz",
+        "task.place.fixture_radius",
+        "task.place.fixture_angle",
+        "task.place.grip_tilt",
+        "task.place.fixture_friction",
+        "task.stack.base_radius",
+        "task.stack.base_angle",
+        "arm.home_joints",
+    ] {
+        assert!(seen.contains(walked), "{walked} was not walked: {seen:?}");
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// The issue's examples, refused with the field, the value, the bounds and their reason.
+#[test]
+fn a_range_the_sampler_cannot_draw_from_is_refused_with_its_bound_and_reason() {
+    for (table, key) in [
+        ("task.stack", "base_radius"),
+        ("task.place", "fixture_radius"),
+        ("randomization", "radius"),
+    ] {
+        let kind = table.strip_prefix("task.").unwrap_or("lift");
+        let text = format!("[task]\nkind = \"{kind}\"\n[{table}]\n{key} = [0.3, 1e308]\n");
+        let e = EnvConfig::from_toml_str(&text).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!(
+                "{table}.{key} = [0.3, 1e308]: both ends must be in [0, 1] m (the FR3 reaches \
+                 0.622 m from its shoulder: no mount reaches a cube 1 m from the base)"
+            )
+        );
+    }
+    let e = EnvConfig::from_toml_str(
+        "[task]\nkind = \"place\"\n[task.place]\nfixture_friction = [0.3, 1.2, 9.0]\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert_eq!(
+        e,
+        "task.place.fixture_friction = [0.3, 1.2, 9.0]: has 3 elements: it must hold exactly 2"
+    );
+    let e = EnvConfig::from_toml_str(
+        "[task]\nkind = \"stack\"\n[task.stack]\nbase_radius = [0.25, 0.4, \"junk\", {a = 1}]\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("task.stack.base_radius = [0.25, 0.4, \"junk\", { a = 1 }]: has 4 elements and mixes a number, a string and a table"),
+        "{e}"
+    );
+}
+
+/// A training config's `[env]` table is laid over its preset and read by the same rules: a list
+/// of another length and a range past its bounds are refused naming `env.<field>`.
+#[test]
+fn a_training_configs_env_table_is_read_by_the_same_rules() {
+    use fairgrasp_policy::recipe::env::with_env_table;
+    let stack = presets::load("stack").unwrap();
+    for (table, message) in [
+        (
+            "[task.stack]\nbase_radius = [0.25, 0.4, 0.5]\n",
+            "env.task.stack.base_radius = [0.25, 0.4, 0.5]: has 3 elements: it must hold exactly 2",
+        ),
+        (
+            "[task.stack]\nbase_radius = [0.3, 1e308]\n",
+            "env.task.stack.base_radius = [0.3, 1e308]: both ends must be in [0, 1] m",
+        ),
+        (
+            "[task.place]\ngrip_tilt = [0.07, 0.17]\n",
+            "[task.place] is the place task's table, and this config's task is stack",
+        ),
+    ] {
+        let overrides: toml::Table = toml::from_str(table).unwrap();
+        let e = with_env_table(stack.clone(), Some(&overrides))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(message), "{table}: {e}");
+    }
+}
+
 #[test]
 fn the_stated_bounds_are_read_as_written() {
     let s = stated_bounds("physics.dt = 0.1: must be in (0, 0.05] s").unwrap();
