@@ -76,8 +76,8 @@ pub struct UngraspableRegion {
     /// Tilt of the base from upright \[rad\].
     pub base_tilt: f64,
     /// The task's fixture, when some cube positions left it no place (`None`: every failed
-    /// draw was the cube's own).
-    pub fixture: Option<FixtureMiss>,
+    /// draw was the cube's own); boxed, so that an env's error stays small.
+    pub fixture: Option<Box<FixtureMiss>>,
 }
 
 /// Cube positions beside which the task's fixture found no place: where its numbers are.
@@ -135,7 +135,7 @@ impl UngraspableRegion {
             // Every cube position was refused for want of a place for the fixture: its table's
             // numbers make the draw impossible.
             _ if fixture.is_some_and(|f| f.misses == f.cubes) => {
-                fixture.map(FixtureMiss::describe).unwrap_or_default()
+                fixture.map(|f| f.describe()).unwrap_or_default()
             }
             Some(xy) => format!(
                 "scene.cube_xy {xy:?} (randomization.position = false) has no collision-free \
@@ -339,15 +339,15 @@ fn fixture_for(
 
 /// The fixture's part in a failed draw: its site and how many of `cubes` positions left it no
 /// place (`None` when none did, or the task has no fixture).
-fn fixture_miss(config: &EnvConfig, cubes: usize, misses: usize) -> Option<FixtureMiss> {
+fn fixture_miss(config: &EnvConfig, cubes: usize, misses: usize) -> Option<Box<FixtureMiss>> {
     let spec = config.task.kind.spec();
     let site = (spec.site)(&config.task, config.scene.cube_size)?;
-    (misses > 0).then_some(FixtureMiss {
+    (misses > 0).then_some(Box::new(FixtureMiss {
         keys: spec.site_keys?,
         site,
         cubes,
         misses,
-    })
+    }))
 }
 
 /// A seeded list of `n` scenarios, identical for every policy evaluated on it: scenario `i` is
