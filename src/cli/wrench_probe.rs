@@ -114,7 +114,7 @@ fn print_summary(a: &WrenchProbeArgs, rows: &[TouchRow]) {
 
 fn touches_csv(rows: &[TouchRow]) -> String {
     let mut out = String::from(
-        "seed,family,step,true_wall,read_wall,grip_tilt_rad,cop_tcp_y_m,fx,fy,fz,mx,my,mz,cop_pocket_x_m,cop_pocket_y_m,cube_in_pocket_x_m,cube_in_pocket_y_m,cube_in_pocket_z_m\n",
+        "seed,family,step,true_wall,read_wall,grip_tilt_rad,cop_tcp_y_m,fx,fy,fz,mx,my,mz,cop_pocket_x_m,cop_pocket_y_m,cube_in_pocket_x_m,cube_in_pocket_y_m,cube_in_pocket_z_m,rim_walls\n",
     );
     let opt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x}"));
     let name = |w: Option<fairgrasp_evaluate::wrench_probe::Wall>| {
@@ -124,7 +124,7 @@ fn touches_csv(rows: &[TouchRow]) -> String {
         let f = r.force.map_or([None; 3], |f| f.map(Some));
         let m = r.torque.map_or([None; 3], |m| m.map(Some));
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
             r.seed,
             r.family.map_or(String::new(), |f| format!("{f:?}")),
             r.step.map_or(String::new(), |s| s.to_string()),
@@ -143,6 +143,11 @@ fn touches_csv(rows: &[TouchRow]) -> String {
             opt(r.cube_in_pocket.map(|c| c[0])),
             opt(r.cube_in_pocket.map(|c| c[1])),
             opt(r.cube_in_pocket.map(|c| c[2])),
+            r.rim_walls
+                .iter()
+                .map(|w| format!("{w:?}"))
+                .collect::<Vec<_>>()
+                .join(" "),
         ));
     }
     out
