@@ -15,6 +15,7 @@
 //!   step, the free-space steps that skip rapier.
 //! - [`episode`]: the [`Policy`](episode::Policy) trait, the evaluation loop, lockstep runs and
 //!   the recorded trajectory.
+//! - [`sensor`]: the six-axis wrist sensor's wrench, its centre of pressure and its noise.
 //! - [`mod@vec`]: N environments stepped in parallel threads, with auto-reset.
 //! - [`config`]: the settings, loaded from TOML and checked with messages that name the field,
 //!   and the named presets.
@@ -25,6 +26,7 @@ pub mod env;
 pub mod episode;
 pub mod robot;
 pub mod scenario;
+pub mod sensor;
 pub mod sim;
 pub mod task;
 pub mod vec;

@@ -41,11 +41,19 @@ fn the_place_script_seats_the_cube_on_the_noise_free_preset() {
 }
 
 /// The open-loop script's episode of `seed` on `preset`: whether it succeeded, and the largest
-/// upward and downward wrist forces \[N\] while it lowered the cube and while it carried it.
+/// upward and downward wrist forces \[N\] while it lowered the cube and while it carried it,
+/// as the wrist sensor reads them without its noise (`[sensor.wrench]` all zero: the physics).
 fn forces_while_placing(preset: &str, seed: u64) -> (bool, f64, f64, f64) {
     use fairgrasp_env::TaskEnv;
+    use fairgrasp_env::config::WrenchSensorConfig;
     use fairgrasp_env::episode::Policy;
-    let config = presets::load(preset).unwrap();
+    let mut config = presets::load(preset).unwrap();
+    config.sensor.wrench = Some(WrenchSensorConfig {
+        force_noise: 0.0,
+        torque_noise: 0.0,
+        force_resolution: 0.0,
+        torque_resolution: 0.0,
+    });
     let mut env = TaskEnv::new(config.clone()).unwrap();
     let mut script = ScriptedPlace::new(&config);
     let (mut obs, _) = env.reset(seed).unwrap();

@@ -22,6 +22,7 @@ What the recording holds, for method ``m`` (its name as an entity path part):
   ``base_link``), ``/m/tcp_path`` (the TCP's path so far, a line strip in ``base_link``);
 - time series: ``/m/reward``, ``/m/return``, ``/m/pad_contact/{left,right}`` (0/1),
   ``/m/contact_force/{pad_left,pad_right,robot_strongest}`` and ``/m/wrist_force/{x,y,z}`` [N],
+  ``/m/wrist_torque/{x,y,z}`` [N·m] (the six-axis wrist sensor, about the flange),
   ``/m/phase`` and ``/m/events`` (text logs: the script's phase when it changes, collisions,
   pushes).
 
@@ -303,6 +304,8 @@ def _check_method(f, where, m):
         f.numbers(f"{at}.pad_cube_n", step.get("pad_cube_n", _ABSENT), 2, unit=" [N]")
         f.number(f"{at}.robot_strongest_n", step.get("robot_strongest_n", _ABSENT), unit=" [N]")
         f.numbers(f"{at}.wrist_n", step.get("wrist_n", _ABSENT), 3, unit=" [N]")
+        if "wrist_nm" in step:  # files written before the six-axis sensor have none
+            f.numbers(f"{at}.wrist_nm", step["wrist_nm"], 3, unit=" [N·m]")
 
 
 def _check_scene(f, where, scene):
@@ -610,6 +613,8 @@ def _log_series(rr, rec, name, row, ret, forces):
     rec.log(f"/{name}/contact_force/robot_strongest", rr.Scalars(forces["robot_strongest_n"]))
     for axis, value in zip("xyz", forces["wrist_n"]):
         rec.log(f"/{name}/wrist_force/{axis}", rr.Scalars(value))
+    for axis, value in zip("xyz", forces.get("wrist_nm", ())):
+        rec.log(f"/{name}/wrist_torque/{axis}", rr.Scalars(value))
 
 
 def _conjugate(q):

@@ -24,6 +24,7 @@ mod soak;
 mod squeeze_chart;
 mod train;
 mod tune;
+mod wrench_probe;
 
 use std::ffi::OsString;
 use std::process::ExitCode;
@@ -85,6 +86,10 @@ enum Command {
     /// Tune a hand-written control's parameters on training scenarios with CMA-ES, within a
     /// budget of env steps: every trial as CSV, the best as a preset fragment (resumable).
     Tune(tune::TuneArgs),
+    /// What the six-axis wrist sensor tells at a place cycle's first touch (the wall the cube
+    /// rests on, the sign of its tilt in the grip), checked against the truth on training
+    /// scenarios before any control uses it.
+    WrenchProbe(wrench_probe::WrenchProbeArgs),
     /// Benchmarks: `bench env` measures environment steps per second and reset times.
     Bench(bench::BenchArgs),
 }
@@ -168,6 +173,7 @@ impl Cli {
             | Command::Scene(_)
             | Command::Playback(_)
             | Command::Bench(_) => false,
+            Command::WrenchProbe(_) => true,
             Command::Eval(a) => a.writes_files(),
             // `--record DIR` (a field private to the baseline module) may write files.
             Command::Baseline(_)
@@ -202,6 +208,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Export(a) => export::run(&a),
         Command::Playback(a) => playback::run(&a),
         Command::Tune(a) => tune::run(&a),
+        Command::WrenchProbe(a) => wrench_probe::run(&a),
     }
 }
 

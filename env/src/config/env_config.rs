@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 pub use crate::config::range::Range;
+pub use crate::config::sensor::{SensorConfig, WrenchSensorConfig};
 pub use crate::config::task::{DEFAULT_PROTECTIVE_STOP_FORCE, RewardKind, TaskConfig};
 
 pub use fairgrasp_types::ArmSimulation;
@@ -37,6 +38,9 @@ pub struct EnvConfig {
     pub scene: SceneConfig,
     pub task: TaskConfig,
     pub randomization: RandomizationConfig,
+    /// The cell's sensors beyond the joints and cameras (`[sensor.wrench]`).
+    #[serde(skip_serializing_if = "SensorConfig::is_default")]
+    pub sensor: SensorConfig,
     /// What an engineer tuned for this cell, read only by the hand-written controls.
     #[serde(skip_serializing_if = "ControlConfig::is_untuned")]
     pub control: ControlConfig,

@@ -24,6 +24,7 @@ pub mod numbers;
 pub mod presets;
 pub mod range;
 pub mod reward;
+pub mod sensor;
 pub mod task;
 pub mod toml_lines;
 pub mod validate;

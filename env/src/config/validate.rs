@@ -8,7 +8,7 @@ use fairgrasp_kinematics::Pose;
 use crate::config::check::{
     Bounds, RangeBounds, SECTOR_ANGLE, SECTOR_RADIUS, check, check_in, check_range,
 };
-use crate::config::env_config::{EnvConfig, SIMULATED_ARM};
+use crate::config::env_config::{EnvConfig, SIMULATED_ARM, WrenchSensorConfig};
 pub use crate::config::error::ConfigError;
 pub use crate::config::numbers::{first_bad_number, first_non_finite, toml_error_message};
 use crate::scenario::perception_noise::check_perception_noise;
@@ -106,7 +106,37 @@ impl EnvConfig {
         self.validate_scene()?;
         self.validate_task()?;
         self.validate_randomization()?;
+        self.validate_sensor()?;
         self.validate_families()
+    }
+
+    /// `[sensor.wrench]`: its numbers, and only on a task with a fixture (the wrist sensor reads
+    /// the fixture's and the table's push; the lift task's observation has no place for it).
+    fn validate_sensor(&self) -> Result<(), ConfigError> {
+        let Some(wrench) = &self.sensor.wrench else {
+            return Ok(());
+        };
+        let spec = self.task.kind.spec();
+        if (spec.site)(&self.task, self.scene.cube_size).is_none() {
+            return Err(ConfigError::Invalid {
+                field: "sensor.wrench".into(),
+                value: "(set)".into(),
+                rule: format!(
+                    "the {} task has no fixture: the six-axis wrist sensor is read only on a task with one (place, stack); remove [sensor.wrench]",
+                    spec.name
+                )
+                .into(),
+            });
+        }
+        wrench.check()
+    }
+
+    /// The six-axis wrist sensor this config's cell has: `[sensor.wrench]`, or its defaults,
+    /// on a task with a fixture; `None` on a task without one.
+    pub fn wrench_sensor(&self) -> Option<WrenchSensorConfig> {
+        let spec = self.task.kind.spec();
+        (spec.site)(&self.task, self.scene.cube_size)?;
+        Some(self.sensor.wrench.clone().unwrap_or_default())
     }
 
     /// `[physics]`: the time step, substeps, solver iterations and contact stiffness.

@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use crate::scenario::perception::ObservedObject;
+use crate::sensor::Wrench;
 
 /// Number of values in the flat observation.
 pub const OBS_DIM: usize = 23;
@@ -69,14 +70,29 @@ pub struct Observation {
     /// `base_link` \[N\] — the push of the table and the fixture on the gripper and on the cube
     /// while both pads hold it (`crate::sim::contacts::wrist_load`), after the step's last
     /// physics substep (zero after a step without physics: nothing touched). `None` for the
-    /// lift task. Not part of the flat view ([`OBS_NAMES`]).
+    /// lift task. Not part of the flat view ([`OBS_NAMES`]). The force of the six-axis wrist
+    /// sensor's reading ([`Self::wrist_torque`] is its torque), with its noise
+    /// (`[sensor.wrench]`).
     pub wrist_force: Option<[f64; 3]>,
+    /// The six-axis wrist sensor's torque about its origin (the flange, `tool0`), in
+    /// `base_link` \[N·m\], tared and with its noise like [`Self::wrist_force`]; `None` where
+    /// there is no fixture. Not part of the flat view.
+    pub wrist_torque: Option<[f64; 3]>,
 }
 
 impl Observation {
     /// `(sin 4·yaw, cos 4·yaw)`: continuous under the cube's 90° symmetry.
     pub fn yaw_features(&self) -> [f64; 2] {
         [(4.0 * self.object_yaw).sin(), (4.0 * self.object_yaw).cos()]
+    }
+
+    /// The six-axis wrist sensor's reading in `base_link` (torque about the flange), where the
+    /// preset has one.
+    pub fn wrist_wrench(&self) -> Option<Wrench> {
+        Some(Wrench {
+            force: self.wrist_force?,
+            torque: self.wrist_torque?,
+        })
     }
 
     /// The object centre in `base_link` \[m\].
@@ -99,6 +115,7 @@ impl Observation {
             wrist_camera: None,
             fixture: None,
             wrist_force: None,
+            wrist_torque: None,
         }
     }
 

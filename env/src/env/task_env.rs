@@ -13,7 +13,7 @@
 
 use crate::cell::derived::Cell;
 use crate::cell::mount::Mount;
-use crate::config::{ActionSpace, ArmSimulation, EnvConfig};
+use crate::config::{ActionSpace, ArmSimulation, EnvConfig, WrenchSensorConfig};
 use crate::env::drive::{Drive, check_setpoints};
 use crate::env::free_space::{FreeSpace, REST_SPEED, REST_TURN_RATE};
 use crate::env::obs::Observation;
@@ -26,6 +26,7 @@ use crate::scenario::grip_tilt::{GripTiltEvent, GripTiltHook, HandState};
 use crate::scenario::nudge::{NudgeEvent, NudgeHook};
 use crate::scenario::perception::{observe_fixture, observe_object};
 use crate::scenario::wrist_camera::wrist_view;
+use crate::sensor::{Wrench, read_with_noise};
 use crate::sim::Sim;
 use crate::sim::contacts::{ContactReport, PairKind, TouchingPair};
 use crate::sim::part::Part;
@@ -68,6 +69,8 @@ pub struct TaskEnv {
     nudge: NudgeHook,
     /// This episode's turn of the cube in the grip (the place task's `grip_tilt`).
     grip_tilt: GripTiltHook,
+    /// The six-axis wrist sensor's noise, on a task with a fixture (`EnvConfig::wrench_sensor`).
+    wrist_sensor: Option<WrenchSensorConfig>,
 }
 
 impl TaskEnv {
@@ -78,6 +81,7 @@ impl TaskEnv {
         let sim = Self::build_sim(&config, &cell.model, &cell.mount);
         Ok(Self {
             free_space: FreeSpace::new(&config, &cell.model),
+            wrist_sensor: config.wrench_sensor(),
             robot: Robot::new(&config, cell.model.clone(), cell.mount.base_in_world),
             sim_in_sync: true,
             contacts: ContactReport::default(),
@@ -534,7 +538,7 @@ impl TaskEnv {
         let drawn = self.scenario.as_ref().and_then(|s| s.fixture);
         let fixture =
             (self.fixture_in_base()).map(|truth| observe_fixture(mount, &truth, drawn.as_ref()));
-        let wrist_force = fixture.is_some().then(|| self.wrist_force(contacts));
+        let wrist = self.wrist_wrench(contacts);
         Observation {
             joints: self.robot.q,
             joint_velocities,
@@ -545,23 +549,30 @@ impl TaskEnv {
             pad_contact: contacts.pad_contact,
             wrist_camera,
             fixture,
-            wrist_force,
+            wrist_force: wrist.map(|w| w.force),
+            wrist_torque: wrist.map(|w| w.torque),
         }
     }
 
-    /// The wrist force/torque sensor's reading in `base_link` \[N\] ([`Observation::wrist_force`]):
-    /// zero when the step ran no physics (the simulator's contacts are then stale).
-    fn wrist_force(&self, contacts: &ContactReport) -> [f64; 3] {
-        if !self.sim_in_sync {
-            return [0.0; 3];
-        }
-        let holding = contacts.pad_contact[0] && contacts.pad_contact[1];
-        let world = self.sim.wrist_load(holding);
-        self.cell
-            .mount
-            .base_in_world
-            .inverse()
-            .transform_vector(world)
+    /// The six-axis wrist sensor's reading in `base_link` ([`Observation::wrist_force`],
+    /// [`Observation::wrist_torque`]; torque about the flange), where the preset has the
+    /// sensor: the true wrench of the step's last physics substep (zero when the step ran no
+    /// physics: the simulator's contacts are then stale, and nothing touched) with the sensor's
+    /// noise.
+    fn wrist_wrench(&self, contacts: &ContactReport) -> Option<Wrench> {
+        let sensor = self.wrist_sensor.as_ref()?;
+        let flange = self.robot.model.fk_flange(&self.robot.q);
+        let truth = if self.sim_in_sync {
+            let holding = contacts.pad_contact[0] && contacts.pad_contact[1];
+            let base = &self.cell.mount.base_in_world;
+            let origin = base.compose(&flange).xyz();
+            let world = self.sim.wrist_wrench(holding, origin);
+            world.in_frame(base)
+        } else {
+            Wrench::default()
+        };
+        let seed = self.scenario.as_ref().map_or(0, |s| s.seed);
+        Some(read_with_noise(&truth, &flange, sensor, seed, self.steps))
     }
 
     /// The object pose in `base_link` (the truth, not what is observed).

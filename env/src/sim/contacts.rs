@@ -2,6 +2,7 @@
 
 use rapier3d::prelude::*;
 
+pub use crate::sensor::wrench::Wrench;
 pub use crate::sim::collision_filter::CollisionFilter;
 use crate::sim::part::{ColliderParts, Part};
 use crate::sim::scene::SceneHandles;
@@ -167,23 +168,42 @@ pub fn strongest_robot_contact(
     strongest
 }
 
-/// The force \[N, world\] the table and the fixture push with, over the last physics step of `dt`
-/// \[s\], on the gripper (palm, fingers, pads) and, when `holding`, on the cube: what a wrist
-/// force/torque sensor between the flange and the gripper reads once the held load's weight is
-/// tared (a real FR3 cell reads it from FAIRINO's F/T option, or estimates it from the joint
-/// torques: docs/place.md). Each pair's net contact impulse (normal impulses along its
-/// manifolds' normals, which point from its first collider to its second: the impulse the
-/// second receives) divided by `dt`.
-pub fn wrist_load(world: &PhysicsWorld, parts: &ColliderParts, dt: f64, holding: bool) -> [f64; 3] {
+/// What a six-axis wrist sensor between the flange and the gripper reads, tared for the held
+/// load: the wrench the table and the fixture apply, over the last physics step, on the gripper
+/// (palm, fingers, pads) and, when `holding`, on the cube, in `world`, the torque taken about
+/// `about` (the sensor's origin, `world` \[m\]).
+///
+/// Why this is the tared reading: quasi-statically, the sensor carries the gripper's and the held
+/// cube's weight plus every external push on them; taring (FAIRINO's load identification) takes
+/// the weight away, leaving the external contacts. Inertial loads are left out (the cube moves at
+/// centimetres per second when it touches).
+///
+/// Each contact point contributes its normal impulse along its manifold's normal (which points
+/// from the pair's first collider to its second: `n·λ` is what the second receives) at the point;
+/// each manifold its friction impulse at the mean of its points (rapier's simplified friction
+/// model solves one friction constraint per manifold, at its friction centre; its twist, a
+/// torque about the normal that only turns a flat contact about its own normal, is left out, so
+/// the torque about the contact's normal is not read in full). The normal impulses are the step's totals over the
+/// solver's substeps; rapier keeps only the last substep's friction impulse, so it is scaled by
+/// the manifold's ratio of total to last-substep normal impulse (`solver_iterations` when that
+/// is undefined). Impulses divided by `dt` \[s\] are forces.
+pub fn wrist_wrench(
+    world: &PhysicsWorld,
+    parts: &ColliderParts,
+    step: WrenchStep,
+    holding: bool,
+    about: Vec3,
+) -> Wrench {
     let fixed = |p: Part| matches!(p, Part::Table | Part::Fixture);
     let carried = |p: Part| {
         matches!(p, Part::Palm | Part::Finger(_) | Part::Pad(_)) || (holding && p == Part::Cube)
     };
-    let mut force = [0.0; 3];
+    let mut wrench = Wrench::default();
     for pair in world.narrow_phase.contact_pairs() {
         let (Some(a), Some(b)) = (parts.get(&pair.collider1), parts.get(&pair.collider2)) else {
             continue;
         };
+        // +1: the carried part is the pair's second collider (it receives +n·λ).
         let sign = if fixed(a) && carried(b) {
             1.0
         } else if fixed(b) && carried(a) {
@@ -191,10 +211,81 @@ pub fn wrist_load(world: &PhysicsWorld, parts: &ColliderParts, dt: f64, holding:
         } else {
             continue;
         };
-        let impulse = pair.total_impulse();
-        for (f, i) in force.iter_mut().zip([impulse.x, impulse.y, impulse.z]) {
-            *f += sign * f64::from(i) / dt;
+        let Some(first) = world.colliders.get(pair.collider1) else {
+            continue;
+        };
+        let first_pose = *first.position();
+        for manifold in pair.solver_manifolds() {
+            add_manifold(&mut wrench, manifold, &first_pose, step, sign, about);
         }
     }
-    force
+    wrench
+}
+
+/// The time a step's impulses were gathered over, and how many solver substeps it had.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WrenchStep {
+    /// The physics step \[s\].
+    pub dt: f64,
+    /// The solver's substeps per physics step (`num_solver_iterations`).
+    pub solver_iterations: usize,
+}
+
+/// Adds one manifold's contacts, as received by the carried side (`sign`), to `wrench`.
+fn add_manifold(
+    wrench: &mut Wrench,
+    manifold: &ContactManifold,
+    first_pose: &Pose,
+    step: WrenchStep,
+    sign: f64,
+    about: Vec3,
+) {
+    let normal = manifold.data.normal;
+    let (mut total, mut last) = (0.0f64, 0.0f64);
+    let mut centre = Vec3::ZERO;
+    let mut count = 0.0f32;
+    for point in &manifold.points {
+        let at = first_pose * point.local_p1;
+        let impulse = f64::from(point.data.impulse);
+        total += impulse;
+        last += f64::from(point.data.warmstart_impulse);
+        add_force(
+            wrench,
+            normal * point.data.impulse,
+            at,
+            sign,
+            step.dt,
+            about,
+        );
+        centre += at;
+        count += 1.0;
+    }
+    let Some(point) = manifold.points.first() else {
+        return;
+    };
+    // The friction impulse rapier applies to the first collider (`warmstart_tangent_world`):
+    // the second receives its opposite.
+    let substeps = if last > 1e-12 {
+        total / last
+    } else {
+        step.solver_iterations as f64
+    };
+    let friction = -point.data.warmstart_tangent_world * substeps as f32;
+    add_force(wrench, friction, centre / count, sign, step.dt, about);
+}
+
+/// Adds the impulse `impulse` \[N·s\] received by the pair's second collider at `at` (both
+/// `world`), as the carried side receives it (`sign`), as a force and its torque about `about`.
+fn add_force(wrench: &mut Wrench, impulse: Vec3, at: Vec3, sign: f64, dt: f64, about: Vec3) {
+    let f = [impulse.x, impulse.y, impulse.z].map(|v| f64::from(v) * sign / dt);
+    let r = [at.x - about.x, at.y - about.y, at.z - about.z].map(f64::from);
+    let torque = [
+        r[1] * f[2] - r[2] * f[1],
+        r[2] * f[0] - r[0] * f[2],
+        r[0] * f[1] - r[1] * f[0],
+    ];
+    for i in 0..3 {
+        wrench.force[i] += f[i];
+        wrench.torque[i] += torque[i];
+    }
 }

@@ -9,7 +9,9 @@ use nalgebra::Isometry3;
 use rapier3d::prelude::*;
 
 use crate::config::EnvConfig;
-use crate::sim::contacts::{CollisionFilter, ContactReport, TouchingPair, analyze, touching_pairs};
+use crate::sim::contacts::{
+    CollisionFilter, ContactReport, TouchingPair, Wrench, WrenchStep, analyze, touching_pairs,
+};
 use crate::sim::convert::{from_rapier, to_rapier};
 use crate::sim::finger_drive::{FINGER_DAMPING, FINGER_STIFFNESS, FingerState};
 use crate::sim::scene::{SceneHandles, build, finger_anchor};
@@ -354,11 +356,20 @@ impl Sim {
         (&mut self.world, &self.handles)
     }
 
-    /// What a wrist force/torque sensor reads after the last physics step, tared, in `world`
-    /// \[N\] ([`crate::sim::contacts::wrist_load`]).
-    pub fn wrist_load(&self, holding: bool) -> [f64; 3] {
-        let dt = f64::from(self.world.integration_parameters.dt);
-        crate::sim::contacts::wrist_load(&self.world, &self.handles.parts, dt, holding)
+    /// What a six-axis wrist sensor reads after the last physics step, tared: force \[N\] and
+    /// torque \[N·m\] about `sensor_origin`, all in `world`
+    /// ([`crate::sim::contacts::wrist_wrench`]).
+    pub fn wrist_wrench(&self, holding: bool, sensor_origin: [f64; 3]) -> Wrench {
+        let step = WrenchStep {
+            dt: f64::from(self.world.integration_parameters.dt),
+            solver_iterations: self.world.integration_parameters.num_solver_iterations,
+        };
+        let about = Vec3::new(
+            sensor_origin[0] as f32,
+            sensor_origin[1] as f32,
+            sensor_origin[2] as f32,
+        );
+        crate::sim::contacts::wrist_wrench(&self.world, &self.handles.parts, step, holding, about)
     }
 
     /// The strongest robot–cube or robot–table contact force of the last physics step

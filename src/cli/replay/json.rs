@@ -34,14 +34,17 @@ pub struct StepForces {
     pub pad_cube_n: [f64; 2],
     /// The strongest robot–cube or robot–table contact \[N\] (what a protective stop watches).
     pub robot_strongest_n: f64,
-    /// The wrist force/torque sensor's force in `base_link` \[N\] (place task only, else zeros).
+    /// The six-axis wrist sensor's force in `base_link` \[N\] (a task with a fixture only, else
+    /// zeros).
     pub wrist_n: [f64; 3],
+    /// Its torque about the flange in `base_link` \[N·m\] (likewise).
+    pub wrist_nm: [f64; 3],
 }
 
 impl StepForces {
     fn to_json(self) -> Value {
         json!({"pad_cube_n": self.pad_cube_n, "robot_strongest_n": self.robot_strongest_n,
-               "wrist_n": self.wrist_n})
+               "wrist_n": self.wrist_n, "wrist_nm": self.wrist_nm})
     }
 }
 
@@ -124,6 +127,7 @@ fn measure_forces(
             StepForces::default()
         };
         f.wrist_n = step.obs.wrist_force.unwrap_or_default();
+        f.wrist_nm = step.obs.wrist_torque.unwrap_or_default();
         forces.push(f);
         if step.terminated || step.truncated {
             break;
