@@ -271,7 +271,10 @@ fn recording_whole(dir: &std::path::Path) -> Result<(), String> {
 }
 
 fn tuning_whole(dir: &std::path::Path) -> Result<(), String> {
-    whole(dir, &["tune.json", "trials.csv", "finalists.csv", "tuned.toml"])?;
+    whole(
+        dir,
+        &["tune.json", "trials.csv", "finalists.csv", "tuned.toml"],
+    )?;
     let tuned = std::fs::read_to_string(dir.join("tuned.toml")).map_err(|e| e.to_string())?;
     tuned
         .parse::<toml::Table>()
