@@ -90,6 +90,8 @@ fn budgeted(line: &str) -> (Vec<String>, i32) {
         "tune" if !args.iter().any(|a| a == "--list") => {
             cap(&mut args, "--budget", 1500);
             cap(&mut args, "--episodes", 2);
+            cap(&mut args, "--validation-episodes", 2);
+            cap(&mut args, "--finalists", 1);
         }
         "scene" if args.iter().any(|a| a == "--seeds") => cap(&mut args, "--seeds", 10),
         "bench" if args[1] == "env" => {

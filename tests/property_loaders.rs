@@ -323,6 +323,15 @@ fn place_presets_recipes_and_tune_trials() {
     let end = header.iter().position(|c| *c == "episodes").unwrap();
     let names = header[2..end].to_vec();
     let seed: String = shipped.lines().take(12).map(|l| format!("{l}\n")).collect();
+    // The rows of the shipped tuning: 150 episodes a trial on place_cell.
+    let place_cell = fairgrasp_env::config::presets::load("place_cell").unwrap();
+    let rules = fairgrasp_evaluate::tune::trials::RowRules {
+        episodes: 150,
+        max_steps: place_cell.task.max_steps as u64,
+        episode_seconds: place_cell.task.max_steps as f64
+            * place_cell.physics.dt
+            * place_cell.physics.substeps as f64,
+    };
     let file = dir.join("trials.csv");
     check_loader(
         "tune trials.csv",
@@ -331,7 +340,7 @@ fn place_presets_recipes_and_tune_trials() {
         &file,
         Some(&file),
         &|| {
-            fairgrasp_evaluate::tune::trials::load(&file, &names)
+            fairgrasp_evaluate::tune::trials::load(&file, &names, &rules)
                 .map(drop)
                 .map_err(|e| e.to_string())
         },

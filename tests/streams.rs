@@ -271,7 +271,10 @@ fn recording_whole(dir: &std::path::Path) -> Result<(), String> {
 }
 
 fn tuning_whole(dir: &std::path::Path) -> Result<(), String> {
-    whole(dir, &["tune.json", "trials.csv", "tuned.toml"])?;
+    whole(
+        dir,
+        &["tune.json", "trials.csv", "finalists.csv", "tuned.toml"],
+    )?;
     let tuned = std::fs::read_to_string(dir.join("tuned.toml")).map_err(|e| e.to_string())?;
     tuned
         .parse::<toml::Table>()
@@ -326,6 +329,10 @@ fn file_commands(
         "2000",
         "--episodes",
         "2",
+        "--validation-episodes",
+        "2",
+        "--finalists",
+        "1",
         "--threads",
         "1",
         "--out",

@@ -20,7 +20,8 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 /// `tune` on `place_fixture_error` into `out` with `extra` flags: of the force search, 4
-/// episodes a trial, a budget of 1 000 env steps and 1 thread unless `extra` sets them.
+/// episodes a trial, a budget of 1 000 env steps, 1 thread and its 2 best trials validated on 2
+/// episodes unless `extra` sets them.
 fn tune_args<'a>(out: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
     let mut args = vec!["tune", "--preset", "place_fixture_error", "--out", out];
     for (flag, value) in [
@@ -28,6 +29,8 @@ fn tune_args<'a>(out: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
         ("--episodes", "4"),
         ("--budget", "1000"),
         ("--threads", "1"),
+        ("--validation-episodes", "2"),
+        ("--finalists", "2"),
     ] {
         if !extra.contains(&flag) {
             args.extend([flag, value]);
@@ -56,7 +59,28 @@ fn every_bad_flag_of_tune_is_a_usage_error_naming_the_flag_the_value_and_its_ran
     let dir = scratch("flags");
     let out = dir.join("t");
     let out = out.to_str().unwrap();
-    let cases: [(&[&str], &[&str]); 17] = [
+    let cases: [(&[&str], &[&str]); 23] = [
+        (
+            &["--validation-seed", "7"],
+            &["--validation-seed 7", "reported"],
+        ),
+        (
+            &["--validation-seed", "11"],
+            &["--validation-seed 11", "--seed 11"],
+        ),
+        (
+            &["--seed", "5", "--validation-seed", "5"],
+            &["--validation-seed 5", "--seed 5"],
+        ),
+        (&["--finalists", "0"], &["--finalists", "1..=100"]),
+        (
+            &["--validation-episodes", "0"],
+            &["--validation-episodes", "1..=100000"],
+        ),
+        (
+            &["--param", "check_floor=0.2:0.8"],
+            &["check_floor=0.2:0.8", "switch", "1:1"],
+        ),
         (
             &["--param", "wobble"],
             &["--param wobble", "pitch", "speed"],
@@ -257,6 +281,10 @@ fn a_tuning_of_a_preset_file_resumed_from_another_folder_goes_on_with_its_record
             budget.into(),
             "--threads".into(),
             "1".into(),
+            "--validation-episodes".into(),
+            "2".into(),
+            "--finalists".into(),
+            "2".into(),
             "--out".into(),
             out.to_str().unwrap().into(),
         ]
@@ -293,5 +321,90 @@ fn a_tuning_of_a_preset_file_resumed_from_another_folder_goes_on_with_its_record
         std::fs::read_to_string(whole.join("trials.csv")).unwrap(),
         after
     );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A start that fails (here: no file may grow past 0 bytes, as on a full disk) leaves no
+/// `--out` behind: not an empty folder that a rerun would take for a new tuning's.
+#[test]
+fn a_failed_start_leaves_no_out_folder() {
+    let dir = scratch("full");
+    let out = dir.join("t");
+    let args = tune_args(out.to_str().unwrap(), &[]);
+    let o = std::process::Command::new("sh")
+        .arg("-c")
+        // The signal ignored, a write past the limit fails with EFBIG instead of killing.
+        .arg("trap '' XFSZ; ulimit -f 0; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_fairgrasp"))
+        .args(&args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.lines().any(|l| l.starts_with("error")), "{e}");
+    assert!(!out.exists(), "a failed start left {}: {e}", out.display());
+    // With room again, the same command starts the tuning.
+    let o = fairgrasp(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The tuning says what it chose and on what: the trial's score, the validation's, and the
+/// env steps of both in the unit that fits; the fragment reads into its own preset through
+/// `baseline`, and two fragments of one control for one preset are refused by `compare`.
+#[test]
+fn tune_reports_its_validation_and_two_fragments_of_one_control_are_refused() {
+    let dir = scratch("report");
+    let out = dir.join("t");
+    let o = fairgrasp(&tune_args(out.to_str().unwrap(), &["--param", "pitch"]));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let printed = common::stdout(&o);
+    assert!(printed.contains("on validation"), "{printed}");
+    assert!(
+        printed.contains("on the validation = ") && !printed.contains(" M env steps"),
+        "{printed}"
+    );
+    assert!(out.join("finalists.csv").is_file());
+    let fragment = out.join("tuned.toml");
+    let o = fairgrasp(&[
+        "baseline",
+        "--preset",
+        "place_fixture_error",
+        "--script",
+        "force_search",
+        "--tuned",
+        fragment.to_str().unwrap(),
+        "--episodes",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let copy = dir.join("copy.toml");
+    std::fs::copy(&fragment, &copy).unwrap();
+    let report = dir.join("report");
+    let o = fairgrasp(&[
+        "compare",
+        "--preset",
+        "place_fixture_error",
+        "--tuned",
+        fragment.to_str().unwrap(),
+        "--tuned",
+        copy.to_str().unwrap(),
+        "--episodes",
+        "1",
+        "--out",
+        report.to_str().unwrap(),
+    ]);
+    refused(
+        &o,
+        1,
+        &[
+            "copy.toml",
+            "a second fragment of `force_search`",
+            "place_fixture_error",
+        ],
+        "two fragments",
+    );
+    assert!(!report.exists());
     std::fs::remove_dir_all(&dir).ok();
 }

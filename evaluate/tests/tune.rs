@@ -1,13 +1,18 @@
 //! `fairgrasp tune` as a library: it improves a deliberately bad setting on a tiny budget,
-//! resumes a folder to the very trials an uninterrupted tuning makes, writes a fragment that
-//! reads back into the preset it was tuned on, and refuses bad requests by name, touching
-//! nothing.
+//! resumes a folder to the very trials (and finalists, and fragment) an uninterrupted tuning
+//! makes, chooses among its best trials on validation scenarios, restarts a stalled search,
+//! writes a fragment that reads back into the preset it was tuned on (by content), and refuses
+//! bad requests and files by name, touching nothing.
 
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use fairgrasp_env::EnvConfig;
 use fairgrasp_env::config::presets;
-use fairgrasp_evaluate::tune::{TuneError, TuneSpec, fragment, run_tune};
+use fairgrasp_evaluate::tune::{
+    TuneError, TuneEvent, TuneSpec, Validation, best_of, chosen_of, finalists_of, fragment,
+    run_tune,
+};
 
 /// A fresh folder under the test's temporary root.
 fn folder(name: &str) -> PathBuf {
@@ -27,7 +32,15 @@ fn bad_start() -> EnvConfig {
     config
 }
 
-/// The tuning of the spiral's pitch and speed from the bad start: 12 episodes a trial.
+/// A small validation: the 3 best trials on 12 scenarios of seed 12.
+const SMALL_VALIDATION: Validation = Validation {
+    seed: 12,
+    episodes: 12,
+    finalists: 3,
+};
+
+/// The tuning of the spiral's pitch and speed from the bad start: 12 episodes a trial, its 3
+/// best trials validated on 12 episodes.
 fn spiral_tuning(budget: u64) -> TuneSpec {
     let ranges = [("pitch".to_string(), None), ("speed".to_string(), None)];
     TuneSpec::new(
@@ -40,6 +53,8 @@ fn spiral_tuning(budget: u64) -> TuneSpec {
         budget,
         0,
     )
+    .unwrap()
+    .with_validation(SMALL_VALIDATION)
     .unwrap()
 }
 
@@ -68,17 +83,33 @@ fn tuning_improves_a_bad_start_and_resumes_to_the_same_trials() {
         best.objective,
         first.objective
     );
+    // The budget holds the trials and the validation of the finalists.
     let spent: u64 = out.trials.iter().map(|t| t.env_steps).sum();
-    assert!(spent >= 60_000 && out.note.env_steps == spent);
+    let validated: u64 = out.finalists.iter().map(|f| f.validation.env_steps).sum();
+    assert_eq!(out.finalists.len(), 3);
+    assert!(validated > 0 && out.validation_env_steps == validated);
+    assert!(spent + validated >= 60_000 && out.note.env_steps == spent + validated);
+    assert!(
+        spent < 60_000,
+        "the search left the validation its part of the budget"
+    );
     // Interrupted after 4 trials (a kill leaves whole rows: the file is rewritten atomically),
-    // then run again: the same trials, to the last digit.
+    // then run again: the same trials, finalists and fragment, to the last digit.
     let resumed = folder("resumed");
     tune(&spiral_tuning(60_000), &resumed).unwrap();
     let all = csv(&whole);
     let rows: Vec<&str> = all.lines().take(5).collect();
     std::fs::write(resumed.join("trials.csv"), rows.join("\n") + "\n").unwrap();
+    std::fs::remove_file(resumed.join("finalists.csv")).unwrap();
+    std::fs::remove_file(resumed.join("tuned.toml")).unwrap();
     tune(&spiral_tuning(60_000), &resumed).unwrap();
-    assert_eq!(csv(&resumed), csv(&whole));
+    for file in ["trials.csv", "finalists.csv", "tuned.toml"] {
+        assert_eq!(
+            std::fs::read_to_string(resumed.join(file)).unwrap(),
+            std::fs::read_to_string(whole.join(file)).unwrap(),
+            "{file}"
+        );
+    }
     // A larger budget goes on from where the smaller one stopped.
     let more = tune(&spiral_tuning(90_000), &resumed).unwrap();
     assert!(more.trials.len() > out.trials.len());
@@ -341,6 +372,30 @@ fn a_trials_csv_edited_by_hand_is_refused_naming_the_line_and_the_field() {
             vec!["line 2".into(), "successes 99".into()],
         ),
         (
+            "episodes of another tuning",
+            with(2, "episodes", "1000"),
+            vec![
+                "line 2".into(),
+                "episodes 1000".into(),
+                "runs 12 a trial".into(),
+            ],
+        ),
+        (
+            "env steps that wrap",
+            with(3, "env_steps", "18446744073709551615"),
+            vec!["line 3".into(), "env_steps 18446744073709551615".into()],
+        ),
+        (
+            "a negative cycle time",
+            with(2, "mean_cycle_time_s", "-1e308"),
+            vec!["line 2".into(), "mean_cycle_time_s -1e308".into()],
+        ),
+        (
+            "a cycle longer than an episode",
+            with(2, "mean_cycle_time_s", "1000000"),
+            vec!["line 2".into(), "mean_cycle_time_s 1000000".into()],
+        ),
+        (
             "value",
             with(2, "pitch", other_pitch),
             vec![
@@ -389,7 +444,10 @@ fn a_resumed_tuning_of_a_preset_file_runs_on_the_recorded_preset() {
     );
     let ranges = [("pitch".to_string(), None)];
     let spec = |config: EnvConfig| {
-        TuneSpec::new(name, config, "force_search", &ranges, 11, 12, 3_000, 0).unwrap()
+        TuneSpec::new(name, config, "force_search", &ranges, 11, 12, 3_000, 0)
+            .unwrap()
+            .with_validation(SMALL_VALIDATION)
+            .unwrap()
     };
     tune(&spec(bad_start()), &dir).unwrap();
     let mut edited = bad_start();
@@ -415,4 +473,493 @@ fn a_resumed_tuning_of_a_preset_file_runs_on_the_recorded_preset() {
         .unwrap()
         .unwrap();
     assert!(note.unwrap().contains("missing"));
+}
+
+/// The finalists are the best trials (distinct settings, by their score), each run again on
+/// the validation's scenarios; the tuned setting is the best there, not the best trial. With 2
+/// episodes a trial the scores are noise (a trial is 0, 50 or 100 %): here the best trial loses
+/// on validation to another finalist, and that other finalist is the one chosen — a tuning that
+/// chose by the trials would write the best trial's setting.
+#[test]
+fn the_setting_chosen_is_the_best_finalist_on_validation_not_the_best_trial() {
+    let dir = folder("finalists");
+    let ranges = [("pitch".to_string(), None), ("speed".to_string(), None)];
+    let validation = Validation {
+        seed: 12,
+        episodes: 24,
+        finalists: 5,
+    };
+    let spec = TuneSpec::new(
+        "place_fixture_error",
+        bad_start(),
+        "force_search",
+        &ranges,
+        11,
+        NOISY_EPISODES,
+        NOISY_BUDGET,
+        NOISY_OPTIMISER_SEED,
+    )
+    .unwrap()
+    .with_validation(validation)
+    .unwrap();
+    let out = tune(&spec, &dir).unwrap();
+    let expected: Vec<usize> = finalists_of(&out.trials, 5)
+        .iter()
+        .map(|t| t.index)
+        .collect();
+    let got: Vec<usize> = out.finalists.iter().map(|f| f.trial.index).collect();
+    assert_eq!(got, expected, "the 5 best trials, best first");
+    assert_eq!(got.len(), 5);
+    for f in &out.finalists {
+        assert_eq!(f.validation.episodes, 24);
+        assert_eq!(f.validation.values, f.trial.values);
+        assert_eq!(f.trial, out.trials[f.trial.index]);
+    }
+    // The best trial is the first finalist; it loses on validation.
+    let top = best_of(&out.trials);
+    assert_eq!(got[0], top);
+    let chosen = chosen_of(&out.finalists).unwrap();
+    assert_eq!(out.best, chosen.trial.index);
+    assert!(
+        out.finalists
+            .iter()
+            .all(|f| f.validation.objective <= chosen.validation.objective)
+    );
+    assert_ne!(
+        out.best,
+        top,
+        "the construction: the best trial must lose on validation ({:?})",
+        out.finalists
+            .iter()
+            .map(|f| (f.trial.index, f.trial.objective, f.validation.objective))
+            .collect::<Vec<_>>()
+    );
+    assert!(out.finalists[0].validation.objective < chosen.validation.objective);
+    assert!(out.trials[top].objective >= out.trials[out.best].objective);
+    // The fragment holds the chosen setting and both figures; finalists.csv every finalist's.
+    let text = std::fs::read_to_string(dir.join("tuned.toml")).unwrap();
+    // The preset as shipped differs from the bad start only in the table the fragment sets.
+    let mut config = presets::load("place_fixture_error").unwrap();
+    fragment::apply(&mut config, "place_fixture_error", &dir.join("tuned.toml")).unwrap();
+    assert_eq!(
+        config.task.place.search.pitch,
+        out.trials[out.best].values["pitch"]
+    );
+    for needle in [
+        format!("best = {}", out.trials[out.best].objective),
+        format!("best_trial = {}", out.best),
+        format!("validation_best = {}", chosen.validation.objective),
+        "validation_seed = 12".to_string(),
+        "validation_episodes = 24".to_string(),
+        "finalists = 5".to_string(),
+        format!("validation_env_steps = {}", out.validation_env_steps),
+        "preset_checksum = \"fnv1a64:".to_string(),
+    ] {
+        assert!(text.contains(&needle), "`{needle}` not in {text}");
+    }
+    let finalists = std::fs::read_to_string(dir.join("finalists.csv")).unwrap();
+    let lines: Vec<&str> = finalists.lines().collect();
+    assert_eq!(lines.len(), 6, "{finalists}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    for (line, f) in lines[1..].iter().zip(&out.finalists) {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells[col("trial")], f.trial.index.to_string());
+        assert_eq!(cells[col("trial_objective")], f.trial.objective.to_string());
+        assert_eq!(
+            cells[col("validation_objective")],
+            f.validation.objective.to_string()
+        );
+        assert_eq!(cells[col("validation_seed")], "12");
+        assert_eq!(
+            cells[col("chosen")],
+            (f.trial.index == out.best).to_string()
+        );
+    }
+}
+
+/// The noisy tuning of the test above: 2 episodes a trial.
+const NOISY_EPISODES: usize = 2;
+const NOISY_BUDGET: u64 = 40_000;
+const NOISY_OPTIMISER_SEED: u64 = 0;
+
+/// The validation's seed is neither the reported seed (7) nor the tuning's; counts bounded.
+#[test]
+fn a_validation_on_the_reported_or_the_tuning_seed_is_refused() {
+    let ranges = [("pitch".to_string(), None)];
+    let spec = || {
+        TuneSpec::new(
+            "place_fixture_error",
+            bad_start(),
+            "force_search",
+            &ranges,
+            11,
+            4,
+            1000,
+            0,
+        )
+        .unwrap()
+    };
+    assert_eq!(spec().validation.seed, 12, "the default");
+    assert_eq!(spec().validation.episodes, 300);
+    assert_eq!(spec().validation.finalists, 5);
+    let with = |seed, episodes, finalists| {
+        spec()
+            .with_validation(Validation {
+                seed,
+                episodes,
+                finalists,
+            })
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
+    };
+    for (message, needle) in [
+        (with(7, 10, 2), "--validation-seed 7"),
+        (with(11, 10, 2), "--validation-seed 11"),
+        (with(12, 0, 2), "--validation-episodes 0"),
+        (with(12, 10, 0), "--finalists 0"),
+    ] {
+        assert!(
+            message.contains(needle),
+            "`{message}` should name `{needle}`"
+        );
+    }
+    assert!(with(13, 10, 2).is_empty());
+    let on_12 = TuneSpec::new(
+        "place_fixture_error",
+        bad_start(),
+        "force_search",
+        &ranges,
+        12,
+        4,
+        1000,
+        0,
+    )
+    .unwrap();
+    assert_eq!(on_12.validation.seed, 13, "never the tuning's own seed");
+}
+
+/// A search that finds nothing better for `stall_generations` generations restarts around the
+/// best trial with half the spread: a search whose every trial is one setting (its only
+/// parameter a switch held on) never finds better, and restarts every 2 generations.
+#[test]
+fn a_stalled_search_restarts_around_the_best_with_half_the_spread() {
+    let dir = folder("stall");
+    let ranges = [("check_floor".to_string(), Some([1.0, 1.0]))];
+    let spec = TuneSpec::new(
+        "place_fixture_error",
+        presets::load("place_fixture_error").unwrap(),
+        "force_search",
+        &ranges,
+        11,
+        STALL_EPISODES,
+        8_000,
+        0,
+    )
+    .unwrap()
+    .with_validation(Validation {
+        seed: 12,
+        episodes: 1,
+        finalists: 1,
+    })
+    .unwrap()
+    .with_stall_generations(2);
+    let restarts = Mutex::new(Vec::new());
+    let out = run_tune(&spec, &dir, 2, &|e| {
+        if let TuneEvent::Restart {
+            generation,
+            sigma,
+            stalled,
+        } = e
+        {
+            restarts.lock().unwrap().push((generation, sigma, stalled));
+        }
+    })
+    .unwrap();
+    assert!(
+        out.trials
+            .iter()
+            .all(|t| t.objective == out.trials[0].objective)
+    );
+    let generations = out.trials.last().unwrap().generation;
+    assert!(generations >= 4, "{generations} generations");
+    let restarts = restarts.into_inner().unwrap();
+    assert!(restarts.len() >= 2, "{restarts:?}");
+    assert_eq!(restarts[0], (2, 0.125, Some(2)));
+    assert_eq!(restarts[1], (4, 0.0625, Some(2)));
+    assert_eq!(out.restarts, restarts.len());
+    assert!(
+        std::fs::read_to_string(dir.join("tuned.toml"))
+            .unwrap()
+            .contains(&format!("restarts = {}", restarts.len()))
+    );
+    // Without the stall rule, the same search never restarts for a stall.
+    let plain = folder("stall-off");
+    run_tune(&spec.with_stall_generations(0), &plain, 2, &|e| {
+        assert!(!matches!(
+            e,
+            TuneEvent::Restart {
+                stalled: Some(_),
+                ..
+            }
+        ));
+    })
+    .unwrap();
+}
+
+/// Episodes a trial of the stall test.
+const STALL_EPISODES: usize = 1;
+
+/// A switch's range is honoured (`1:1` holds it on in every trial) or refused (`0.3:0.7`).
+#[test]
+fn a_switch_range_is_honoured_or_refused() {
+    let config = presets::load("place_fixture_error").unwrap();
+    assert!(!config.task.place.search.check_floor, "off in the preset");
+    let ranges = [
+        ("check_floor".to_string(), Some([1.0, 1.0])),
+        ("pitch".to_string(), None),
+    ];
+    let spec = TuneSpec::new(
+        "place_fixture_error",
+        config.clone(),
+        "force_search",
+        &ranges,
+        11,
+        2,
+        3_000,
+        0,
+    )
+    .unwrap()
+    .with_validation(Validation {
+        seed: 12,
+        episodes: 2,
+        finalists: 2,
+    })
+    .unwrap();
+    let dir = folder("switch");
+    let out = tune(&spec, &dir).unwrap();
+    assert!(out.trials.len() >= 2);
+    for t in &out.trials {
+        assert_eq!(t.values["check_floor"], 1.0, "trial {}", t.index);
+    }
+    assert!(out.tuned.task.place.search.check_floor);
+    for range in [[0.3, 0.7], [1.0, 0.0], [0.0, 2.0]] {
+        let e = TuneSpec::new(
+            "place_fixture_error",
+            config.clone(),
+            "force_search",
+            &[("check_floor".to_string(), Some(range))],
+            11,
+            2,
+            3_000,
+            0,
+        )
+        .err()
+        .unwrap()
+        .to_string();
+        assert!(
+            e.contains("check_floor") && e.contains("switch") && e.contains("1:1"),
+            "{e}"
+        );
+    }
+}
+
+/// A folder another process tunes in is refused naming it, its files untouched.
+#[test]
+fn a_folder_locked_by_another_tuning_is_refused() {
+    let dir = folder("locked");
+    tune(&spiral_tuning(3_000), &dir).unwrap();
+    let before = csv(&dir);
+    let lock = fairgrasp_types::fs::FolderLock::acquire(&dir, ".lock", "tuning", "--out").unwrap();
+    let e = tune(&spiral_tuning(12_000), &dir)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("is in use") && e.contains("--out"), "{e}");
+    assert_eq!(csv(&dir), before);
+    drop(lock);
+    tune(&spiral_tuning(12_000), &dir).unwrap();
+    assert!(csv(&dir).len() > before.len());
+}
+
+/// A finished tuning's `tuned.toml` that the user edited is kept; the new one goes beside it.
+/// One `tune` wrote and nobody touched is rewritten.
+#[test]
+fn an_edited_fragment_is_kept_and_the_new_one_written_beside_it() {
+    let dir = folder("edited-fragment");
+    let out = tune(&spiral_tuning(3_000), &dir).unwrap();
+    assert_eq!(out.fragment.path, dir.join("tuned.toml"));
+    assert_eq!(out.fragment.kept_edited, None);
+    let path = dir.join("tuned.toml");
+    let first = std::fs::read_to_string(&path).unwrap();
+    // Unedited: a larger budget rewrites it in place.
+    let out = tune(&spiral_tuning(12_000), &dir).unwrap();
+    assert_eq!(out.fragment.kept_edited, None);
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_ne!(text, first, "more trials, another note");
+    assert!(!dir.join("tuned.new.toml").exists());
+    let edited = text.replace("\n[task.place.search]", "\n# mine\n[task.place.search]");
+    assert_ne!(edited, text);
+    std::fs::write(&path, &edited).unwrap();
+    let out = tune(&spiral_tuning(20_000), &dir).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), edited, "kept");
+    assert_eq!(out.fragment.kept_edited, Some(path.clone()));
+    assert_eq!(out.fragment.path, dir.join("tuned.new.toml"));
+    let new = std::fs::read_to_string(dir.join("tuned.new.toml")).unwrap();
+    assert!(
+        new.contains(&format!("trials = {}", out.trials.len())),
+        "{new}"
+    );
+}
+
+/// Env steps read in the unit that fits: a small tuning's fragment says `N env steps`, never
+/// `0.00 M`; a large one says millions.
+#[test]
+fn env_steps_are_written_in_the_unit_that_fits() {
+    let dir = folder("units");
+    let out = tune(&spiral_tuning(600), &dir).unwrap();
+    let text = std::fs::read_to_string(dir.join("tuned.toml")).unwrap();
+    let header = text.lines().take(3).collect::<Vec<_>>().join("\n");
+    assert!(
+        header.contains(&format!("{} env steps", out.note.env_steps)),
+        "{header}"
+    );
+    assert!(!header.contains("0.00 M"), "{header}");
+    assert_eq!(fragment::env_steps_text(624), "624 env steps");
+    assert_eq!(fragment::env_steps_text(3_007_466), "3.01 M env steps");
+    assert!(fragment::summary(&out.note).ends_with(&format!("{} env steps", out.note.env_steps)));
+}
+
+/// A fragment is checked against the preset by content (a file of the same name with other
+/// walls is refused; the same content under another name is not), its rates bounded, and a
+/// control without parameters refused.
+#[test]
+fn a_fragment_is_checked_by_the_content_of_its_preset_and_its_figures() {
+    let dir = folder("content");
+    std::fs::create_dir_all(&dir).unwrap();
+    let ranges = [("pitch".to_string(), None)];
+    let spec = TuneSpec::new(
+        "cell.toml",
+        bad_start(),
+        "force_search",
+        &ranges,
+        11,
+        4,
+        2_000,
+        0,
+    )
+    .unwrap()
+    .with_validation(Validation {
+        seed: 12,
+        episodes: 2,
+        finalists: 1,
+    })
+    .unwrap();
+    tune(&spec, &dir.join("t")).unwrap();
+    let path = dir.join("t").join("tuned.toml");
+    // Another cell.toml: its fixture known less well.
+    let mut other = bad_start();
+    other.task.place.observed_position_noise = 0.004;
+    let e = fragment::apply(&mut other, "cell.toml", &path)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("conflicts with the preset") && e.contains("content differs"),
+        "{e}"
+    );
+    // The same content, called otherwise.
+    let mut same = bad_start();
+    fragment::apply(&mut same, "b/cell.toml", &path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let line = |key: &str| {
+        text.lines()
+            .find(|l| l.starts_with(&format!("{key} =")))
+            .unwrap()
+            .to_string()
+    };
+    for (what, edited, needles) in [
+        (
+            "best 1e308",
+            text.replace(&line("best"), "best = 1e308"),
+            vec!["best = 1e308", "[0, 1]"],
+        ),
+        (
+            "validation best -0.5",
+            text.replace(&line("validation_best"), "validation_best = -0.5"),
+            vec!["validation_best = -0.5"],
+        ),
+        (
+            "no parameters",
+            text.replace("[control.tuned.force_search]", "[control.tuned.open_loop]"),
+            vec!["open_loop", "no parameters"],
+        ),
+        (
+            "validated on 7",
+            text.replace(&line("validation_seed"), "validation_seed = 7"),
+            vec!["seed 7"],
+        ),
+    ] {
+        let file = dir.join("edited.toml");
+        std::fs::write(&file, &edited).unwrap();
+        let mut config = bad_start();
+        let e = fragment::apply(&mut config, "cell.toml", &file)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        for n in needles {
+            assert!(e.contains(n), "{what}: `{n}` not in `{e}`");
+        }
+        assert_eq!(config, bad_start(), "{what}: nothing applied");
+    }
+    // A fragment without the checksum (written before it) is checked by the preset's name.
+    let old: String = text
+        .lines()
+        .filter(|l| !l.starts_with("preset_checksum"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let file = dir.join("old.toml");
+    std::fs::write(&file, old).unwrap();
+    let mut config = bad_start();
+    fragment::apply(&mut config, "cell.toml", &file).unwrap();
+    let e = fragment::apply(&mut bad_start(), "other.toml", &file)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("conflicts with the preset"), "{e}");
+}
+
+/// The shipped tunings' trials (`assets/tuned/place_cell/`) read as trials of their tuning: the
+/// rules every row is checked by hold for what `tune` wrote.
+#[test]
+fn the_shipped_trials_pass_the_row_checks() {
+    let config = presets::load("place_cell").unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/tuned/place_cell");
+    for control in ["force_search", "square_search", "switch_search"] {
+        let path = root.join(format!("{control}_trials.csv"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+        let names: Vec<&str> = header[2..header.len() - 6].to_vec();
+        let spec = TuneSpec::new(
+            "place_cell",
+            config.clone(),
+            control,
+            &names
+                .iter()
+                .map(|n| (n.to_string(), None))
+                .collect::<Vec<_>>(),
+            11,
+            150,
+            3_000_000,
+            0,
+        )
+        .unwrap();
+        let rules = fairgrasp_evaluate::tune::trials::RowRules::of(&spec);
+        let trials =
+            fairgrasp_evaluate::tune::trials::load(&path, &names, &rules).unwrap_or_else(|e| {
+                panic!("{control}: {e}");
+            });
+        assert!(trials.len() >= 70, "{control}: {}", trials.len());
+    }
 }

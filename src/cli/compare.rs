@@ -142,14 +142,35 @@ fn trained_task(checkpoint: &Path) -> anyhow::Result<TaskKind> {
     Ok(first.task.kind)
 }
 
-/// Reads each tuned fragment into the preset it was tuned on (one of `presets`).
+/// Reads each tuned fragment into the preset it was tuned on (one of `presets`, checked by its
+/// content as read, before any fragment); two fragments of one control for one preset are
+/// refused (the second would silently win).
 fn apply_tuned(presets: &mut [ComparePreset], fragments: &[PathBuf]) -> anyhow::Result<()> {
+    let bases: Vec<_> = presets.iter().map(|p| p.config.clone()).collect();
+    let mut claimed: Vec<(usize, &'static str, &PathBuf)> = Vec::new();
     for path in fragments {
         let mut errors = Vec::new();
         let mut applied = false;
-        for p in presets.iter_mut() {
-            match fragment::apply(&mut p.config, &p.name, path) {
-                Ok(_) => applied = true,
+        for (i, p) in presets.iter_mut().enumerate() {
+            let mut config = p.config.clone();
+            match fragment::apply_to(&mut config, &p.name, &bases[i], path) {
+                Ok(control) => {
+                    if let Some((_, _, first)) = claimed
+                        .iter()
+                        .find(|(j, c, _)| *j == i && *c == control.cli)
+                    {
+                        anyhow::bail!(
+                            "--tuned {}: a second fragment of `{}` for preset `{}` (the first is {}): one fragment a control, or the second would silently win",
+                            path.display(),
+                            control.cli,
+                            p.name,
+                            first.display()
+                        );
+                    }
+                    claimed.push((i, control.cli, path));
+                    p.config = config;
+                    applied = true;
+                }
                 Err(e) => errors.push(e.to_string()),
             }
         }

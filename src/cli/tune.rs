@@ -9,8 +9,12 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use clap::Args;
 use fairgrasp_env::EnvConfig;
-use fairgrasp_evaluate::tune::spec::{MAX_BUDGET, MAX_EPISODES_PER_TRIAL};
-use fairgrasp_evaluate::tune::{TuneError, TuneEvent, TuneSpec, folder, run_tune};
+use fairgrasp_evaluate::tune::fragment::env_steps_text;
+use fairgrasp_evaluate::tune::spec::{
+    DEFAULT_FINALISTS, DEFAULT_STALL_GENERATIONS, DEFAULT_VALIDATION_EPISODES, MAX_BUDGET,
+    MAX_EPISODES_PER_TRIAL, MAX_FINALISTS,
+};
+use fairgrasp_evaluate::tune::{TuneError, TuneEvent, TuneSpec, Validation, folder, run_tune};
 use fairgrasp_types::ArmSimulation;
 
 use crate::cli::UsageError;
@@ -25,8 +29,11 @@ const DEFAULT_BUDGET: u64 = 3_000_000;
   fairgrasp tune --preset place_cell --control force_search --param pitch=0.001:0.004 --param speed --budget 500000 --out t
   fairgrasp tune --preset heavy_slippery --control tuned_grip --out tuned/grip
 
-Ctrl-C stops it; the same command again resumes it, trial for trial. The tuned setting is
-tuned.toml in the folder: `fairgrasp baseline --preset P --script C --tuned FOLDER/tuned.toml`
+Before it writes tuned.toml, the best trials (--finalists) run again on validation scenarios
+of their own (--validation-seed, --validation-episodes) and the best there is chosen; the
+budget holds both. Ctrl-C stops it; the same command again resumes it, trial for trial. The
+tuned setting is tuned.toml in the folder (an edited tuned.toml is kept, the new one written
+beside it as tuned.new.toml): `fairgrasp baseline --preset P --script C --tuned FOLDER/tuned.toml`
 runs it (on a held-out seed, e.g. --seed 7), `fairgrasp compare --tuned …` compares it.")]
 pub struct TuneArgs {
     /// The preset (or .toml file) whose training scenarios the control is tuned on.
@@ -54,6 +61,21 @@ pub struct TuneArgs {
     /// The optimiser's seed, 0–9007199254740991 (2⁵³ − 1).
     #[arg(long, default_value_t = 0, value_parser = crate::cli::args::seed)]
     optimiser_seed: u64,
+    /// The best trials re-evaluated on the validation's scenarios before one is chosen,
+    /// 1–100 (distinct settings, by their score).
+    #[arg(long, default_value_t = DEFAULT_FINALISTS, value_parser = finalists)]
+    finalists: usize,
+    /// Seed of the validation's scenarios: training scenarios of their own, neither --seed
+    /// nor 7 [default: 12, or 13 when --seed is 12]
+    #[arg(long, value_parser = crate::cli::args::seed)]
+    validation_seed: Option<u64>,
+    /// Validation episodes per finalist, 1–100000.
+    #[arg(long, default_value_t = DEFAULT_VALIDATION_EPISODES, value_parser = episodes_per_trial)]
+    validation_episodes: usize,
+    /// Generations without a better trial after which the search restarts around the best
+    /// with half the spread (0: never).
+    #[arg(long, default_value_t = DEFAULT_STALL_GENERATIONS, value_parser = stall)]
+    stall: usize,
     /// The tuning's folder: new or empty, or one of this same tuning to resume.
     #[arg(long, value_name = "DIR", required_unless_present = "list")]
     out: Option<PathBuf>,
@@ -73,6 +95,16 @@ fn budget(text: &str) -> Result<u64, String> {
 /// Episodes per trial, 1–[`MAX_EPISODES_PER_TRIAL`] (clap value parser).
 fn episodes_per_trial(text: &str) -> Result<usize, String> {
     crate::cli::args::whole_number_in(text, 1..=MAX_EPISODES_PER_TRIAL as u64).map(|n| n as usize)
+}
+
+/// Finalists, 1–[`MAX_FINALISTS`] (clap value parser).
+fn finalists(text: &str) -> Result<usize, String> {
+    crate::cli::args::whole_number_in(text, 1..=MAX_FINALISTS as u64).map(|n| n as usize)
+}
+
+/// Generations of a stall, 0–1000 (clap value parser).
+fn stall(text: &str) -> Result<usize, String> {
+    crate::cli::args::whole_number_in(text, 0..=1000).map(|n| n as usize)
 }
 
 /// `NAME` or `NAME=LOW:HIGH`.
@@ -123,6 +155,15 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
         a.budget,
         a.optimiser_seed,
     )
+    .and_then(|spec| {
+        let defaults = Validation::default_for(a.seed);
+        spec.with_validation(Validation {
+            seed: a.validation_seed.unwrap_or(defaults.seed),
+            episodes: a.validation_episodes,
+            finalists: a.finalists,
+        })
+    })
+    .map(|spec| spec.with_stall_generations(a.stall))
     .map_err(|e| match e {
         TuneError::Request(m) => anyhow::Error::new(UsageError(m)),
         other => other.into(),
@@ -132,13 +173,16 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     eprintln!(
-        "tuning `{}` on `{}`: {} over {}, {} episodes per trial of seed {}, a budget of {} ({})",
+        "tuning `{}` on `{}`: {} over {}, {} episodes per trial of seed {}; the best {} re-evaluated on {} episodes of seed {}; a budget of {} for both ({})",
         spec.control.cli,
         spec.preset,
         spec.objective.describe(),
         spec.names().join(", "),
         spec.episodes,
         spec.scenario_seed,
+        spec.validation.finalists,
+        spec.validation.episodes,
+        spec.validation.seed,
         env_steps(spec.budget),
         dir.display()
     );
@@ -148,28 +192,57 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
         report(&e, &episodes, live, spec.episodes)
     })?;
     let best = &outcome.trials[outcome.best];
+    let counted = |t: &fairgrasp_evaluate::tune::trials::Trial| match spec.objective {
+        fairgrasp_evaluate::tune::Objective::SuccessWithinTakt => t.within_takt,
+        fairgrasp_evaluate::tune::Objective::Success => t.successes,
+    };
+    let validation = outcome
+        .finalists
+        .iter()
+        .find(|f| f.trial.index == best.index)
+        .map_or(String::new(), |f| {
+            format!(
+                "; on validation {:.1} % ({} of {} episodes of seed {})",
+                100.0 * f.validation.objective,
+                counted(&f.validation),
+                f.validation.episodes,
+                spec.validation.seed
+            )
+        });
     println!(
-        "best: trial {} of {}, {} {:.1} % ({} of {} episodes{}); {}",
+        "chosen: trial {} of {}, {} {:.1} % ({} of {} episodes{}){validation}",
         best.index,
         outcome.trials.len(),
         spec.objective.describe(),
         100.0 * best.objective,
-        match spec.objective {
-            fairgrasp_evaluate::tune::Objective::SuccessWithinTakt => best.within_takt,
-            fairgrasp_evaluate::tune::Objective::Success => best.successes,
-        },
+        counted(best),
         best.episodes,
         best.mean_cycle_time_s
             .map_or(String::new(), |c| format!(", mean cycle {c:.1} s")),
-        env_steps(outcome.note.env_steps)
+    );
+    println!(
+        "env steps: {} on the trials + {} on the validation = {} (budget {})",
+        env_steps(outcome.search_env_steps),
+        env_steps(outcome.validation_env_steps),
+        env_steps(outcome.note.env_steps),
+        env_steps(spec.budget)
     );
     for (name, v) in &best.values {
         println!("  {name:<14} {v}");
     }
+    if let Some(kept) = &outcome.fragment.kept_edited {
+        eprintln!(
+            "note: {} was edited since `tune` wrote it and is kept; the new setting is in {} (move it over {} to use it there)",
+            kept.display(),
+            outcome.fragment.path.display(),
+            kept.display()
+        );
+    }
     println!(
-        "trials: {}; the setting: {}",
+        "trials: {}; finalists: {}; the setting: {}",
         dir.join("trials.csv").display(),
-        dir.join("tuned.toml").display()
+        dir.join("finalists.csv").display(),
+        outcome.fragment.path.display()
     );
     Ok(ExitCode::SUCCESS)
 }
@@ -208,16 +281,38 @@ fn report(e: &TuneEvent<'_>, episodes: &AtomicUsize, live: bool, per_trial: usiz
                 env_steps(*budget)
             );
         }
+        TuneEvent::Restart {
+            generation,
+            sigma,
+            stalled,
+        } => eprintln!(
+            "restart at generation {generation} around the best trial, spread {sigma:.4} ({})",
+            match stalled {
+                Some(n) => format!("nothing better for {n} generations"),
+                None => "the optimiser converged".to_string(),
+            }
+        ),
+        TuneEvent::FinalistStart { rank, of, trial } => {
+            episodes.store(0, Ordering::Relaxed);
+            eprintln!("validation: finalist {} of {of} (trial {trial})", rank + 1);
+        }
+        TuneEvent::FinalistDone { finalist } => {
+            if live {
+                eprint!("\r");
+            }
+            eprintln!(
+                "  trial {:>3}: {:5.1} % on its trial, {:5.1} % on validation",
+                finalist.trial.index,
+                100.0 * finalist.trial.objective,
+                100.0 * finalist.validation.objective
+            );
+        }
     }
 }
 
 /// A count of env steps as people read it: `1500 env steps`, `3.00 M env steps`.
 fn env_steps(n: u64) -> String {
-    if n < 100_000 {
-        format!("{n} env steps")
-    } else {
-        format!("{:.2} M env steps", n as f64 / 1e6)
-    }
+    env_steps_text(n)
 }
 
 /// Prints the control's parameters.

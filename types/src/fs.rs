@@ -213,3 +213,97 @@ mod tests {
         std::fs::remove_dir_all(&dir).ok();
     }
 }
+
+/// One process per folder: an advisory lock (`flock`) on a lock file inside it, which holds the
+/// pid of the process working there. The kernel releases the lock when that process ends,
+/// however it ends, so a lock file left by a killed process is stale and is taken over
+/// ([`FolderLock::stale_pid`] names it). `train` (its run folder) and `tune` (its `--out`)
+/// both take it.
+#[derive(Debug)]
+pub struct FolderLock {
+    file: std::fs::File,
+    /// The pid a stale lock file named (a killed process), if any.
+    pub stale_pid: Option<String>,
+}
+
+/// Why a [`FolderLock`] was not taken.
+#[derive(Debug)]
+pub enum LockRefused {
+    /// Another live process holds it: the message names it, what it does and `flag`.
+    InUse(String),
+    /// The lock file is not a regular file: the message says what to do.
+    NotAFile(String),
+    /// Creating the folder or the lock file failed (the path and the error).
+    Io(std::path::PathBuf, std::io::Error),
+}
+
+impl FolderLock {
+    /// Takes the lock file `lock_name` of `dir` (both created if missing), or refuses naming
+    /// the process that holds it, what it is `doing` there (`training`, `tuning`) and the
+    /// `flag` that chooses another folder.
+    pub fn acquire(
+        dir: &Path,
+        lock_name: &str,
+        doing: &str,
+        flag: &str,
+    ) -> Result<FolderLock, LockRefused> {
+        use std::fs::{OpenOptions, TryLockError};
+        use std::io::Seek;
+        std::fs::create_dir_all(dir).map_err(|e| LockRefused::Io(dir.to_path_buf(), e))?;
+        let path = dir.join(lock_name);
+        if path.exists() && !path.is_file() {
+            return Err(LockRefused::NotAFile(format!(
+                "{} is not a regular file: remove it to work in {}",
+                path.display(),
+                dir.display()
+            )));
+        }
+        let io = |e| LockRefused::Io(path.clone(), e);
+        let mut file = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&path)
+            .map_err(io)?;
+        let mut holder = String::new();
+        // Best effort: the pid is only for the message.
+        let _ = (&file).take(64).read_to_string(&mut holder);
+        let holder = holder.trim().to_string();
+        match file.try_lock() {
+            Ok(()) => {}
+            Err(TryLockError::WouldBlock) => {
+                let who = if holder.is_empty() {
+                    "another process".to_string()
+                } else {
+                    format!("process {holder}")
+                };
+                return Err(LockRefused::InUse(format!(
+                    "{} is in use: {who} is {doing} in it ({}); wait for it to end, or choose another {flag}",
+                    dir.display(),
+                    path.display()
+                )));
+            }
+            Err(TryLockError::Error(e)) => return Err(io(e)),
+        }
+        let write_pid = |f: &mut std::fs::File| -> std::io::Result<()> {
+            f.set_len(0)?;
+            f.rewind()?;
+            writeln!(f, "{}", std::process::id())?;
+            f.sync_data()
+        };
+        write_pid(&mut file).map_err(io)?;
+        Ok(FolderLock {
+            file,
+            stale_pid: (!holder.is_empty()).then_some(holder),
+        })
+    }
+}
+
+impl Drop for FolderLock {
+    fn drop(&mut self) {
+        // Emptied first, so a later reader never takes a finished process's pid for a holder.
+        let _ = self.file.set_len(0);
+        let _ = self.file.unlock();
+    }
+}

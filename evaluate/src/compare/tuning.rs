@@ -34,7 +34,7 @@ pub(crate) fn of_controls(spec: &CompareSpec, scripts: &[&'static Control]) -> V
         for control in scripts.iter().filter(|c| !c.params.is_empty()) {
             let note = preset.config.control.tuned.get(control.cli);
             let how = match note {
-                Some(n) => format!("{}; {}", n.summary(), n.objective),
+                Some(n) => format!("{}; {}", crate::tune::fragment::summary(n), n.objective),
                 None => "the preset's own setting (no `fairgrasp tune` record)".to_string(),
             };
             let trials = note

@@ -21,6 +21,9 @@ pub enum TuneError {
         before: String,
         now: String,
     },
+    /// The folder is not this process's to use now (another holds its lock), as one line.
+    #[error("{0}")]
+    Busy(String),
     /// The env could not run an episode.
     #[error(transparent)]
     Env(#[from] fairgrasp_env::EnvError),

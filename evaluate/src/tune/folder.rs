@@ -8,16 +8,55 @@ use std::path::Path;
 
 use fairgrasp_env::EnvConfig;
 use fairgrasp_policy::recipe::read::leaf_differences;
+use fairgrasp_types::fs::{FolderLock, LockRefused};
 
 use crate::tune::error::TuneError;
 use crate::tune::spec::{SpecRecord, TuneSpec};
 use crate::tune::trials::{self, Trial};
 
-/// Opens `dir` for `spec`: a missing or empty folder is claimed (no trials yet); a folder of
-/// the same tuning gives its trials back; anything else is refused, nothing in it touched.
-pub fn open(spec: &TuneSpec, dir: &Path) -> Result<Vec<Trial>, TuneError> {
-    let record = spec.record();
+/// The lock file in a tuning folder (holds the tuning process's pid while it runs; the lock
+/// `train` takes on its run folder, [`FolderLock`]).
+pub const LOCK_FILE: &str = ".lock";
+
+/// Opens `dir` for `spec` and locks it for this process: a missing or empty folder is claimed
+/// (no trials yet); a folder of the same tuning gives its trials back; anything else is
+/// refused, nothing in it touched. A folder another process tunes in is refused naming it; a
+/// claim that fails (a full disk) leaves no folder behind that this call made.
+pub fn open(spec: &TuneSpec, dir: &Path) -> Result<(Vec<Trial>, FolderLock), TuneError> {
+    if dir.symlink_metadata().is_ok() && dir.metadata().is_err() {
+        return Err(TuneError::file(
+            dir,
+            "--out is a link that leads nowhere (to itself, or to a missing path): give a new or empty folder".to_string(),
+        ));
+    }
+    if dir.exists() && !dir.is_dir() {
+        return Err(TuneError::file(
+            dir,
+            "--out names a file, not a folder (the file is left alone); give a new or empty folder"
+                .to_string(),
+        ));
+    }
     let spec_path = dir.join("tune.json");
+    let existed = dir.exists();
+    if existed && !spec_path.exists() && !is_empty(dir)? {
+        return Err(TuneError::file(
+            dir,
+            "not empty and no tune.json: not a tuning folder (its files are left alone); give a new or empty folder".to_string(),
+        ));
+    }
+    let lock = match FolderLock::acquire(dir, LOCK_FILE, "tuning", "--out") {
+        Ok(lock) => lock,
+        Err(LockRefused::InUse(m) | LockRefused::NotAFile(m)) => {
+            return Err(TuneError::Busy(m));
+        }
+        Err(LockRefused::Io(path, e)) => {
+            if !existed {
+                remove_claim(dir, true);
+            }
+            return Err(TuneError::io(&path, e));
+        }
+    };
+    let record = spec.record();
     if spec_path.exists() {
         let saved = SpecRecord::load(&spec_path)?;
         if let Some((what, before, now)) = record.first_difference(&saved) {
@@ -29,33 +68,35 @@ pub fn open(spec: &TuneSpec, dir: &Path) -> Result<Vec<Trial>, TuneError> {
             });
         }
         let csv = dir.join("trials.csv");
-        return if csv.exists() {
-            trials::load(&csv, &spec.names())
+        let trials = if csv.exists() {
+            trials::load(&csv, &spec.names(), &trials::RowRules::of(spec))?
         } else {
-            Ok(Vec::new())
+            Vec::new()
         };
+        return Ok((trials, lock));
     }
-    if dir.exists() && !dir.is_dir() {
-        return Err(TuneError::file(
-            dir,
-            "--out names a file, not a folder (the file is left alone); give a new or empty folder"
-                .to_string(),
-        ));
+    if let Err(e) = record.save(&spec_path) {
+        drop(lock);
+        // Nothing half-made is left: the lock file, and the folder if this call made it.
+        remove_claim(dir, !existed);
+        return Err(e);
     }
-    if dir.exists() {
-        let empty = std::fs::read_dir(dir)
-            .map_err(|e| TuneError::io(dir, e))?
-            .next()
-            .is_none();
-        if !empty {
-            return Err(TuneError::file(
-                dir,
-                "not empty and no tune.json: not a tuning folder (its files are left alone); give a new or empty folder".to_string(),
-            ));
-        }
+    Ok((Vec::new(), lock))
+}
+
+/// Whether `dir` holds nothing but (perhaps) a tuning's lock file.
+fn is_empty(dir: &Path) -> Result<bool, TuneError> {
+    let mut entries = std::fs::read_dir(dir).map_err(|e| TuneError::io(dir, e))?;
+    Ok(entries.all(|e| e.is_ok_and(|e| e.file_name() == LOCK_FILE)))
+}
+
+/// Undoes a claim of `dir` that failed: its lock file, and the folder itself if `made` (this
+/// process made it) and it is empty then.
+fn remove_claim(dir: &Path, made: bool) {
+    std::fs::remove_file(dir.join(LOCK_FILE)).ok();
+    if made {
+        std::fs::remove_dir(dir).ok();
     }
-    record.save(&spec_path)?;
-    Ok(Vec::new())
 }
 
 /// The preset a resumed tuning of the preset file `preset` runs on: the config the tuning in

@@ -3,7 +3,9 @@
 //! a learned policy is compared with the control at its best.
 //!
 //! - [`spec`]: what a tuning is ([`TuneSpec`]), checked; its record in `tune.json`;
-//! - [`optimiser`]: the loop ([`run_tune`]: CMA-ES, resumable trial for trial);
+//! - [`optimiser`]: the loop ([`run_tune`]: CMA-ES, resumable trial for trial, restarted when it
+//!   stalls), then the best trials re-evaluated on validation scenarios and the best there
+//!   chosen;
 //! - [`trials`]: `trials.csv`, one row a trial;
 //! - [`folder`]: claiming or resuming a tuning folder;
 //! - [`fragment`]: the tuned setting as a preset fragment, written and read into a preset.
@@ -22,5 +24,5 @@ pub mod spec;
 pub mod trials;
 
 pub use error::TuneError;
-pub use optimiser::{TuneEvent, TuneOutcome, best_of, run_tune};
-pub use spec::{Objective, TuneSpec};
+pub use optimiser::{Finalist, TuneEvent, TuneOutcome, best_of, chosen_of, finalists_of, run_tune};
+pub use spec::{Objective, TuneSpec, Validation};

@@ -17,6 +17,19 @@ use crate::tune::error::TuneError;
 pub const MAX_BUDGET: u64 = 1_000_000_000;
 /// The most episodes one trial may run.
 pub const MAX_EPISODES_PER_TRIAL: usize = 100_000;
+/// The seed results are reported on: never a tuning's scenarios, nor its validation's.
+pub const REPORTED_SEED: u64 = 7;
+/// The validation's scenarios by default: a training seed of their own (the tuning's is 11).
+pub const DEFAULT_VALIDATION_SEED: u64 = 12;
+/// Validation episodes per finalist by default (a standard error of about 2.5 points).
+pub const DEFAULT_VALIDATION_EPISODES: usize = 300;
+/// Finalists re-evaluated by default: the best few trials.
+pub const DEFAULT_FINALISTS: usize = 5;
+/// The most finalists one tuning may re-evaluate.
+pub const MAX_FINALISTS: usize = 100;
+/// Generations without a better trial after which the search restarts around the best
+/// (by default).
+pub const DEFAULT_STALL_GENERATIONS: usize = 6;
 
 /// What a trial's score is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -54,6 +67,22 @@ pub struct Searched {
     pub range: [f64; 2],
 }
 
+impl Searched {
+    /// The one value of a switch whose range holds it there (`0:0` or `1:1`).
+    pub fn held(&self) -> Option<f64> {
+        (self.param.scale == Scale::Switch && self.range[0] == self.range[1])
+            .then_some(self.range[0])
+    }
+
+    /// Where `value` lies in the unit cube, clamped into it (a held switch: the middle).
+    pub fn unit(&self, value: f64) -> f64 {
+        if self.held().is_some() {
+            return 0.5;
+        }
+        self.param.to_unit(value, self.range).clamp(0.0, 1.0)
+    }
+}
+
 /// A tuning, checked.
 pub struct TuneSpec {
     /// The preset's name (or file) and its config.
@@ -70,6 +99,37 @@ pub struct TuneSpec {
     pub budget: u64,
     /// The optimiser's own seed.
     pub optimiser_seed: u64,
+    /// How the best trials are re-evaluated before one is chosen ([`TuneSpec::with_validation`]).
+    pub validation: Validation,
+    /// Generations without a better trial after which the search restarts around the best
+    /// trial with half the spread ([`TuneSpec::with_stall_generations`]).
+    pub stall_generations: usize,
+}
+
+/// The re-evaluation of a tuning's best trials on scenarios of their own: the `finalists`
+/// best trials (by their objective, distinct settings) each run `episodes` scenarios of
+/// `seed`, and the best there is the tuned setting. A trial's score is the best of many noisy
+/// draws; the validation's is not.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Validation {
+    pub seed: u64,
+    pub episodes: usize,
+    pub finalists: usize,
+}
+
+impl Validation {
+    /// The default validation for a tuning on scenarios of `scenario_seed`: seed 12 (or the
+    /// next seed that is neither the tuning's nor the reported one), 300 episodes, 5 finalists.
+    pub fn default_for(scenario_seed: u64) -> Self {
+        let seed = (DEFAULT_VALIDATION_SEED..)
+            .find(|s| *s != scenario_seed && *s != REPORTED_SEED)
+            .unwrap_or(DEFAULT_VALIDATION_SEED);
+        Self {
+            seed,
+            episodes: DEFAULT_VALIDATION_EPISODES,
+            finalists: DEFAULT_FINALISTS,
+        }
+    }
 }
 
 impl TuneSpec {
@@ -100,9 +160,16 @@ impl TuneSpec {
                 .filter(|c| !c.params.is_empty())
                 .map(|c| c.cli)
                 .collect();
+            let choose = if tunable.is_empty() {
+                "this task has no control with parameters to tune".to_string()
+            } else {
+                format!(
+                    "the tunable controls of this task are {}",
+                    tunable.join(", ")
+                )
+            };
             return Err(TuneError::Request(format!(
-                "--control {control_name}: has no parameters to tune; the tunable controls of this task are {}",
-                tunable.join(", ")
+                "--control {control_name}: has no parameters to tune; {choose}"
             )));
         }
         let searched = searched_params(c, ranges)?;
@@ -126,7 +193,55 @@ impl TuneSpec {
             episodes,
             budget,
             optimiser_seed,
+            validation: Validation::default_for(scenario_seed),
+            stall_generations: DEFAULT_STALL_GENERATIONS,
         })
+    }
+
+    /// The validation `validation` instead of the default; refused naming the flag when its
+    /// seed is the reported one (7) or the tuning's, or a count is out of bounds.
+    pub fn with_validation(mut self, validation: Validation) -> Result<Self, TuneError> {
+        let Validation {
+            seed,
+            episodes,
+            finalists,
+        } = validation;
+        if seed == REPORTED_SEED {
+            return Err(TuneError::Request(format!(
+                "--validation-seed {seed}: the seed results are reported on is never used to choose; give another training seed (e.g. {DEFAULT_VALIDATION_SEED})"
+            )));
+        }
+        if seed == self.scenario_seed {
+            return Err(TuneError::Request(format!(
+                "--validation-seed {seed}: the tuning's own scenarios (--seed {}); the validation needs scenarios of its own",
+                self.scenario_seed
+            )));
+        }
+        if episodes == 0 || episodes > MAX_EPISODES_PER_TRIAL {
+            return Err(TuneError::Request(format!(
+                "--validation-episodes {episodes}: must be in [1, {MAX_EPISODES_PER_TRIAL}]"
+            )));
+        }
+        if finalists == 0 || finalists > MAX_FINALISTS {
+            return Err(TuneError::Request(format!(
+                "--finalists {finalists}: must be in [1, {MAX_FINALISTS}]"
+            )));
+        }
+        self.validation = validation;
+        Ok(self)
+    }
+
+    /// Restarts after `generations` generations without a better trial (0: never).
+    pub fn with_stall_generations(mut self, generations: usize) -> Self {
+        self.stall_generations = generations;
+        self
+    }
+
+    /// The length of one of the preset's episodes \[s\]: its longest cycle.
+    pub fn episode_seconds(&self) -> f64 {
+        self.config.task.max_steps as f64
+            * self.config.physics.dt
+            * self.config.physics.substeps as f64
     }
 
     /// The names of the searched parameters, in order.
@@ -144,7 +259,11 @@ impl TuneSpec {
         let mut values = ParamValues::new();
         for ((s, &u), &u0) in self.searched.iter().zip(unit).zip(&start) {
             let exact = now.get(s.param.name).copied().filter(|_| u == u0);
-            let v = exact.unwrap_or_else(|| s.param.from_unit(u, s.range));
+            let v = match s.held() {
+                // A switch held at one position by its range (`check_floor=1:1`).
+                Some(held) => held,
+                None => exact.unwrap_or_else(|| s.param.from_unit(u, s.range)),
+            };
             values.insert(s.param.name.to_string(), v);
         }
         values
@@ -157,7 +276,7 @@ impl TuneSpec {
             .iter()
             .map(|s| {
                 let v = now.get(s.param.name).copied().unwrap_or(s.range[0]);
-                s.param.to_unit(v, s.range).clamp(0.0, 1.0)
+                s.unit(v)
             })
             .collect()
     }
@@ -215,7 +334,17 @@ fn searched_params(
         let range = range.unwrap_or(param.range);
         let [lo, hi] = range;
         let [alo, ahi] = param.accepts;
-        let ordered = lo < hi || param.scale == Scale::Switch;
+        if param.scale == Scale::Switch {
+            // A switch is off (0) or on (1): searched over both, or held at one.
+            if ![[0.0, 1.0], [0.0, 0.0], [1.0, 1.0]].contains(&range) {
+                return Err(TuneError::Request(format!(
+                    "--param {name}={lo}:{hi}: {name} is a switch, off (0) or on (1): its range is 0:1 (searched), 0:0 or 1:1 (held off or on)"
+                )));
+            }
+            out.push(Searched { param, range });
+            continue;
+        }
+        let ordered = lo < hi;
         if !(param.accepts(lo) && param.accepts(hi) && ordered)
             || (param.scale == Scale::Log && lo <= 0.0)
         {

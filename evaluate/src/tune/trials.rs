@@ -7,6 +7,29 @@ use fairgrasp_planner::controls::ParamValues;
 use fairgrasp_types::fs::{MAX_DATA_BYTES, read_bounded, write_atomic};
 
 use crate::tune::error::TuneError;
+use crate::tune::spec::TuneSpec;
+
+/// What every row of a tuning's `trials.csv` must agree with: the tuning it belongs to.
+#[derive(Clone, Copy, Debug)]
+pub struct RowRules {
+    /// Episodes per trial (a refused setting ran none).
+    pub episodes: usize,
+    /// The most env steps one episode may take (the preset's `task.max_steps`).
+    pub max_steps: u64,
+    /// The longest cycle \[s\]: `max_steps` steps of the preset.
+    pub episode_seconds: f64,
+}
+
+impl RowRules {
+    /// The rules of `spec`'s trials.
+    pub fn of(spec: &TuneSpec) -> Self {
+        Self {
+            episodes: spec.episodes,
+            max_steps: spec.config.task.max_steps as u64,
+            episode_seconds: spec.episode_seconds(),
+        }
+    }
+}
 
 /// One evaluated setting of the control.
 #[derive(Clone, Debug, PartialEq)]
@@ -74,11 +97,13 @@ pub fn save(path: &Path, trials: &[Trial], names: &[&str]) -> Result<(), TuneErr
     write_atomic(path, to_csv(trials, names).as_bytes()).map_err(|e| TuneError::io(path, e))
 }
 
-/// Reads the trials of `path` (parameters `names`); every row must be whole (the file is
-/// written whole, so a last line without its line end was cut), numbered in order, carry
-/// finite numbers in their ranges and an objective that is its counts' rate; an error names
-/// the file, the line, the column, the value and what it may be.
-pub fn load(path: &Path, names: &[&str]) -> Result<Vec<Trial>, TuneError> {
+/// Reads the trials of `path` (parameters `names`, of a tuning whose rows obey `rules`); every
+/// row must be whole (the file is written whole, so a last line without its line end was cut),
+/// numbered in order, carry finite numbers in their ranges, the tuning's episodes per trial, env
+/// steps its episodes could take (summed without overflow), an objective that is its counts'
+/// rate and a cycle time within an episode; an error names the file, the line, the column, the
+/// value and what it may be.
+pub fn load(path: &Path, names: &[&str], rules: &RowRules) -> Result<Vec<Trial>, TuneError> {
     let bytes = read_bounded(path, MAX_DATA_BYTES).map_err(|e| TuneError::io(path, e))?;
     let text = String::from_utf8(bytes)
         .map_err(|_| TuneError::file(path, "not UTF-8 text".to_string()))?;
@@ -105,16 +130,86 @@ pub fn load(path: &Path, names: &[&str]) -> Result<Vec<Trial>, TuneError> {
         }
         None => return Ok(Vec::new()),
     }
+    let mut total: u64 = 0;
     lines
         .enumerate()
         .map(|(i, line)| {
-            parse_row(line, names, i)
-                .map_err(|m| TuneError::file(path, format!("line {}: {m}", i + 2)))
+            let at = |m: String| TuneError::file(path, format!("line {}: {m}", i + 2));
+            let trial = parse_row(line, names, i).map_err(at)?;
+            check_row(&trial, rules).map_err(at)?;
+            check_objective(
+                trial.objective,
+                trial.episodes,
+                trial.successes,
+                trial.within_takt,
+            )
+            .map_err(at)?;
+            total = total.checked_add(trial.env_steps).ok_or_else(|| {
+                at(format!(
+                    "env_steps {}: the sum of the rows so far passes {} (a wrapped count)",
+                    trial.env_steps,
+                    u64::MAX
+                ))
+            })?;
+            Ok(trial)
         })
         .collect()
 }
 
-/// One row, expected to be trial `index`.
+/// `v` as a message shows it: in scientific notation when plain digits would be many.
+fn shown(v: f64) -> String {
+    if v != 0.0 && !(1e-6..1e9).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
+}
+
+/// A row against the tuning it belongs to: its episodes the tuning's (or none, for a setting
+/// the preset refused), its env steps at least one and at most `max_steps` an episode, its
+/// cycle time within an episode's length and given only with successes.
+fn check_row(t: &Trial, rules: &RowRules) -> Result<(), String> {
+    if t.episodes == 0 {
+        if t.env_steps != 0 || t.mean_cycle_time_s.is_some() {
+            return Err(format!(
+                "env_steps {} or a cycle time with 0 episodes: a refused setting ran nothing",
+                t.env_steps
+            ));
+        }
+        return Ok(());
+    }
+    if t.episodes != rules.episodes {
+        return Err(format!(
+            "episodes {}: this tuning runs {} a trial (or 0 for a setting the preset refused)",
+            t.episodes, rules.episodes
+        ));
+    }
+    let most = (t.episodes as u64).saturating_mul(rules.max_steps);
+    if t.env_steps < t.episodes as u64 || t.env_steps > most {
+        return Err(format!(
+            "env_steps {}: {} episodes of at most {} steps take between {} and {most}",
+            t.env_steps, t.episodes, rules.max_steps, t.episodes
+        ));
+    }
+    match t.mean_cycle_time_s {
+        Some(c) if t.successes == 0 => Err(format!(
+            "mean_cycle_time_s {} without a success: it is the successes' mean (empty without any)",
+            shown(c)
+        )),
+        Some(c) if !(0.0..=rules.episode_seconds * (1.0 + 1e-9)).contains(&c) => Err(format!(
+            "mean_cycle_time_s {}: a cycle lasts between 0 and the episode's {} s",
+            shown(c),
+            rules.episode_seconds
+        )),
+        None if t.successes > 0 => Err(format!(
+            "mean_cycle_time_s empty with {} successes: the successes' mean cycle time is missing",
+            t.successes
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// One row, expected to be trial `index` (its objective checked by [`check_objective`]).
 fn parse_row(line: &str, names: &[&str], index: usize) -> Result<Trial, String> {
     let cells: Vec<&str> = line.split(',').collect();
     let want = names.len() + 8;
@@ -159,7 +254,6 @@ fn parse_row(line: &str, names: &[&str], index: usize) -> Result<Trial, String> 
         ));
     }
     let objective = num(k + 4, "objective")?;
-    check_objective(objective, episodes, successes, within_takt)?;
     Ok(Trial {
         index,
         generation: count(1, "generation")? as usize,

@@ -7,9 +7,9 @@
 //! starting would overwrite history; `--force` moves the old run aside ([`move_aside`]), it never
 //! deletes it. [`RunLock`] keeps a second process out of a folder while one trains in it.
 
-use std::fs::{File, OpenOptions, TryLockError};
-use std::io::{Read, Seek, Write};
 use std::path::{Path, PathBuf};
+
+use fairgrasp_types::fs::{FolderLock, LockRefused};
 
 use crate::run::checkpoint;
 use crate::run::error::{TrainError, io};
@@ -217,11 +217,12 @@ pub fn move_aside(run_dir: &Path, to: &Path) -> Result<(), TrainError> {
 }
 
 /// One process per run folder: an advisory lock (`flock`) on `DIR/.lock`, which holds the pid of
-/// the process training there. The kernel releases the lock when that process ends, however it
-/// ends, so a lock file left by a killed run is stale and is taken over (and said so).
+/// the process training there (the lock `tune` takes on its folder too:
+/// [`fairgrasp_types::fs::FolderLock`]). The kernel releases the lock when that process ends,
+/// however it ends, so a lock file left by a killed run is stale and is taken over (and said so).
 #[derive(Debug)]
 pub struct RunLock {
-    file: File,
+    _lock: FolderLock,
     /// The pid a stale lock file named (a killed run), if any.
     pub stale_pid: Option<String>,
 }
@@ -230,60 +231,13 @@ impl RunLock {
     /// Takes the lock of `run_dir` (created if missing), or refuses naming the process that
     /// holds it.
     pub fn acquire(run_dir: &Path) -> Result<RunLock, TrainError> {
-        std::fs::create_dir_all(run_dir).map_err(io(run_dir))?;
-        let path = run_dir.join(LOCK_FILE);
-        if path.exists() && !path.is_file() {
-            return Err(TrainError::Config(format!(
-                "{} is not a regular file: remove it to train in {}",
-                path.display(),
-                run_dir.display()
-            )));
+        match FolderLock::acquire(run_dir, LOCK_FILE, "training", "--run-dir") {
+            Ok(lock) => Ok(RunLock {
+                stale_pid: lock.stale_pid.clone(),
+                _lock: lock,
+            }),
+            Err(LockRefused::InUse(m) | LockRefused::NotAFile(m)) => Err(TrainError::Config(m)),
+            Err(LockRefused::Io(path, e)) => Err(io(&path)(e)),
         }
-        let mut file = OpenOptions::new()
-            .read(true)
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(&path)
-            .map_err(io(&path))?;
-        let mut holder = String::new();
-        // Best effort: the pid is only for the message.
-        let _ = (&file).take(64).read_to_string(&mut holder);
-        let holder = holder.trim().to_string();
-        match file.try_lock() {
-            Ok(()) => {}
-            Err(TryLockError::WouldBlock) => {
-                let who = if holder.is_empty() {
-                    "another process".to_string()
-                } else {
-                    format!("process {holder}")
-                };
-                return Err(TrainError::Config(format!(
-                    "{} is in use: {who} is training in it ({}); wait for it to end, or choose another --run-dir",
-                    run_dir.display(),
-                    path.display()
-                )));
-            }
-            Err(TryLockError::Error(e)) => return Err(io(&path)(e)),
-        }
-        let write_pid = |f: &mut File| -> std::io::Result<()> {
-            f.set_len(0)?;
-            f.rewind()?;
-            writeln!(f, "{}", std::process::id())?;
-            f.sync_data()
-        };
-        write_pid(&mut file).map_err(io(&path))?;
-        Ok(RunLock {
-            file,
-            stale_pid: (!holder.is_empty()).then_some(holder),
-        })
-    }
-}
-
-impl Drop for RunLock {
-    fn drop(&mut self) {
-        // Emptied first, so a later reader never takes a finished run's pid for a holder.
-        let _ = self.file.set_len(0);
-        let _ = self.file.unlock();
     }
 }
