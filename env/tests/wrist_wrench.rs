@@ -3,7 +3,8 @@
 //! pressed flat on the table reads the torque `M = r × F` of the table's push at the cube's
 //! bottom face, and the centre of pressure computed from the reading is where the cube stands;
 //! dragged along the table, the friction is read as a lateral force against the motion.
-//! The sensor's noise is off here (`[sensor.wrench]` all zero): these are facts of the truth.
+//! The sensor's noise is off here and it reads the friction (`[sensor.wrench]` all zero,
+//! `friction = true`): these are facts of the truth.
 
 mod common;
 
@@ -26,6 +27,7 @@ fn noiseless_place() -> EnvConfig {
         torque_noise: 0.0,
         force_resolution: 0.0,
         torque_resolution: 0.0,
+        friction: true,
     });
     cfg
 }

@@ -88,7 +88,14 @@ fn tuning_improves_a_bad_start_and_resumes_to_the_same_trials() {
     let validated: u64 = out.finalists.iter().map(|f| f.validation.env_steps).sum();
     assert_eq!(out.finalists.len(), 3);
     assert!(validated > 0 && out.validation_env_steps == validated);
-    assert!(spent + validated >= 60_000 && out.note.env_steps == spent + validated);
+    // The search stops when its steps and the validation's, estimated from the trials' mean
+    // steps an episode, reach the budget: the total lands near it (finalists, the better
+    // settings, seat sooner than the mean trial), not exactly on it.
+    assert_eq!(out.note.env_steps, spent + validated);
+    assert!(
+        spent + validated >= 48_000,
+        "{spent} + {validated} env steps of a 60 000 budget"
+    );
     assert!(
         spent < 60_000,
         "the search left the validation its part of the budget"

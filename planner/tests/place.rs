@@ -53,6 +53,7 @@ fn forces_while_placing(preset: &str, seed: u64) -> (bool, f64, f64, f64) {
         torque_noise: 0.0,
         force_resolution: 0.0,
         torque_resolution: 0.0,
+        ..Default::default()
     });
     let mut env = TaskEnv::new(config.clone()).unwrap();
     let mut script = ScriptedPlace::new(&config);

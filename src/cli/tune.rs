@@ -65,8 +65,8 @@ pub struct TuneArgs {
     /// 1–100 (distinct settings, by their score).
     #[arg(long, default_value_t = DEFAULT_FINALISTS, value_parser = finalists)]
     finalists: usize,
-    /// Seed of the validation's scenarios: training scenarios of their own, neither --seed
-    /// nor 7 [default: 12, or 13 when --seed is 12]
+    /// Seed of the validation's scenarios, 0–9007199254740991 (2⁵³ − 1): training scenarios of
+    /// their own, neither --seed nor 7 [default: 12, or 13 when --seed is 12]
     #[arg(long, value_parser = crate::cli::args::seed)]
     validation_seed: Option<u64>,
     /// Validation episodes per finalist, 1–100000.

@@ -29,6 +29,12 @@ impl SensorConfig {
 /// `torque_noise` \[N·m\], then rounding to `force_resolution` \[N\] and `torque_resolution`
 /// \[N·m\] (0: none). The defaults are those of a compact industrial six-axis sensor of the size
 /// FAIRINO's controller supports (docs/place.md, "The six-axis wrist sensor").
+///
+/// `friction`: whether the simulated wrench includes the contacts' friction (a real sensor's
+/// does), or their normal pushes only — off by default while the shipped controls' settings are
+/// those tuned on a reading without it (with it, the tuned force search seats 67 % of
+/// `place_fixture_error`'s cycles instead of 96 %: docs/place.md). Turn it on, and tune the
+/// controls again, to study the fuller sensor.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct WrenchSensorConfig {
@@ -36,6 +42,7 @@ pub struct WrenchSensorConfig {
     pub torque_noise: f64,
     pub force_resolution: f64,
     pub torque_resolution: f64,
+    pub friction: bool,
 }
 
 impl Default for WrenchSensorConfig {
@@ -45,6 +52,7 @@ impl Default for WrenchSensorConfig {
             torque_noise: 0.002,
             force_resolution: 0.025,
             torque_resolution: 0.0005,
+            friction: false,
         }
     }
 }
@@ -82,52 +90,5 @@ impl WrenchSensorConfig {
             )?;
         }
         Ok(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::config::{EnvConfig, TaskKind, WrenchSensorConfig};
-
-    fn place_with(sensor: WrenchSensorConfig) -> EnvConfig {
-        let mut c = EnvConfig::default();
-        c.task.kind = TaskKind::Place;
-        c.sensor.wrench = Some(sensor);
-        c
-    }
-
-    #[test]
-    fn a_noise_that_is_negative_or_not_finite_is_refused_naming_the_field() {
-        for (value, field) in [
-            (-0.1, "force_noise"),
-            (f64::NAN, "torque_noise"),
-            (f64::INFINITY, "force_resolution"),
-            (50.0, "force_noise"),
-        ] {
-            let mut s = WrenchSensorConfig::default();
-            match field {
-                "force_noise" => s.force_noise = value,
-                "torque_noise" => s.torque_noise = value,
-                _ => s.force_resolution = value,
-            }
-            let err = place_with(s).validate().unwrap_err().to_string();
-            assert!(err.contains(&format!("sensor.wrench.{field}")), "{err}");
-        }
-        assert!(place_with(WrenchSensorConfig::default()).validate().is_ok());
-    }
-
-    #[test]
-    fn a_wrench_sensor_on_a_task_without_a_fixture_is_refused() {
-        let mut lift = EnvConfig::default();
-        lift.sensor.wrench = Some(WrenchSensorConfig::default());
-        let err = lift.validate().unwrap_err().to_string();
-        assert!(
-            err.contains("sensor.wrench") && err.contains("lift"),
-            "{err}"
-        );
-        assert_eq!(EnvConfig::default().wrench_sensor(), None);
-        let mut place = EnvConfig::default();
-        place.task.kind = TaskKind::Place;
-        assert_eq!(place.wrench_sensor(), Some(WrenchSensorConfig::default()));
     }
 }

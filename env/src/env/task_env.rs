@@ -566,7 +566,7 @@ impl TaskEnv {
             let holding = contacts.pad_contact[0] && contacts.pad_contact[1];
             let base = &self.cell.mount.base_in_world;
             let origin = base.compose(&flange).xyz();
-            let world = self.sim.wrist_wrench(holding, origin);
+            let world = self.sim.wrist_wrench(holding, origin, sensor.friction);
             world.in_frame(base)
         } else {
             Wrench::default()

@@ -67,6 +67,7 @@ mod tests {
             torque_noise: 0.0,
             force_resolution,
             torque_resolution: 0.0,
+            friction: false,
         }
     }
 

@@ -180,7 +180,7 @@ pub fn strongest_robot_contact(
 ///
 /// Each contact point contributes its normal impulse along its manifold's normal (which points
 /// from the pair's first collider to its second: `n·λ` is what the second receives) at the point;
-/// each manifold its friction impulse at the mean of its points (rapier's simplified friction
+/// with `step.friction`, each manifold its friction impulse at the mean of its points (rapier's simplified friction
 /// model solves one friction constraint per manifold, at its friction centre; its twist, a
 /// torque about the normal that only turns a flat contact about its own normal, is left out, so
 /// the torque about the contact's normal is not read in full). The normal impulses are the step's totals over the
@@ -229,6 +229,9 @@ pub struct WrenchStep {
     pub dt: f64,
     /// The solver's substeps per physics step (`num_solver_iterations`).
     pub solver_iterations: usize,
+    /// Read the contacts' friction too (`[sensor.wrench] friction`), not their normal impulses
+    /// only.
+    pub friction: bool,
 }
 
 /// Adds one manifold's contacts, as received by the carried side (`sign`), to `wrench`.
@@ -260,7 +263,7 @@ fn add_manifold(
         centre += at;
         count += 1.0;
     }
-    let Some(point) = manifold.points.first() else {
+    let Some(point) = manifold.points.first().filter(|_| step.friction) else {
         return;
     };
     // The friction impulse rapier applies to the first collider (`warmstart_tangent_world`):

@@ -359,10 +359,12 @@ impl Sim {
     /// What a six-axis wrist sensor reads after the last physics step, tared: force \[N\] and
     /// torque \[N·m\] about `sensor_origin`, all in `world`
     /// ([`crate::sim::contacts::wrist_wrench`]).
-    pub fn wrist_wrench(&self, holding: bool, sensor_origin: [f64; 3]) -> Wrench {
+    /// With `friction`, the contacts' friction is read too.
+    pub fn wrist_wrench(&self, holding: bool, sensor_origin: [f64; 3], friction: bool) -> Wrench {
         let step = WrenchStep {
             dt: f64::from(self.world.integration_parameters.dt),
             solver_iterations: self.world.integration_parameters.num_solver_iterations,
+            friction,
         };
         let about = Vec3::new(
             sensor_origin[0] as f32,
