@@ -73,7 +73,7 @@ pub struct TuneArgs {
     #[arg(long, default_value_t = DEFAULT_VALIDATION_EPISODES, value_parser = episodes_per_trial)]
     validation_episodes: usize,
     /// Generations without a better trial after which the search restarts around the best
-    /// with half the spread (0: never).
+    /// with half the spread, 0–1000 (0: never).
     #[arg(long, default_value_t = DEFAULT_STALL_GENERATIONS, value_parser = stall)]
     stall: usize,
     /// The tuning's folder: new or empty, or one of this same tuning to resume.

@@ -330,8 +330,7 @@ mod tests {
         // A wrong type or an unknown key is the typed reader's to refuse, citing the line.
         assert_eq!(refusal("[randomization]\nradius = [0.25, \"x\"]\n"), None);
         assert_eq!(refusal("[scene]\nnot_a_key = [1, 2, 3]\n"), None);
-        for (name, text, _) in crate::config::presets::PRESETS {
-            assert_eq!(refusal(text), None, "{name}");
-        }
+        // Every shipped preset passes too: loading one checks its lists
+        // (`tests/range_messages.rs` loads them all).
     }
 }
