@@ -117,7 +117,7 @@ impl std::fmt::Display for Bounds {
 /// The bounds of a `[min, max]` range a sampler draws from, with the reason for them: both ends
 /// finite (a draw between `1e308` and its square overflows, and one between `-1e308` and
 /// `1e308` has no width a generator can scale), each the bound the sampler and the scene need.
-/// Every range of every table is checked against one ([`check_range`]); a bound with an end at
+/// Every range of every table is checked against one (`check_range`); a bound with an end at
 /// ±∞ cannot be made (a constant one fails to compile, another one panics when it is made).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RangeBounds {

@@ -5,7 +5,7 @@
 //! `baseline --tuned` and `compare --tuned` read it into the preset it was tuned on; a fragment
 //! of another preset (by content, when it carries the checksum), of another table, of a control
 //! without parameters, with a rate outside [0, 1] or a value the preset refuses is refused,
-//! naming what. A fragment the user edited is never overwritten ([`write`]).
+//! naming what. A fragment the user edited is never overwritten ([`write()`]).
 
 use std::path::{Path, PathBuf};
 
@@ -141,7 +141,7 @@ pub fn summary(note: &TuningNote) -> String {
     )
 }
 
-/// Where [`write`] put the fragment.
+/// Where [`write()`] put the fragment.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Written {
     pub path: PathBuf,
