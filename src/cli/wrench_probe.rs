@@ -18,12 +18,12 @@ pub struct WrenchProbeArgs {
     /// A place preset (a task with a fixture, so the cell has the wrist sensor).
     #[arg(long, default_value = "place_cell", value_parser = crate::cli::args::preset)]
     preset: String,
-    /// First scenario seed: training scenarios by default (11, the tunings'), never a reported
-    /// set.
+    /// First scenario seed, 0–9007199254740991 (2⁵³ − 1): training scenarios by default (11,
+    /// the tunings'), never a reported set.
     #[arg(long, default_value_t = 11, value_parser = crate::cli::args::seed)]
     seed: u64,
-    /// Scenarios, 1 to 100000.
-    #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    /// Scenarios, 1–1000000.
+    #[arg(long, default_value_t = 300, value_parser = crate::cli::args::episode_count)]
     episodes: u32,
     /// Also write every scenario's first touch as CSV here (a new file; never replaced).
     #[arg(long)]
