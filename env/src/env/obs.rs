@@ -66,13 +66,12 @@ pub struct Observation {
     /// centre on the table top in `base_link` \[m\] and its yaw; `None` for the lift task. Not
     /// part of the flat view ([`OBS_NAMES`]).
     pub fixture: Option<ObservedObject>,
-    /// The place task's force sensing: what a wrist force/torque sensor reads, tared, in
-    /// `base_link` \[N\] — the push of the table and the fixture on the gripper and on the cube
-    /// while both pads hold it (`crate::sim::contacts::wrist_load`), after the step's last
-    /// physics substep (zero after a step without physics: nothing touched). `None` for the
-    /// lift task. Not part of the flat view ([`OBS_NAMES`]). The force of the six-axis wrist
-    /// sensor's reading ([`Self::wrist_torque`] is its torque), with its noise
-    /// (`[sensor.wrench]`).
+    /// The force of the six-axis wrist sensor between the flange and the gripper, tared, in
+    /// `base_link` \[N\]: the push of the table and the fixture on the gripper and on the cube
+    /// while both pads hold it (`crate::sim::contacts::wrist_wrench`), after the step's last
+    /// physics substep (only the sensor's noise after a step without physics: nothing touched),
+    /// with the sensor's noise (`[sensor.wrench]`); [`Self::wrist_torque`] is its torque.
+    /// `None` on a task without a fixture. Not part of the flat view ([`OBS_NAMES`]).
     pub wrist_force: Option<[f64; 3]>,
     /// The six-axis wrist sensor's torque about its origin (the flange, `tool0`), in
     /// `base_link` \[N·m\], tared and with its noise like [`Self::wrist_force`]; `None` where

@@ -179,11 +179,11 @@ pub fn strongest_robot_contact(
 /// centimetres per second when it touches).
 ///
 /// Each contact point contributes its normal impulse along its manifold's normal (which points
-/// from the pair's first collider to its second: `n·λ` is what the second receives) at the point;
-/// with `step.friction`, each manifold its friction impulse at the mean of its points (rapier's simplified friction
-/// model solves one friction constraint per manifold, at its friction centre; its twist, a
-/// torque about the normal that only turns a flat contact about its own normal, is left out, so
-/// the torque about the contact's normal is not read in full). The normal impulses are the step's totals over the
+/// from the pair's first collider to its second: `n·λ` is what the second receives) at the
+/// point; with `step.friction`, each manifold its friction impulse at the mean of its points
+/// (rapier's simplified friction model solves one friction constraint per manifold, at its
+/// friction centre; its twist, a torque about the normal, is left out, so the torque about the
+/// contact's normal is not read in full). The normal impulses are the step's totals over the
 /// solver's substeps; rapier keeps only the last substep's friction impulse, so it is scaled by
 /// the manifold's ratio of total to last-substep normal impulse (`solver_iterations` when that
 /// is undefined). Impulses divided by `dt` \[s\] are forces.
