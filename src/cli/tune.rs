@@ -3,7 +3,7 @@
 //! best as a preset fragment (`tuned.toml`) that `baseline --tuned` and `compare --tuned` read.
 
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -14,7 +14,9 @@ use fairgrasp_evaluate::tune::spec::{
     DEFAULT_FINALISTS, DEFAULT_STALL_GENERATIONS, DEFAULT_VALIDATION_EPISODES, MAX_BUDGET,
     MAX_EPISODES_PER_TRIAL, MAX_FINALISTS,
 };
-use fairgrasp_evaluate::tune::{TuneError, TuneEvent, TuneSpec, Validation, folder, run_tune};
+use fairgrasp_evaluate::tune::{
+    TuneError, TuneEvent, TuneOutcome, TuneSpec, Validation, folder, run_tune,
+};
 use fairgrasp_types::ArmSimulation;
 
 use crate::cli::UsageError;
@@ -143,31 +145,7 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
     if a.list {
         return list(&config, &a.control);
     }
-    // A request that cannot run (a control or parameter the preset has not, a range outside
-    // what it accepts) is a usage error: exit code 2, as clap's own.
-    let spec = TuneSpec::new(
-        &a.preset,
-        config,
-        &a.control,
-        &a.params,
-        a.seed,
-        a.episodes,
-        a.budget,
-        a.optimiser_seed,
-    )
-    .and_then(|spec| {
-        let defaults = Validation::default_for(a.seed);
-        spec.with_validation(Validation {
-            seed: a.validation_seed.unwrap_or(defaults.seed),
-            episodes: a.validation_episodes,
-            finalists: a.finalists,
-        })
-    })
-    .map(|spec| spec.with_stall_generations(a.stall))
-    .map_err(|e| match e {
-        TuneError::Request(m) => anyhow::Error::new(UsageError(m)),
-        other => other.into(),
-    })?;
+    let spec = tune_spec(a, config)?;
     let dir = a.out.clone().expect("clap requires --out without --list");
     let threads = a
         .threads
@@ -191,6 +169,42 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
     let outcome = run_tune(&spec, &dir, threads, &|e| {
         report(&e, &episodes, live, spec.episodes)
     })?;
+    print_outcome(&spec, &outcome, &dir);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The tuning `a` asks for on `config`, its validation and stall rule included. A request that
+/// cannot run is a usage error.
+fn tune_spec(a: &TuneArgs, config: EnvConfig) -> anyhow::Result<TuneSpec> {
+    // A request that cannot run (a control or parameter the preset has not, a range outside
+    // what it accepts) is a usage error: exit code 2, as clap's own.
+    TuneSpec::new(
+        &a.preset,
+        config,
+        &a.control,
+        &a.params,
+        a.seed,
+        a.episodes,
+        a.budget,
+        a.optimiser_seed,
+    )
+    .and_then(|spec| {
+        let defaults = Validation::default_for(a.seed);
+        spec.with_validation(Validation {
+            seed: a.validation_seed.unwrap_or(defaults.seed),
+            episodes: a.validation_episodes,
+            finalists: a.finalists,
+        })
+    })
+    .map(|spec| spec.with_stall_generations(a.stall))
+    .map_err(|e| match e {
+        TuneError::Request(m) => anyhow::Error::new(UsageError(m)),
+        other => other.into(),
+    })
+}
+
+/// What the tuning chose, its env steps and where its files are.
+fn print_outcome(spec: &TuneSpec, outcome: &TuneOutcome, dir: &Path) {
     let best = &outcome.trials[outcome.best];
     let counted = |t: &fairgrasp_evaluate::tune::trials::Trial| match spec.objective {
         fairgrasp_evaluate::tune::Objective::SuccessWithinTakt => t.within_takt,
@@ -244,7 +258,6 @@ pub fn run(a: &TuneArgs) -> anyhow::Result<ExitCode> {
         dir.join("finalists.csv").display(),
         outcome.fragment.path.display()
     );
-    Ok(ExitCode::SUCCESS)
 }
 
 /// One progress line per trial on stderr (and a running count of episodes on a terminal).

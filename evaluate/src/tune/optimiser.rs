@@ -613,12 +613,7 @@ fn write_finalists(
     let mut out = cols.join(",") + "\n";
     for f in finalists {
         let (t, v) = (&f.trial, &f.validation);
-        let mut row = vec![t.index.to_string(), t.generation.to_string()];
-        row.extend(
-            names
-                .iter()
-                .map(|n| t.values.get(*n).map_or(String::new(), f64::to_string)),
-        );
+        let mut row = crate::tune::trials::trial_columns(t, &names);
         row.extend([
             t.episodes.to_string(),
             t.objective.to_string(),

@@ -67,17 +67,24 @@ fn header(names: &[&str]) -> String {
     cols.join(",")
 }
 
+/// A trial's first columns in a CSV: its index, generation and parameters in the order of
+/// `names` (`trials.csv`'s and `finalists.csv`'s).
+pub fn trial_columns(t: &Trial, names: &[&str]) -> Vec<String> {
+    let mut row = vec![t.index.to_string(), t.generation.to_string()];
+    row.extend(
+        names
+            .iter()
+            .map(|n| t.values.get(*n).map_or(String::new(), f64::to_string)),
+    );
+    row
+}
+
 /// `trials` as CSV, parameters in the order of `names`.
 pub fn to_csv(trials: &[Trial], names: &[&str]) -> String {
     let mut out = header(names);
     out.push('\n');
     for t in trials {
-        let mut row = vec![t.index.to_string(), t.generation.to_string()];
-        row.extend(
-            names
-                .iter()
-                .map(|n| t.values.get(*n).map_or(String::new(), f64::to_string)),
-        );
+        let mut row = trial_columns(t, names);
         row.extend([
             t.episodes.to_string(),
             t.env_steps.to_string(),
